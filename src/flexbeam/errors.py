@@ -1,0 +1,48 @@
+"""One family of errors for flexbeam (see DESIGN.md, *Conventions*).
+
+* :class:`ParameterError` -- bad input; the message names the field, the bad value
+  and what is allowed.  The CLI turns it into one line on stderr and exit code 2.
+* :class:`ModelError` -- a request the model cannot represent (e.g. a Hertz stiffness
+  for a contact whose geometry is not Hertzian).
+* :class:`SolverError` -- a numerical failure; carries the time at which it happened.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+
+
+class FlexbeamError(Exception):
+    """Base class of every error raised on purpose by flexbeam."""
+
+
+class ParameterError(FlexbeamError, ValueError):
+    """Invalid input: the message names the field and the allowed range."""
+
+
+class ModelError(FlexbeamError):
+    """The model cannot represent what was asked."""
+
+
+class SolverError(FlexbeamError, RuntimeError):
+    """A numerical failure during integration.
+
+    Parameters
+    ----------
+    message
+        What went wrong.
+    time
+        Simulation time [s] at which it happened.
+    """
+
+    def __init__(self, message: str, time: float | None = None) -> None:
+        self.time = time
+        where = f" at t = {time:.6g} s" if time is not None else ""
+        super().__init__(f"{message}{where}")
+
+
+def closest(name: str, choices: Iterable[str]) -> str:
+    """Return ``" (best matches: a, b)"`` for an unknown ``name``, or ``""``."""
+    matches = difflib.get_close_matches(name, list(choices), n=3, cutoff=0.5)
+    return f" (best matches: {', '.join(matches)})" if matches else ""

@@ -1,0 +1,92 @@
+"""What the three impact methods share: free flight, the gap event, the contact log."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..integrate.eventdriven import Event, Phase, Stop
+from ..model.system import BeamSystem
+from ..parameters.case import Case
+
+
+@dataclass
+class ContactEvent:
+    """One contact (or, for IMM, one instantaneous impact).
+
+    Times in s; velocities are P's normal velocity delta' [m/s] (negative = approaching)
+    just before the contact and at its end (IMM: right after the jump).
+    """
+
+    index: int
+    onset: float
+    end: float = float("nan")
+    velocity_before: float = float("nan")
+    velocity_after: float = float("nan")
+    impulse: float = float("nan")
+    peak_force: float = float("nan")
+    peak_time: float = float("nan")
+    energy_before: float = float("nan")
+    energy_after: float = float("nan")
+
+    @property
+    def duration(self) -> float:
+        return self.end - self.onset
+
+
+@dataclass
+class ImpactMethod:
+    """Base of CCFM, CCM and IMM: the free phase and the impact event.
+
+    Subclasses add their contact phase(s) and transitions.
+    """
+
+    system: BeamSystem
+    case: Case
+    contacts: list[ContactEvent] = field(default_factory=list)
+
+    name = "base"
+    #: onsets with |delta'| below this are grazing touches, not impacts [m/s]
+    grazing_speed = 1e-9
+
+    def __post_init__(self) -> None:
+        self._free_fun = self.system.rhs_function(None)
+        self.impact_event = Event("impact", self.gap_event, -1)
+
+    # events ---------------------------------------------------------------
+    def gap_event(self, t: float, y: np.ndarray) -> tuple[float, float]:
+        """(delta, delta') of the contact point: the impact/separation event function."""
+        delta, vn, _, _ = self.system.gap(t, y)
+        return delta, vn
+
+    def free_phase(self) -> Phase:
+        """Unimpact motion until the gap closes."""
+        return Phase("free", self._free_fun, [self.impact_event], self.case.solver.sample_step)
+
+    def approaching(self, t: float, y: np.ndarray) -> bool:
+        """Closed gap with P moving into the obstacle: an impact starts here."""
+        delta, vn = self.gap_event(t, y)
+        return delta <= 1e-15 and vn < -self.grazing_speed
+
+    def new_contact(self, t: float, y: np.ndarray) -> ContactEvent:
+        """Log a contact onset, stopping the run past ``solver.max_contacts``."""
+        if len(self.contacts) >= self.case.solver.max_contacts:
+            raise Stop(
+                "max-contacts",
+                f"stopped at t = {t:.9g} s after {len(self.contacts)} contacts "
+                f"(solver.max_contacts); the contacts accumulate (Zeno-like)",
+            )
+        vn = self.gap_event(t, y)[1]
+        ev = ContactEvent(index=len(self.contacts), onset=t, velocity_before=vn)
+        self.contacts.append(ev)
+        return ev
+
+    # outputs --------------------------------------------------------------
+    def force(self, phase: Phase, t: float, y: np.ndarray) -> tuple[float, float]:
+        """(contact force F [N], contact potential U_c [J]) at a sample of ``phase``."""
+        return 0.0, 0.0
+
+    def joint_torque(self, phase: Phase, t: float, y: np.ndarray) -> float:
+        """Joint torque [N m] at a sample (the reaction when theta(t) is prescribed)."""
+        return self.system.joint_torque(t, y, phase.data.get("lawp"))

@@ -1,0 +1,63 @@
+"""CCFM: continuous contact force method.
+
+While the gap delta is closed the contact force F = L(delta)[F_k + F_d] of the
+chosen law (:mod:`flexbeam.contact.laws`) acts on the beam as the generalised force
+J^T F (Duan, Zhang & Hong 2013, Sec. 3.1).  The phase starts when delta crosses zero
+downwards and ends when it crosses zero upwards; both instants are located as events.
+The damping reference velocity d'_0 of the hysteresis laws is the approach speed at
+the onset of each contact, and the linear law's effective mass 1/(J M^-1 J^T) is
+taken there too.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..contact.laws import law_force, law_potential
+from ..integrate.eventdriven import Event, Phase
+from .base import ImpactMethod
+
+
+class CCFM(ImpactMethod):
+    """Continuous contact force method."""
+
+    name = "ccfm"
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        self.separation_event = Event("separation", self.gap_event, +1)
+
+    def contact_phase(self, t: float, y: np.ndarray) -> Phase:
+        ev = self.new_contact(t, y)
+        rate = -ev.velocity_before
+        lawp = self.system.law.parameters(rate, self.system.effective_mass(t, y))
+        return Phase(
+            "contact",
+            self.system.rhs_function(lawp),
+            [self.separation_event],
+            self.case.solver.contact_sample_step,
+            data={"lawp": lawp, "contact": ev},
+            keep_dense=True,
+        )
+
+    def start(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        if self.approaching(t, y):
+            return self.contact_phase(t, y), y
+        return self.free_phase(), y
+
+    def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        if phase.name == "free":
+            if self.approaching(t, y):
+                return self.contact_phase(t, y), y
+            return self.free_phase(), y  # grazing touch: keep flying
+        ev = phase.data["contact"]
+        ev.end = t
+        ev.velocity_after = self.gap_event(t, y)[1]
+        return self.free_phase(), y
+
+    def force(self, phase: Phase, t: float, y: np.ndarray) -> tuple[float, float]:
+        if phase.name != "contact":
+            return 0.0, 0.0
+        lawp = phase.data["lawp"]
+        delta, vn = self.gap_event(t, y)
+        return law_force(lawp, -delta, -vn)[0], law_potential(lawp, -delta)

@@ -1,0 +1,349 @@
+"""The assembled beam system: equations of motion, contact kinematics and energies.
+
+State vector (first-order form, with two bookkeeping integrals appended):
+
+* joint free or torque-driven:  y = [theta, q_1..q_n, theta', q'_1..q'_n, E_d, W]
+* theta(t) prescribed:          y = [q_1..q_n, q'_1..q'_n, E_d, W]
+
+E_d is the energy dissipated by the contact force, int (F - F_k) d' dt, and W the
+work of the joint torque, int tau theta' dt; the total energy
+T + V_e + V_g + U_c + E_d - W is then conserved exactly by the equations, which the
+tests check.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+from ..contact.hertz import effective_modulus, sphere_on_cylinder_stiffness
+from ..contact.laws import ContactLaw, law_force, make_law
+from ..parameters.case import Case
+from .beam import ModalBeam, PointData, build_modal_beam
+from .drive import JointDrive
+from .kernels import gap_state, generalized_forces, mass_matrix, point_kinematics
+
+OBSTACLE_SPHERE, OBSTACLE_PLANE = 0, 1
+
+
+@njit(cache=True)
+def _state_split(y, n, prescribed, th_p, thd_p):
+    if prescribed:
+        return th_p, thd_p, y[0:n], y[n : 2 * n]
+    return y[0], y[n + 1], y[1 : n + 1], y[n + 2 : 2 * n + 2]
+
+
+@njit(cache=True)
+def rhs_kernel(
+    y, n, prescribed, th_p, thd_p, thdd_p, tau, g,
+    Jc, m1, Mc, Mff, mtf, Kff, sf, G,
+    pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal,
+    in_contact, lawp, extra_force, extra_J,
+):  # fmt: skip
+    """Right-hand side dy/dt of the beam with an optional CCFM contact force.
+
+    ``extra_force * extra_J`` is an additional generalised force (used by the
+    constrained method for the multiplier); pass 0.0 and any array otherwise.
+    Returns (dy/dt, F, joint torque).
+    """
+    N = n + 1
+    theta, omega, q, qd = _state_split(y, n, prescribed, th_p, thd_p)
+    M = np.empty((N, N))
+    Q = np.empty(N)
+    mass_matrix(q, Jc, Mc, Mff, mtf, M)
+    generalized_forces(theta, omega, q, qd, 0.0 if prescribed else tau, g, m1, Mc, Kff, sf, G, Q)
+    F = 0.0
+    diss = 0.0
+    if in_contact:
+        dr = np.empty((2, N))
+        J = np.empty(N)
+        r, v, a0 = point_kinematics(theta, omega, q, qd, pbase, pphi, pdphi, pH, pc, dr)
+        delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, okind, ocentre, oradius, onormal, J)
+        F, Fk = law_force(lawp, -delta, -vn)
+        for i in range(N):
+            Q[i] += J[i] * F
+        diss = (F - Fk) * (-vn)
+    if extra_force != 0.0:
+        for i in range(N):
+            Q[i] += extra_J[i] * extra_force
+    dy = np.empty(y.size)
+    if prescribed:
+        qdd = np.empty(n)
+        if n > 0:
+            rhs = Q[1:] - M[1:, 0] * thdd_p
+            qdd = np.linalg.solve(M[1:, 1:], rhs)
+        torque = M[0, 0] * thdd_p - Q[0]
+        for i in range(n):
+            torque += M[0, i + 1] * qdd[i]
+            dy[i] = qd[i]
+            dy[n + i] = qdd[i]
+        dy[2 * n] = diss
+        dy[2 * n + 1] = torque * omega
+        return dy, F, torque
+    zdd = np.linalg.solve(M, Q)
+    dy[0] = omega
+    for i in range(n):
+        dy[i + 1] = qd[i]
+    for i in range(N):
+        dy[N + i] = zdd[i]
+    dy[2 * N] = diss
+    dy[2 * N + 1] = tau * omega
+    return dy, F, tau
+
+
+@dataclass
+class ContactGeometry:
+    """Contact point P on the beam and the obstacle, as arrays for the kernels."""
+
+    point: PointData
+    kind: int
+    centre: np.ndarray
+    radius: float
+    normal: np.ndarray
+
+
+@dataclass
+class BeamSystem:
+    """Everything the integrator needs about one case.
+
+    Build it with :meth:`from_case`.  Methods take the full state vector ``y``
+    (see the module docstring) and time ``t``.
+    """
+
+    case: Case
+    beam: ModalBeam
+    drive: JointDrive
+    contact: ContactGeometry
+    law: ContactLaw
+    measuring: list[PointData] = field(default_factory=list)
+
+    # ------------------------------------------------------------------ set-up
+    @classmethod
+    def from_case(cls, case: Case) -> BeamSystem:
+        """Assemble modal matrices, contact geometry, contact law and drive."""
+        beam = build_modal_beam(case)
+        c = case.beam.surface_offset
+        P = beam.point(case.contact.position, offset=c)
+        drive = JointDrive(case.drive, theta0=_initial_angle_guess(case))
+        geometry = _place_obstacle(case, P)
+        K = case.contact.stiffness
+        if K is None:
+            E_star = effective_modulus(
+                case.beam.youngs_modulus,
+                case.beam.poisson_ratio,
+                case.obstacle.youngs_modulus,
+                case.obstacle.poisson_ratio,
+            )
+            radius = case.beam.radius if case.beam.section == "circle" else 0.0
+            K = sphere_on_cylinder_stiffness(case.obstacle.radius, radius or 0.0, E_star)
+            exponent = 1.5
+        else:
+            exponent = case.contact.exponent
+        law = make_law(case.contact.law, K, exponent, case.contact.restitution)
+        measuring = [beam.point(x, 0.0) for x in case.output.measuring_points]
+        return cls(case, beam, drive, geometry, law, measuring)
+
+    @property
+    def n(self) -> int:
+        return self.beam.n
+
+    @property
+    def prescribed(self) -> bool:
+        return self.drive.prescribed
+
+    @property
+    def size(self) -> int:
+        """Length of the state vector."""
+        return 2 * self.n + 2 if self.prescribed else 2 * self.n + 4
+
+    @property
+    def g(self) -> float:
+        return self.case.model.gravity
+
+    # ---------------------------------------------------------- state access
+    def split(self, t: float, y: np.ndarray) -> tuple[float, float, np.ndarray, np.ndarray]:
+        """(theta, theta', q, q') of state y at time t."""
+        n = self.n
+        if self.prescribed:
+            th, thd, _ = self.drive.motion(t)
+            return th, thd, y[:n], y[n : 2 * n]
+        return float(y[0]), float(y[n + 1]), y[1 : n + 1], y[n + 2 : 2 * n + 2]
+
+    def velocities(self, t: float, y: np.ndarray) -> np.ndarray:
+        """Generalised velocities z' = [theta', q']."""
+        _, thd, _, qd = self.split(t, y)
+        return np.concatenate(([thd], qd))
+
+    def with_velocities(self, t: float, y: np.ndarray, zd: np.ndarray) -> np.ndarray:
+        """Copy of y with generalised velocities replaced (theta' only if free)."""
+        y = y.copy()
+        n = self.n
+        if self.prescribed:
+            y[n : 2 * n] = zd[1:]
+        else:
+            y[n + 1 : 2 * n + 2] = zd
+        return y
+
+    # ----------------------------------------------------------- equations
+    def _args(self, t: float, y: np.ndarray):
+        b, P, o = self.beam, self.contact.point, self.contact
+        if self.prescribed:
+            th, thd, thdd = self.drive.motion(t)
+        else:
+            th = thd = thdd = 0.0
+        return (
+            y, b.n, self.prescribed, th, thd, thdd, self.drive.torque(t), self.g,
+            b.hub_inertia + b.J0, b.m1, b.Mff - b.D, b.Mff, b.mtf, b.Kff, b.sf, b.G,
+            P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal,
+        )  # fmt: skip
+
+    def rhs(self, t: float, y: np.ndarray, lawp: np.ndarray | None = None) -> np.ndarray:
+        """dy/dt; with ``lawp`` (contact-law parameters) the CCFM force is included."""
+        in_contact = lawp is not None
+        p = lawp if in_contact else _NO_LAW
+        return rhs_kernel(*self._args(t, y), in_contact, p, 0.0, _NO_LAW)[0]
+
+    def rhs_function(self, lawp: np.ndarray | None = None):
+        """A fast ``fun(t, y)`` for scipy's solvers (constant arrays bound once)."""
+        b, P, o = self.beam, self.contact.point, self.contact
+        const = (
+            b.hub_inertia + b.J0, b.m1, np.ascontiguousarray(b.Mff - b.D), b.Mff, b.mtf, b.Kff,
+            b.sf, b.G, P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal,
+        )  # fmt: skip
+        n, prescribed, g, drive = b.n, self.prescribed, self.g, self.drive
+        in_contact = lawp is not None
+        p = lawp if in_contact else _NO_LAW
+
+        if prescribed:
+
+            def fun(t: float, y: np.ndarray) -> np.ndarray:
+                th, thd, thdd = drive.motion(t)
+                return rhs_kernel(y, n, True, th, thd, thdd, 0.0, g, *const, in_contact, p, 0.0, _NO_LAW)[0]
+
+        else:
+            tau_const = drive.spec.kind != "torque"
+
+            def fun(t: float, y: np.ndarray) -> np.ndarray:
+                tau = 0.0 if tau_const else drive.torque(t)
+                return rhs_kernel(y, n, False, 0.0, 0.0, 0.0, tau, g, *const, in_contact, p, 0.0, _NO_LAW)[0]
+
+        return fun
+
+    def contact_force(self, t: float, y: np.ndarray, lawp: np.ndarray) -> tuple[float, float]:
+        """(F, F_k): CCFM contact force and its elastic part at state y."""
+        delta, vn = self.gap(t, y)[:2]
+        return law_force(lawp, -delta, -vn)
+
+    def joint_torque(self, t: float, y: np.ndarray, lawp: np.ndarray | None = None) -> float:
+        """Joint torque: applied tau (free/torque) or the reaction needed for theta(t)."""
+        in_contact = lawp is not None
+        p = lawp if in_contact else _NO_LAW
+        return rhs_kernel(*self._args(t, y), in_contact, p, 0.0, _NO_LAW)[2]
+
+    def mass_matrix(self, t: float, y: np.ndarray) -> np.ndarray:
+        """Generalised mass matrix M(q), (n+1) x (n+1)."""
+        _, _, q, _ = self.split(t, y)
+        b = self.beam
+        M = np.empty((b.n + 1, b.n + 1))
+        mass_matrix(np.ascontiguousarray(q), b.hub_inertia + b.J0, b.Mff - b.D, b.Mff, b.mtf, M)
+        return M
+
+    def generalized_forces(self, t: float, y: np.ndarray) -> np.ndarray:
+        """Q(z, z', t) without contact (includes the applied torque if not prescribed)."""
+        th, thd, q, qd = self.split(t, y)
+        b = self.beam
+        Q = np.empty(b.n + 1)
+        tau = 0.0 if self.prescribed else self.drive.torque(t)
+        generalized_forces(
+            th, thd, np.ascontiguousarray(q), np.ascontiguousarray(qd), tau, self.g,
+            b.m1, b.Mff - b.D, b.Kff, b.sf, b.G, Q,
+        )  # fmt: skip
+        return Q
+
+    # ---------------------------------------------------------- kinematics
+    def point_state(self, t: float, y: np.ndarray, point: PointData):
+        """(r, v, a0, dr/dz) of a material point; a0 = acceleration at z'' = 0."""
+        th, thd, q, qd = self.split(t, y)
+        dr = np.empty((2, self.n + 1))
+        r, v, a0 = point_kinematics(
+            th, thd, np.ascontiguousarray(q), np.ascontiguousarray(qd),
+            point.base, point.phi, point.dphi, point.H, point.offset, dr,
+        )  # fmt: skip
+        return r, v, a0, dr
+
+    def gap(self, t: float, y: np.ndarray) -> tuple[float, float, float, np.ndarray]:
+        """(delta, delta', gamma, J): gap, its rate, J' z' and the Jacobian d delta/dz."""
+        r, v, a0, dr = self.point_state(t, y, self.contact.point)
+        J = np.empty(self.n + 1)
+        o = self.contact
+        delta, vn, gamma, _, _ = gap_state(r, v, a0, dr, o.kind, o.centre, o.radius, o.normal, J)
+        return delta, vn, gamma, J
+
+    def normal_velocity(self, t: float, y: np.ndarray, point: PointData) -> float:
+        """Velocity of a beam point along the floating-frame normal e2 [m/s]."""
+        th = self.split(t, y)[0]
+        _, v, _, _ = self.point_state(t, y, point)
+        return float(-math.sin(th) * v[0] + math.cos(th) * v[1])
+
+    def effective_mass(self, t: float, y: np.ndarray) -> float:
+        """Effective mass at P along the contact normal, 1/(J M^-1 J^T) [kg]."""
+        J = self.gap(t, y)[3]
+        M = self.mass_matrix(t, y)
+        if self.prescribed:
+            J, M = J[1:], M[1:, 1:]
+            if J.size == 0:
+                return math.inf
+        return float(1.0 / (J @ np.linalg.solve(M, J)))
+
+    # ------------------------------------------------------------- energies
+    def energies(self, t: float, y: np.ndarray) -> dict[str, float]:
+        """Kinetic, elastic, gravitational energy [J] and the two bookkeeping integrals."""
+        from .kernels import energies
+
+        th, thd, q, qd = self.split(t, y)
+        b = self.beam
+        T, Ve, Vg = energies(
+            th, thd, np.ascontiguousarray(q), np.ascontiguousarray(qd), b.hub_inertia + b.J0,
+            b.Mff - b.D, b.Mff, b.mtf, b.Kff, b.m1, b.sf, b.G, self.g,
+        )  # fmt: skip
+        return {"kinetic": T, "elastic": Ve, "gravitational": Vg, "dissipated": float(y[-2]), "drive_work": float(y[-1])}
+
+    # ----------------------------------------------------------- initial state
+    def state(self, theta: float, omega: float, q=None, qd=None) -> np.ndarray:
+        """State vector from (theta, theta', q, q') with zero bookkeeping integrals."""
+        n = self.n
+        q = np.zeros(n) if q is None else np.asarray(q, float)
+        qd = np.zeros(n) if qd is None else np.asarray(qd, float)
+        if self.prescribed:
+            return np.concatenate((q, qd, [0.0, 0.0]))
+        return np.concatenate(([theta], q, [omega], qd, [0.0, 0.0]))
+
+
+_NO_LAW = np.zeros(4)
+
+
+def _initial_angle_guess(case: Case) -> float:
+    init = case.initial
+    if init.kind == "state":
+        return init.angle
+    if init.kind == "release" and init.release_angle is not None:
+        return init.release_angle
+    return init.impact_angle
+
+
+def _place_obstacle(case: Case, P: PointData) -> ContactGeometry:
+    """Obstacle arrays; when no centre is given it touches P at the impact configuration."""
+    ob = case.obstacle
+    th = case.initial.impact_angle
+    e1 = np.array([math.cos(th), math.sin(th)])
+    e2 = np.array([-math.sin(th), math.cos(th)])
+    r_P = P.base * e1 - P.offset * e2  # beam straight
+    if ob.kind == "sphere":
+        centre = np.array(ob.centre, float) if ob.centre is not None else r_P - ob.radius * e2
+        return ContactGeometry(P, OBSTACLE_SPHERE, centre, float(ob.radius), np.zeros(2))
+    centre = np.array(ob.centre, float) if ob.centre is not None else r_P
+    normal = np.array(ob.normal, float) if ob.normal is not None else e2
+    return ContactGeometry(P, OBSTACLE_PLANE, centre, 0.0, normal)

@@ -1,0 +1,23 @@
+"""Case parameters: validated sections, built-in presets and TOML input/output."""
+
+from .case import CONTACT_LAWS, Beam, Case, Contact, Drive, Hub, Initial, Model, Obstacle, Output, Solver
+from .io import builtin_cases, dump_case, load_case, parse_overrides, reference_data
+
+__all__ = [
+    "CONTACT_LAWS",
+    "Beam",
+    "Case",
+    "Contact",
+    "Drive",
+    "Hub",
+    "Initial",
+    "Model",
+    "Obstacle",
+    "Output",
+    "Solver",
+    "builtin_cases",
+    "dump_case",
+    "load_case",
+    "parse_overrides",
+    "reference_data",
+]

@@ -1,0 +1,303 @@
+"""Validated case parameters (SI units, angles in radians).
+
+A *case* is everything needed to run one simulation: the beam, the hub, the model
+options, the drive at the joint O, the obstacle, the contact law, the initial state
+and the solver settings.  Each section is a pydantic model with ``extra="forbid"``
+so that a misspelt key is an error, and every number is checked to be finite and in
+its physical range at construction.  :func:`flexbeam.parameters.io.load_case` turns a
+:class:`pydantic.ValidationError` into a one-line :class:`~flexbeam.errors.ParameterError`
+naming the field.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Literal
+
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
+
+
+def _finite(value: float) -> float:
+    if not math.isfinite(value):
+        raise ValueError("must be a finite number")
+    return value
+
+
+Finite = Annotated[float, AfterValidator(_finite)]
+Positive = Annotated[float, Field(gt=0), AfterValidator(_finite)]
+NonNegative = Annotated[float, Field(ge=0), AfterValidator(_finite)]
+
+CONTACT_LAWS = (
+    "hertz",
+    "kelvin_voigt",
+    "hunt_crossley",
+    "lankarani_nikravesh",
+    "flores",
+    "gonthier",
+    "carvalho_martins",
+)
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid", validate_assignment=True)
+
+
+class Beam(_Section):
+    """Uniform Euler-Bernoulli beam.
+
+    ``section = "circle"`` takes ``radius``; ``section = "general"`` takes ``area``,
+    ``second_moment`` and ``half_depth`` (centre line to the surface at the contact).
+    """
+
+    length: Positive = Field(description="beam length L [m]")
+    density: Positive = Field(description="mass density rho [kg/m^3]")
+    youngs_modulus: Positive = Field(description="Young's modulus E [Pa]")
+    poisson_ratio: Annotated[float, Field(ge=-1.0, lt=0.5)] = Field(
+        0.3, description="Poisson ratio nu [-]"
+    )
+    section: Literal["circle", "general"] = "circle"
+    radius: Positive | None = Field(None, description="circular section radius [m]")
+    area: Positive | None = Field(None, description="cross-section area S [m^2]")
+    second_moment: Positive | None = Field(None, description="second moment of area I [m^4]")
+    half_depth: NonNegative | None = Field(
+        None, description="distance from the centre line to the contact surface [m]"
+    )
+
+    @model_validator(mode="after")
+    def _section_complete(self) -> Beam:
+        if self.section == "circle":
+            if self.radius is None:
+                raise ValueError("beam.radius: required when beam.section = 'circle'")
+        else:
+            for name in ("area", "second_moment", "half_depth"):
+                if getattr(self, name) is None:
+                    raise ValueError(f"beam.{name}: required when beam.section = 'general'")
+        return self
+
+    @property
+    def section_area(self) -> float:
+        """Cross-section area S [m^2]."""
+        if self.area is not None:
+            return self.area
+        assert self.radius is not None
+        return math.pi * self.radius**2
+
+    @property
+    def section_second_moment(self) -> float:
+        """Second moment of area I [m^4]."""
+        if self.second_moment is not None:
+            return self.second_moment
+        assert self.radius is not None
+        return math.pi * self.radius**4 / 4.0
+
+    @property
+    def surface_offset(self) -> float:
+        """Distance c from the centre line to the beam surface at the contact [m]."""
+        if self.half_depth is not None:
+            return self.half_depth
+        assert self.radius is not None
+        return self.radius
+
+    @property
+    def line_density(self) -> float:
+        """Mass per unit length mu = rho S [kg/m]."""
+        return self.density * self.section_area
+
+    @property
+    def bending_stiffness(self) -> float:
+        """Bending stiffness EI [N m^2]."""
+        return self.youngs_modulus * self.section_second_moment
+
+    @property
+    def mass(self) -> float:
+        """Beam mass [kg]."""
+        return self.line_density * self.length
+
+
+class Hub(_Section):
+    """Rigid hub at the revolute joint O: the beam root sits at ``radius`` along e1."""
+
+    radius: NonNegative = Field(0.0, description="hub radius r_h [m]")
+    inertia: NonNegative = Field(0.0, description="hub moment of inertia about O, J_h [kg m^2]")
+
+
+class Model(_Section):
+    """Discretisation and physics options of the rigid-flexible coupling model."""
+
+    modes: Annotated[int, Field(ge=0, le=64)] = Field(
+        8, description="number of assumed clamped-free modes n (0 = rigid beam)"
+    )
+    coupling: Literal["first-order", "zeroth-order"] = Field(
+        "first-order",
+        description="first-order keeps the coupling deformation u_x (centrifugal stiffening)",
+    )
+    gravity: NonNegative = Field(9.81, description="gravitational acceleration g [m/s^2] (0 = off)")
+    quadrature_points: Annotated[int, Field(ge=0, le=4000)] = Field(
+        0, description="Gauss points for the modal integrals (0 = automatic)"
+    )
+
+
+class Drive(_Section):
+    """What happens at the joint O.
+
+    * ``free``: no torque (tau = 0).
+    * ``torque``: constant driving torque ``torque`` [N m].
+    * ``prescribed``: theta(t) given by ``profile``: ``"constant-rate"``
+      (theta = theta_0 + ``spin_rate`` t) or ``"kane-spinup"`` (Kane, Ryan & Banerjee
+      1987: theta = (W/T)[t^2/2 + (T/2 pi)^2 (cos(2 pi t/T) - 1)] for t < T, then
+      constant rate W = ``spin_rate``, T = ``spin_up_time``).
+    """
+
+    kind: Literal["free", "torque", "prescribed"] = "free"
+    torque: Finite = Field(0.0, description="constant joint torque tau [N m] (kind = torque)")
+    profile: Literal["constant-rate", "kane-spinup"] = "constant-rate"
+    spin_rate: Finite = Field(0.0, description="final spin rate Omega_s [rad/s]")
+    spin_up_time: Positive = Field(15.0, description="spin-up time T_s [s] (kane-spinup)")
+
+
+class Obstacle(_Section):
+    """A fixed rigid-body obstacle in the plane of motion.
+
+    ``kind = "sphere"``: a hemisphere (or point, radius 0) with ``centre`` and
+    ``radius``; ``kind = "half-plane"``: the plane through ``centre`` with outward
+    unit ``normal``.  When ``centre`` is omitted the obstacle is placed so that it
+    touches the contact point P with the beam straight at ``initial.impact_angle``
+    (sphere directly beneath P along the beam normal; plane tangent there).
+    """
+
+    kind: Literal["sphere", "half-plane"] = "sphere"
+    centre: tuple[Finite, Finite] | None = Field(None, description="obstacle centre [m]")
+    radius: NonNegative = Field(0.01, description="hemisphere radius r_s [m]")
+    normal: tuple[Finite, Finite] | None = Field(
+        None, description="outward unit normal of a half-plane (default: beam normal at impact)"
+    )
+    youngs_modulus: Positive = Field(68.95e9, description="obstacle Young's modulus [Pa]")
+    poisson_ratio: Annotated[float, Field(ge=-1.0, lt=0.5)] = 0.3
+
+    @model_validator(mode="after")
+    def _normal_is_unit(self) -> Obstacle:
+        if self.normal is not None:
+            norm = math.hypot(*self.normal)
+            if not math.isclose(norm, 1.0, rel_tol=1e-9):
+                raise ValueError(f"obstacle.normal: must be a unit vector (got length {norm:.6g})")
+        return self
+
+
+class Contact(_Section):
+    """Contact point P on the beam and the continuous contact force law (CCFM)."""
+
+    law: Literal[
+        "hertz",
+        "kelvin_voigt",
+        "hunt_crossley",
+        "lankarani_nikravesh",
+        "flores",
+        "gonthier",
+        "carvalho_martins",
+    ] = Field("lankarani_nikravesh", description="contact force law")
+    position: NonNegative = Field(description="material coordinate x_P of the contact point [m]")
+    stiffness: Positive | None = Field(
+        None, description="contact stiffness K [N/m^n] (omitted = Hertz theory)"
+    )
+    exponent: Annotated[float, Field(ge=1.0, le=3.0)] = Field(
+        1.5, description="force exponent n (1.5 = Hertz)"
+    )
+    restitution: Annotated[float, Field(ge=0.0, le=1.0)] = Field(
+        0.8, description="coefficient of restitution e [-]"
+    )
+
+
+class Initial(_Section):
+    """Initial state.
+
+    * ``impact``: start at the first contact, beam straight (q = q' = 0) at
+      theta = ``impact_angle``, with P's normal velocity ``impact_velocity`` (< 0 approaching).
+    * ``release``: start from rest, beam straight, at ``release_angle``; if that is
+      omitted it is solved for so that P reaches the obstacle at ``impact_velocity``.
+    * ``state``: theta = ``angle``, theta' = ``rate``, beam straight and at rest in the
+      floating frame.
+    """
+
+    kind: Literal["impact", "release", "state"] = "impact"
+    impact_velocity: Finite = Field(
+        -0.4, description="normal velocity of P at first contact [m/s] (negative = approaching)"
+    )
+    impact_angle: Finite = Field(0.0, description="hub angle at first contact [rad]")
+    release_angle: Finite | None = Field(None, description="release hub angle [rad]")
+    angle: Finite = Field(0.0, description="initial hub angle theta_0 [rad] (kind = state)")
+    rate: Finite = Field(0.0, description="initial hub rate theta'_0 [rad/s] (kind = state)")
+
+    @model_validator(mode="after")
+    def _approaching(self) -> Initial:
+        if self.kind != "state" and not self.impact_velocity < 0.0:
+            raise ValueError(
+                "initial.impact_velocity: must be < 0 m/s (P approaching the obstacle)"
+            )
+        return self
+
+
+class Solver(_Section):
+    """Integration settings."""
+
+    t_end: Positive = Field(0.1, description="simulated time [s]")
+    rtol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-9, description="relative tolerance")
+    atol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-12, description="absolute tolerance")
+    max_step: Positive | None = Field(None, description="largest step [s] (omitted = automatic)")
+    sample_step: Positive = Field(1e-5, description="output spacing outside contact [s]")
+    contact_sample_step: Positive = Field(2e-7, description="output spacing in contact [s]")
+    max_contacts: Annotated[int, Field(ge=1)] = Field(
+        1000, description="stop with a status after this many contacts (Zeno guard)"
+    )
+
+
+class Output(_Section):
+    """What to record besides the contact point."""
+
+    measuring_points: list[NonNegative] = Field(
+        default_factory=list,
+        description="material coordinates of measuring points on the beam [m]",
+    )
+
+
+class Case(_Section):
+    """A complete simulation case."""
+
+    name: str = "case"
+    description: str = ""
+    beam: Beam
+    hub: Hub = Field(default_factory=Hub)
+    model: Model = Field(default_factory=Model)
+    drive: Drive = Field(default_factory=Drive)
+    obstacle: Obstacle = Field(default_factory=Obstacle)
+    contact: Contact
+    initial: Initial = Field(default_factory=Initial)
+    solver: Solver = Field(default_factory=Solver)
+    output: Output = Field(default_factory=Output)
+
+    @model_validator(mode="after")
+    def _consistent(self) -> Case:
+        L = self.beam.length
+        if not self.contact.position <= L:
+            raise ValueError(
+                f"contact.position: must lie on the beam, 0 <= x_P <= beam.length = {L:g} m "
+                f"(got {self.contact.position:g})"
+            )
+        for i, x in enumerate(self.output.measuring_points):
+            if x > L:
+                raise ValueError(
+                    f"output.measuring_points[{i}]: must lie on the beam, 0 <= x <= {L:g} m "
+                    f"(got {x:g})"
+                )
+        if self.obstacle.kind == "half-plane" and self.contact.stiffness is None:
+            raise ValueError(
+                "contact.stiffness: required for a half-plane obstacle (a cylinder on a plane "
+                "is a line contact, not a Hertzian point contact)"
+            )
+        if self.contact.law in ("flores", "gonthier", "carvalho_martins", "kelvin_voigt") and (
+            self.contact.restitution == 0.0
+        ):
+            raise ValueError(
+                f"contact.restitution: must be in (0, 1] for contact.law = "
+                f"'{self.contact.law}' (its damping is infinite at e = 0)"
+            )
+        return self

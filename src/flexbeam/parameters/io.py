@@ -1,0 +1,172 @@
+"""Reading, overriding and writing cases (TOML via :mod:`tomllib` / ``tomli_w``)."""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+
+from ..errors import ParameterError, closest
+from .case import Case
+
+_PRESETS = "flexbeam.parameters.presets"
+
+
+def builtin_cases() -> dict[str, str]:
+    """Names of the built-in cases with their one-line descriptions."""
+    out: dict[str, str] = {}
+    for entry in sorted(resources.files(_PRESETS).iterdir(), key=lambda p: p.name):
+        if entry.name.endswith(".toml") and not entry.name.endswith(".reference.toml"):
+            data = tomllib.loads(entry.read_text(encoding="utf-8"))
+            out[entry.name[: -len(".toml")]] = str(data.get("description", "")).split("\n")[0]
+    return out
+
+
+def reference_data(name: str) -> dict[str, Any]:
+    """Published reference numbers shipped beside a built-in case ({} if none)."""
+    entry = resources.files(_PRESETS) / f"{name}.reference.toml"
+    if not entry.is_file():
+        return {}
+    return tomllib.loads(entry.read_text(encoding="utf-8"))
+
+
+def _read_source(source: str | Path) -> dict[str, Any]:
+    path = Path(source)
+    if path.suffix == ".toml" or path.exists():
+        try:
+            text = path.read_text(encoding="utf-8")
+        except OSError as exc:
+            raise ParameterError(f"case: cannot read '{path}': {exc.strerror}") from None
+        try:
+            return tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise ParameterError(f"case: '{path}' is not valid TOML: {exc}") from None
+    names = builtin_cases()
+    if str(source) not in names:
+        raise ParameterError(
+            f"case: unknown case '{source}'; give a TOML path or one of: "
+            f"{', '.join(names)}{closest(str(source), names)}"
+        )
+    entry = resources.files(_PRESETS) / f"{source}.toml"
+    return tomllib.loads(entry.read_text(encoding="utf-8"))
+
+
+def _format_validation_error(exc: ValidationError) -> str:
+    err = exc.errors()[0]
+    msg = str(err["msg"])
+    if msg.startswith("Value error, "):
+        msg = msg[len("Value error, ") :]
+    loc = ".".join(str(p) for p in err["loc"])
+    if err["type"] == "extra_forbidden":
+        return f"{loc}: unknown key"
+    if err["type"] == "missing":
+        return f"{loc}: required field is missing"
+    if loc and not msg.startswith(loc.split(".")[0] + "."):
+        got = err.get("input")
+        got_txt = f" (got {got!r})" if got is not None and not isinstance(got, dict) else ""
+        return f"{loc}: {msg}{got_txt}"
+    return msg
+
+
+def validate_case(data: dict[str, Any]) -> Case:
+    """Build a :class:`Case` from a plain dict, raising a one-line ParameterError."""
+    try:
+        return Case.model_validate(data)
+    except ValidationError as exc:
+        raise ParameterError(_format_validation_error(exc)) from None
+
+
+def load_case(source: str | Path | Case, overrides: dict[str, Any] | None = None) -> Case:
+    """Load a built-in case by name, or a TOML file, and apply dotted overrides.
+
+    Parameters
+    ----------
+    source
+        Built-in case name (see :func:`builtin_cases`), path to a TOML file, or a Case.
+    overrides
+        ``{"beam.youngs_modulus": 70e9, ...}``; keys are dotted paths of case fields.
+
+    Returns
+    -------
+    Case
+        The validated case.
+
+    Raises
+    ------
+    ParameterError
+        Unknown case or key, or a value outside its allowed range.
+    """
+    if isinstance(source, Case):
+        data = source.model_dump(exclude_none=True)
+    else:
+        data = _read_source(source)
+    for key, value in (overrides or {}).items():
+        set_dotted(data, key, value)
+    return validate_case(data)
+
+
+def _field_model(model: type[BaseModel], key: str) -> type[BaseModel] | None:
+    field = model.model_fields[key]
+    ann = field.annotation
+    if isinstance(ann, type) and issubclass(ann, BaseModel):
+        return ann
+    return None
+
+
+def set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
+    """Set ``data[a][b] = value`` for ``key = "a.b"``, checking the path exists in Case."""
+    parts = key.split(".")
+    model: type[BaseModel] | None = Case
+    node = data
+    for depth, part in enumerate(parts):
+        if model is None or part not in model.model_fields:
+            where = ".".join(parts[:depth]) or "case"
+            choices = list(model.model_fields) if model is not None else []
+            prefix = ".".join(parts[:depth])
+            full = [f"{prefix}.{c}" if prefix else c for c in choices]
+            raise ParameterError(
+                f"{key}: unknown key in {where}{closest(key, full) or closest(part, choices)}"
+            )
+        if depth == len(parts) - 1:
+            node[part] = value
+        else:
+            node = node.setdefault(part, {})
+            if not isinstance(node, dict):
+                raise ParameterError(f"{key}: '{'.'.join(parts[: depth + 1])}' is not a section")
+            model = _field_model(model, part)
+
+
+def parse_value(text: str) -> Any:
+    """Parse a command-line ``VALUE`` as a TOML value (number, bool, array, string)."""
+    try:
+        value = tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        lowered = text.strip().lower()
+        if lowered in ("nan", "+nan", "-nan"):
+            return math.nan
+        return text
+    return value
+
+
+def parse_overrides(items: list[str]) -> dict[str, Any]:
+    """Turn ``["a.b=1", ...]`` into ``{"a.b": 1}``."""
+    out: dict[str, Any] = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep or not key.strip():
+            raise ParameterError(f"--set: expected KEY=VALUE (got '{item}')")
+        out[key.strip()] = parse_value(text.strip())
+    return out
+
+
+def dump_case(case: Case) -> str:
+    """TOML text of a case that :func:`load_case` reads back to an equal case."""
+    import tomli_w
+
+    data = case.model_dump(mode="json", exclude_none=True)
+    head = {k: data.pop(k) for k in ("name", "description")}
+    return tomli_w.dumps({**head, **data}, multiline_strings=True)

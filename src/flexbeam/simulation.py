@@ -1,0 +1,258 @@
+"""Wiring: case -> system -> initial state -> impact method -> integrator -> Solution."""
+
+from __future__ import annotations
+
+import math
+import platform
+from collections.abc import Callable
+
+import numpy as np
+from scipy.optimize import brentq
+
+from . import __version__
+from .errors import ParameterError, closest
+from .integrate.eventdriven import RunResult, Stop, integrate
+from .methods.base import ImpactMethod
+from .methods.ccfm import CCFM
+from .model.system import BeamSystem
+from .parameters.case import Case
+from .parameters.io import dump_case
+from .solution import Solution
+
+
+def _methods() -> dict[str, type[ImpactMethod]]:
+    methods: dict[str, type[ImpactMethod]] = {"ccfm": CCFM}
+    try:
+        from .methods.ccm import CCM
+        from .methods.imm import IMM
+    except ImportError:  # pragma: no cover - during development
+        return methods
+    return {"ccfm": CCFM, "ccm": CCM, "imm": IMM}
+
+
+METHOD_NAMES = ("ccfm", "ccm", "imm", "fem")
+
+
+def initial_state(system: BeamSystem, case: Case) -> tuple[np.ndarray, dict[str, float]]:
+    """Initial state vector for ``case.initial`` and a dict of derived values.
+
+    * ``impact``: theta = impact angle, beam straight and at rest in the floating frame,
+      theta' chosen so that P's normal velocity delta' = J_theta theta' equals the
+      impact velocity.
+    * ``state``: theta, theta' as given.
+    * ``release``: at rest, in the static equilibrium of the cantilever under gravity
+      at the release angle, (K_ff - g sin(theta) G) q = -g cos(theta) s_f^T; the release
+      angle, when not given, is solved for (shooting with :func:`scipy.optimize.brentq`
+      on the free flight) so that P reaches the obstacle at the impact velocity.
+    """
+    init = case.initial
+    if system.prescribed:
+        th, thd, _ = system.drive.motion(0.0)
+        return system.state(th, thd), {}
+    if init.kind == "state":
+        return system.state(init.angle, init.rate), {}
+    if init.kind == "impact":
+        y = system.state(init.impact_angle, 0.0)
+        J_theta = system.gap(0.0, y)[3][0]
+        if J_theta == 0.0:
+            raise ParameterError("initial.impact_velocity: P cannot move along the contact normal")
+        y = system.state(init.impact_angle, init.impact_velocity / J_theta)
+        return y, {"impact_rate": float(y[system.n + 1])}
+    angle = init.release_angle
+    info: dict[str, float] = {}
+    if angle is None:
+        angle = solve_release_angle(system, case)
+    info["release_angle"] = float(angle)
+    return release_state(system, angle), info
+
+
+def release_state(system: BeamSystem, angle: float) -> np.ndarray:
+    """At rest in static equilibrium under gravity at hub angle ``angle``."""
+    b, g = system.beam, system.g
+    q = np.zeros(b.n)
+    if b.n:
+        q = np.linalg.solve(b.Kff - g * math.sin(angle) * b.G, -g * math.cos(angle) * b.sf)
+    return system.state(angle, 0.0, q)
+
+
+class _UntilImpact(CCFM):
+    """Free flight that stops at the first impact, reporting P's normal velocity."""
+
+    def transition(self, phase, event, t, y):
+        raise Stop("impact", repr(self.gap_event(t, y)[1]))
+
+
+def _first_impact_velocity(system: BeamSystem, case: Case, angle: float) -> float:
+    run = integrate(_UntilImpact(system, case), release_state(system, angle), 10.0,
+                    rtol=1e-10, atol=1e-13)
+    if run.status != "impact":
+        raise ParameterError(
+            f"initial.release_angle: released at {angle:.6g} rad the beam does not reach the obstacle"
+        )
+    return float(run.message)
+
+
+def solve_release_angle(system: BeamSystem, case: Case) -> float:
+    """Release angle from rest that gives P the impact velocity at first contact."""
+    init = case.initial
+    th_i = init.impact_angle
+    y = system.state(th_i, 0.0)
+    J_theta = system.gap(0.0, y)[3][0]
+    rate = init.impact_velocity / J_theta
+    b = system.beam
+    if system.g <= 0.0 or b.m1 <= 0.0:
+        raise ParameterError("initial.kind: 'release' needs gravity (model.gravity > 0)")
+    # rigid estimate: g m1 (sin th_r - sin th_i) = 1/2 (J_h + J0) rate^2 (falling towards -theta)
+    s = math.sin(th_i) + 0.5 * (b.hub_inertia + b.J0) * rate**2 / (system.g * b.m1)
+    if s >= 1.0:
+        raise ParameterError(
+            f"initial.impact_velocity: {init.impact_velocity:g} m/s cannot be reached by release "
+            "from rest under gravity"
+        )
+    guess = math.asin(s)
+    target = init.impact_velocity
+
+    def miss(angle: float) -> float:
+        return _first_impact_velocity(system, case, angle) - target
+
+    lo, hi = th_i + 0.8 * (guess - th_i), min(th_i + 1.25 * (guess - th_i), 0.5 * math.pi)
+    try:
+        return float(brentq(miss, lo, hi, xtol=1e-12, rtol=1e-10))
+    except ValueError:
+        raise ParameterError(
+            "initial.release_angle: no release angle near the rigid estimate "
+            f"{guess:.6g} rad gives the impact velocity; give initial.release_angle"
+        ) from None
+
+
+def simulate(
+    case: Case,
+    method: str = "ccfm",
+    progress: Callable[[float], None] | None = None,
+) -> Solution:
+    """Run ``case`` with an impact method and return the :class:`Solution`."""
+    if method == "fem":
+        raise ParameterError("--method: 'fem' (the finite-element reference) is not available yet")
+    methods = _methods()
+    if method not in methods:
+        raise ParameterError(
+            f"method: unknown impact method '{method}'; allowed: {', '.join(methods)}"
+            f"{closest(method, methods)}"
+        )
+    system = BeamSystem.from_case(case)
+    y0, info = initial_state(system, case)
+    impact = methods[method](system, case)
+    s = case.solver
+    run = integrate(impact, y0, s.t_end, s.rtol, s.atol, s.max_step, progress)
+    return collect(run, impact, system, case, info)
+
+
+def collect(run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case,
+            info: dict[str, float]) -> Solution:
+    """Evaluate the output variables at every sample and build the Solution."""
+    n, npts = system.n, len(system.measuring)
+    times, phases, rows = [], [], []
+    for seg in run.segments:
+        t_seg = np.concatenate(seg.times)
+        y_seg = np.concatenate(seg.states)
+        times.append(t_seg)
+        phases.append(np.full(t_seg.size, seg.phase.name, dtype=object))
+        rows.append((seg.phase, t_seg, y_seg))
+    t_all = np.concatenate(times) if times else np.empty(0)
+    m = t_all.size
+    out = {name: np.empty(m) for name in (
+        "theta", "theta_rate", "contact_force", "gap", "normal_velocity", "kinetic_energy",
+        "elastic_energy", "gravitational_energy", "contact_energy", "dissipated_energy",
+        "drive_work", "joint_torque", "tip_deflection")}
+    out["q"] = np.empty((m, n))
+    out["q_rate"] = np.empty((m, n))
+    out["measuring_velocity"] = np.empty((m, npts))
+    tip = system.beam.point(case.beam.length) if n else None
+    k = 0
+    for phase, t_seg, y_seg in rows:
+        for t, y in zip(t_seg, y_seg):
+            th, thd, q, qd = system.split(t, y)
+            out["theta"][k], out["theta_rate"][k] = th, thd
+            out["q"][k], out["q_rate"][k] = q, qd
+            delta, vn, _, _ = system.gap(t, y)
+            out["gap"][k], out["normal_velocity"][k] = delta, vn
+            F, Uc = method.force(phase, t, y)
+            out["contact_force"][k], out["contact_energy"][k] = F, Uc
+            e = system.energies(t, y)
+            out["kinetic_energy"][k] = e["kinetic"]
+            out["elastic_energy"][k] = e["elastic"]
+            out["gravitational_energy"][k] = e["gravitational"]
+            out["dissipated_energy"][k] = e["dissipated"]
+            out["drive_work"][k] = e["drive_work"]
+            out["joint_torque"][k] = method.joint_torque(phase, t, y) if system.prescribed else (
+                system.drive.torque(t))
+            out["tip_deflection"][k] = float(tip.phi @ q) if tip is not None else 0.0
+            for j, pt in enumerate(system.measuring):
+                out["measuring_velocity"][k, j] = system.normal_velocity(t, y, pt)
+            k += 1
+    out["total_energy"] = (out["kinetic_energy"] + out["elastic_energy"] + out["gravitational_energy"]
+                           + out["contact_energy"] + out["dissipated_energy"] - out["drive_work"])
+    _fill_contact_log(method, t_all, out, np.concatenate(phases) if phases else np.empty(0))
+    force_at = _dense_force(run, method, system)
+    provenance = {
+        "flexbeam_version": __version__,
+        "python": platform.python_version(),
+        "case_name": case.name,
+        "case_toml": dump_case(case),
+        "method": method.name,
+        "integrator": "scipy DOP853, event-driven (reference)",
+        "rtol": case.solver.rtol,
+        "atol": case.solver.atol,
+        "contact_law": system.law.name,
+        "contact_stiffness": system.law.stiffness,
+        "contact_exponent": system.law.exponent,
+        **info,
+    }
+    sol = Solution(
+        time=t_all,
+        phase=np.concatenate(phases) if phases else np.empty(0, dtype=object),
+        arrays=out,
+        contacts=method.contacts,
+        status=run.status,
+        message=run.message,
+        stats={"steps": run.steps, "nfev": run.nfev, "wall_time": run.wall_time},
+        provenance=provenance,
+        measuring_points=np.asarray(case.output.measuring_points, float),
+        _force_at=force_at,
+    )
+    for ev in method.contacts:
+        peaks = sol.force_peaks(ev.index, threshold=0.0)
+        if peaks:
+            ev.peak_time, ev.peak_force = max(peaks, key=lambda p: p[1])
+    return sol
+
+
+def _fill_contact_log(method: ImpactMethod, t: np.ndarray, out: dict[str, np.ndarray],
+                      phase: np.ndarray) -> None:
+    """Impulse (trapezoid on the samples) and energies before/after for force-based methods."""
+    E = out["total_energy"] - out["dissipated_energy"]
+    for ev in method.contacts:
+        if not math.isnan(ev.impulse):
+            continue
+        end = ev.end if math.isfinite(ev.end) else (t[-1] if t.size else ev.onset)
+        sel = (t >= ev.onset) & (t <= end) & (phase != "free")
+        if np.count_nonzero(sel) > 1:
+            ev.impulse = float(np.trapezoid(out["contact_force"][sel], t[sel]))
+            mech = E[sel] - out["contact_energy"][sel]
+            ev.energy_before, ev.energy_after = float(mech[0]), float(mech[-1])
+
+
+def _dense_force(run: RunResult, method: ImpactMethod, system: BeamSystem):
+    """t -> contact force on the dense output of the contact phases (for peak refinement)."""
+    parts = [(seg.t0, seg.t1, seg.phase, seg.interpolant()) for seg in run.segments
+             if seg.phase.keep_dense and seg.dense]
+    if not parts:
+        return None
+
+    def force_at(t: float) -> float:
+        for t0, t1, phase, sol in parts:
+            if t0 <= t <= t1:
+                return method.force(phase, t, sol(t))[0]
+        return 0.0
+
+    return force_at

@@ -1,0 +1,286 @@
+"""The result of a simulation: arrays, contact-event log, status, statistics, provenance.
+
+:class:`Solution` is what every impact method returns.  Its :meth:`Solution.metrics`
+are the numbers the CLI's ``--json`` prints (the names are a contract), and
+:meth:`Solution.to_xarray` gives an :class:`xarray.Dataset` with ``units`` and
+``long_name`` on every variable.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from .methods.base import ContactEvent
+
+#: variable name -> (units, long name)
+VARIABLES: dict[str, tuple[str, str]] = {
+    "theta": ("rad", "Hub angle"),
+    "theta_rate": ("rad/s", "Hub angular velocity"),
+    "q": ("1", "Modal coordinate"),
+    "q_rate": ("1/s", "Modal velocity"),
+    "contact_force": ("N", "Contact force"),
+    "gap": ("m", "Gap at the contact point"),
+    "normal_velocity": ("m/s", "Normal velocity of the contact point"),
+    "measuring_velocity": ("m/s", "Normal velocity of the measuring points"),
+    "kinetic_energy": ("J", "Kinetic energy"),
+    "elastic_energy": ("J", "Elastic energy"),
+    "gravitational_energy": ("J", "Gravitational energy"),
+    "contact_energy": ("J", "Contact potential energy"),
+    "dissipated_energy": ("J", "Energy dissipated by contact"),
+    "drive_work": ("J", "Work of the joint torque"),
+    "total_energy": ("J", "Total energy including dissipated and drive work"),
+    "joint_torque": ("N m", "Joint torque"),
+    "tip_deflection": ("m", "Tip deflection in the rotating frame"),
+}
+
+
+@dataclass
+class Solution:
+    """Arrays over the output samples plus the contact log and run information.
+
+    Attributes
+    ----------
+    time
+        Sample times [s] (event instants included; a velocity jump gives two samples
+        at the same time).
+    phase
+        Phase name of each sample ("free", "contact", "constrained").
+    arrays
+        Name -> array, see :data:`VARIABLES`.
+    contacts
+        Contact-event log.
+    status, message
+        "success", "failed", "max-contacts", "resting", ... and the reason.
+    stats
+        steps, nfev, wall_time [s] (integration alone).
+    provenance
+        Version, case (TOML), method, tolerances, derived parameters.
+    """
+
+    time: np.ndarray
+    phase: np.ndarray
+    arrays: dict[str, np.ndarray]
+    contacts: list[ContactEvent]
+    status: str
+    message: str
+    stats: dict[str, float]
+    provenance: dict[str, Any]
+    measuring_points: np.ndarray = field(default_factory=lambda: np.empty(0))
+    _force_at: Any = None  # callable t -> F on the dense output of the contact phases
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.arrays[name]
+
+    @property
+    def method(self) -> str:
+        return str(self.provenance.get("method", ""))
+
+    # ----------------------------------------------------------------- metrics
+    def energy_drift(self) -> tuple[float, float]:
+        """(end, max) relative change of the total energy.
+
+        Relative to max(|E(0)|, max_t T(t)) so that a zero gravitational reference
+        does not divide by zero.
+        """
+        E = self.arrays["total_energy"]
+        if E.size == 0:
+            return math.nan, math.nan
+        scale = max(abs(E[0]), float(np.max(self.arrays["kinetic_energy"])), 1e-300)
+        return float((E[-1] - E[0]) / scale), float(np.max(np.abs(E - E[0])) / scale)
+
+    def _refine_max(self, t_guess: float, h: float, lo: float, hi: float) -> tuple[float, float]:
+        if self._force_at is None:
+            i = int(np.argmin(np.abs(self.time - t_guess)))
+            return float(self.time[i]), float(self.arrays["contact_force"][i])
+        a, b = max(lo, t_guess - h), min(hi, t_guess + h)
+        if b <= a:
+            return t_guess, float(self._force_at(t_guess))
+        res = minimize_scalar(lambda t: -self._force_at(t), bounds=(a, b), method="bounded",
+                              options={"xatol": 1e-12})
+        f_guess = float(self._force_at(t_guess))
+        if -res.fun >= f_guess:
+            return float(res.x), float(-res.fun)
+        return t_guess, f_guess
+
+    def force_peaks(self, contact: int = 0, threshold: float = 0.05) -> list[tuple[float, float]]:
+        """Local maxima (time [s], force [N]) of one contact's force above ``threshold`` x peak."""
+        if contact >= len(self.contacts):
+            return []
+        ev = self.contacts[contact]
+        F = self.arrays["contact_force"]
+        t = self.time
+        end = ev.end if math.isfinite(ev.end) else t[-1]
+        sel = np.nonzero((t >= ev.onset) & (t <= end) & np.isin(self.phase, ("contact", "constrained")))[0]
+        if sel.size < 3:
+            return []
+        f, tt = F[sel], t[sel]
+        h = float(np.median(np.diff(tt))) if tt.size > 1 else 0.0
+        idx = [i for i in range(1, f.size - 1) if f[i] > f[i - 1] and f[i] >= f[i + 1]]
+        if f[0] > f[1]:
+            idx.insert(0, 0)
+        peaks = [self._refine_max(float(tt[i]), h, ev.onset, end) for i in idx]
+        if not peaks:
+            return []
+        top = max(p[1] for p in peaks)
+        return [p for p in peaks if p[1] > threshold * top]
+
+    def metrics(self) -> dict[str, Any]:
+        """The run's summary numbers (the ``--json`` contract of ``flexbeam run``).
+
+        ``peak_force`` [N], ``peak_time`` [s after the first onset], ``contact_duration``
+        [s], ``force_peaks`` (list of local maxima [N] above 5 % of the peak) with
+        ``force_peak_times`` [s after onset], ``contacts``, ``post_impact_velocity``
+        (P's normal velocity at the end of the first contact [m/s], positive away from
+        the obstacle), ``energy_drift``, ``wall_time`` [s], ``steps``.
+        """
+        drift, drift_max = self.energy_drift()
+        out: dict[str, Any] = {
+            "method": self.method,
+            "status": self.status,
+            "message": self.message,
+            "contacts": len(self.contacts),
+            "impact_velocity": math.nan,
+            "peak_force": math.nan,
+            "peak_time": math.nan,
+            "contact_duration": math.nan,
+            "force_peaks": [],
+            "force_peak_times": [],
+            "second_peak_force": math.nan,
+            "post_impact_velocity": math.nan,
+            "impulse": math.nan,
+            "energy_drift": drift,
+            "energy_drift_max": drift_max,
+            "wall_time": self.stats.get("wall_time", math.nan),
+            "steps": int(self.stats.get("steps", 0)),
+            "nfev": int(self.stats.get("nfev", 0)),
+        }
+        if self.contacts:
+            ev = self.contacts[0]
+            out["impact_velocity"] = ev.velocity_before
+            out["post_impact_velocity"] = ev.velocity_after
+            out["contact_duration"] = ev.duration
+            out["impulse"] = ev.impulse
+            out["energy_before"] = ev.energy_before
+            out["energy_after"] = ev.energy_after
+            peaks = self.force_peaks(0)
+            if peaks:
+                tp, fp = max(peaks, key=lambda p: p[1])
+                out["peak_force"] = fp
+                out["peak_time"] = tp - ev.onset
+                out["force_peaks"] = [p[1] for p in peaks]
+                out["force_peak_times"] = [p[0] - ev.onset for p in peaks]
+                others = [p[1] for p in peaks if p[0] != tp]
+                out["second_peak_force"] = max(others) if others else math.nan
+        if "tip_deflection" in self.arrays and self.arrays["tip_deflection"].size:
+            out["tip_deflection_min"] = float(np.min(self.arrays["tip_deflection"]))
+            out["tip_deflection_max"] = float(np.max(self.arrays["tip_deflection"]))
+        return out
+
+    # ------------------------------------------------------------------ export
+    def to_xarray(self):
+        """:class:`xarray.Dataset` with dims time, mode, point, contact; units in attrs."""
+        import xarray as xr
+
+        n_modes = self.arrays["q"].shape[1] if self.arrays["q"].ndim == 2 else 0
+        data_vars: dict[str, Any] = {}
+        for name, arr in self.arrays.items():
+            units, long_name = VARIABLES[name]
+            if name in ("q", "q_rate"):
+                dims: tuple[str, ...] = ("time", "mode")
+            elif name == "measuring_velocity":
+                dims = ("time", "point")
+            else:
+                dims = ("time",)
+            data_vars[name] = (dims, arr, {"units": units, "long_name": long_name})
+        data_vars["phase"] = (("time",), self.phase.astype(str), {"long_name": "Phase of motion"})
+        c = self.contacts
+        contact_fields = {
+            "contact_onset": ("s", "Contact onset time", [e.onset for e in c]),
+            "contact_end": ("s", "Contact end time", [e.end for e in c]),
+            "contact_velocity_before": ("m/s", "Normal velocity of P before contact",
+                                        [e.velocity_before for e in c]),
+            "contact_velocity_after": ("m/s", "Normal velocity of P after contact",
+                                       [e.velocity_after for e in c]),
+            "contact_impulse": ("N s", "Contact impulse", [e.impulse for e in c]),
+            "contact_peak_force": ("N", "Peak contact force", [e.peak_force for e in c]),
+        }
+        for name, (units, long_name, values) in contact_fields.items():
+            data_vars[name] = (("contact",), np.asarray(values, float), {"units": units, "long_name": long_name})
+        coords = {
+            "time": ("time", self.time, {"units": "s", "long_name": "Time"}),
+            "mode": ("mode", np.arange(1, n_modes + 1), {"long_name": "Mode number"}),
+            "point": ("point", self.measuring_points, {"units": "m", "long_name": "Measuring point x"}),
+            "contact": ("contact", np.arange(len(c)), {"long_name": "Contact index"}),
+        }
+        attrs = {
+            "title": "flexbeam simulation",
+            "status": self.status,
+            "message": self.message,
+            "metrics": json.dumps(_jsonable(self.metrics())),
+            **{k: (v if isinstance(v, (str, int, float)) else json.dumps(_jsonable(v)))
+               for k, v in self.provenance.items()},
+        }
+        return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+    def to_netcdf(self, path: str | Path) -> Path:
+        """Write the dataset to NetCDF atomically (temporary file, then rename)."""
+        path = Path(path)
+        ds = self.to_xarray()
+        with atomic_path(path) as tmp:
+            ds.to_netcdf(tmp)
+        return path
+
+
+class atomic_path:
+    """Context manager giving a temporary path next to ``path``, renamed on success."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = Path(path)
+
+    def __enter__(self) -> Path:
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        fd, name = tempfile.mkstemp(prefix=f".{self.path.name}.", dir=self.path.parent)
+        os.close(fd)
+        self.tmp = Path(name)
+        return self.tmp
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        if exc_type is None:
+            os.replace(self.tmp, self.path)
+        else:
+            self.tmp.unlink(missing_ok=True)
+
+
+def write_text_atomic(path: str | Path, text: str) -> Path:
+    """Write text to ``path`` atomically."""
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return path
+
+
+def _jsonable(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {k: _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, (np.floating, float)):
+        v = float(obj)
+        return v if math.isfinite(v) else None
+    if isinstance(obj, np.integer):
+        return int(obj)
+    return obj
+
+
+def metrics_json(metrics: dict[str, Any]) -> str:
+    """JSON text of metrics (NaN -> null)."""
+    return json.dumps(_jsonable(metrics), indent=2)
