@@ -132,7 +132,11 @@ def simulate(
 ) -> Solution:
     """Run ``case`` with an impact method and return the :class:`Solution`."""
     if method == "fem":
-        raise ParameterError("--method: 'fem' (the finite-element reference) is not available yet")
+        try:
+            from .fem import simulate_fem
+        except ImportError:
+            raise ParameterError("method: 'fem' (the finite-element reference) is not available yet") from None
+        return simulate_fem(case, progress=progress)
     methods = _methods()
     if method not in methods:
         raise ParameterError(

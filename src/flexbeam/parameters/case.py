@@ -259,6 +259,20 @@ class Output(_Section):
     )
 
 
+class Fem(_Section):
+    """Settings of the independent finite-element reference (``--method fem``)."""
+
+    elements: Annotated[int, Field(ge=1, le=2000)] = Field(
+        32, description="number of beam finite elements"
+    )
+    time_step: Positive | None = Field(
+        None, description="time step [s] (omitted = automatic)"
+    )
+    rho_inf: Annotated[float, Field(ge=0.0, le=1.0)] = Field(
+        0.9, description="spectral radius at infinite frequency of the generalized-alpha scheme"
+    )
+
+
 class Case(_Section):
     """A complete simulation case."""
 
@@ -273,6 +287,7 @@ class Case(_Section):
     initial: Initial = Field(default_factory=Initial)
     solver: Solver = Field(default_factory=Solver)
     output: Output = Field(default_factory=Output)
+    fem: Fem = Field(default_factory=Fem)
 
     @model_validator(mode="after")
     def _consistent(self) -> Case:
