@@ -146,6 +146,7 @@ def simulate(
     system = BeamSystem.from_case(case)
     y0, info = initial_state(system, case)
     impact = methods[method](system, case)
+    system.rhs(0.0, y0)  # compile (or load from cache) before the timed integration
     s = case.solver
     run = integrate(impact, y0, s.t_end, s.rtol, s.atol, s.max_step, progress)
     return collect(run, impact, system, case, info)

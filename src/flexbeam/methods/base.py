@@ -6,8 +6,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..contact.impulse import Jump
+from ..contact.laws import law_potential
 from ..integrate.eventdriven import Event, Phase, Stop
-from ..model.system import BeamSystem
+from ..model.system import CONTACT_CONSTRAINT, CONTACT_FORCE, BeamSystem
 from ..parameters.case import Case
 
 
@@ -51,8 +53,11 @@ class ImpactMethod:
     grazing_speed = 1e-9
 
     def __post_init__(self) -> None:
-        self._free_fun = self.system.rhs_function(None)
+        self._free_fun = self.system.rhs_function()
         self.impact_event = Event("impact", self.gap_event, -1)
+        self.release_event = Event("release", self.multiplier_event, -1)
+        w = self.case.solver.baumgarte_frequency
+        self.baumgarte = np.array([w, w, 0.0, 0.0])
 
     # events ---------------------------------------------------------------
     def gap_event(self, t: float, y: np.ndarray) -> tuple[float, float]:
@@ -82,11 +87,53 @@ class ImpactMethod:
         self.contacts.append(ev)
         return ev
 
+    def log_jump(self, t: float, jump: Jump) -> ContactEvent:
+        """Log an instantaneous impact (IMM, or the e = 0 onset step of CCM)."""
+        ev = self.new_contact(t, jump.y)
+        ev.velocity_before = jump.velocity_before
+        ev.impulse = jump.impulse
+        ev.energy_before, ev.energy_after = jump.kinetic_before, jump.kinetic_after
+        return ev
+
+    # constrained (sticking) contact ----------------------------------------
+    def multiplier_event(self, t: float, y: np.ndarray) -> tuple[float, float]:
+        """Contact multiplier lambda of the constrained phase (separation when < 0)."""
+        return float(self.system.rhs(t, y, CONTACT_CONSTRAINT, self.baumgarte)[1]), float("nan")
+
+    def holds(self, t: float, y: np.ndarray) -> bool:
+        """Would the closed contact push (lambda >= 0) at this state?"""
+        return self.multiplier_event(t, y)[0] >= 0.0
+
+    def constrained_phase(self, contact: ContactEvent, name: str = "constrained") -> Phase:
+        """Contact held closed by the unilateral constraint until lambda turns tensile.
+
+        Baumgarte stabilisation (Baumgarte 1972; Hairer & Wanner, Solving ODEs II,
+        Sec. VII.2) with alpha = beta = ``solver.baumgarte_frequency``: the phase starts
+        consistent (delta = 0 at the located event, delta' = 0 after the e = 0 jump),
+        so the terms only damp the integration drift, critically, on a time scale far
+        slower than the beam's modes (no added stiffness for the explicit solver).
+        """
+        return Phase(
+            name,
+            self.system.rhs_function(CONTACT_CONSTRAINT, self.baumgarte),
+            [self.release_event],
+            self.case.solver.contact_sample_step,
+            data={"mode": CONTACT_CONSTRAINT, "p": self.baumgarte, "contact": contact},
+            keep_dense=True,
+        )
+
     # outputs --------------------------------------------------------------
     def force(self, phase: Phase, t: float, y: np.ndarray) -> tuple[float, float]:
         """(contact force F [N], contact potential U_c [J]) at a sample of ``phase``."""
-        return 0.0, 0.0
+        mode = phase.data.get("mode", 0)
+        if mode == 0:
+            return 0.0, 0.0
+        p = phase.data["p"]
+        F = float(self.system.rhs(t, y, mode, p)[1])
+        if mode == CONTACT_FORCE:
+            return F, law_potential(p, -self.gap_event(t, y)[0])
+        return F, 0.0
 
     def joint_torque(self, phase: Phase, t: float, y: np.ndarray) -> float:
         """Joint torque [N m] at a sample (the reaction when theta(t) is prescribed)."""
-        return self.system.joint_torque(t, y, phase.data.get("lawp"))
+        return self.system.joint_torque(t, y, phase.data.get("mode", 0), phase.data.get("p"))

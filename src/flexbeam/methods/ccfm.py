@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..contact.laws import law_force, law_potential
 from ..integrate.eventdriven import Event, Phase
+from ..model.system import CONTACT_FORCE
 from .base import ImpactMethod
 
 
@@ -33,10 +33,10 @@ class CCFM(ImpactMethod):
         lawp = self.system.law.parameters(rate, self.system.effective_mass(t, y))
         return Phase(
             "contact",
-            self.system.rhs_function(lawp),
+            self.system.rhs_function(CONTACT_FORCE, lawp),
             [self.separation_event],
             self.case.solver.contact_sample_step,
-            data={"lawp": lawp, "contact": ev},
+            data={"mode": CONTACT_FORCE, "p": lawp, "contact": ev},
             keep_dense=True,
         )
 
@@ -54,10 +54,3 @@ class CCFM(ImpactMethod):
         ev.end = t
         ev.velocity_after = self.gap_event(t, y)[1]
         return self.free_phase(), y
-
-    def force(self, phase: Phase, t: float, y: np.ndarray) -> tuple[float, float]:
-        if phase.name != "contact":
-            return 0.0, 0.0
-        lawp = phase.data["lawp"]
-        delta, vn = self.gap_event(t, y)
-        return law_force(lawp, -delta, -vn)[0], law_potential(lawp, -delta)

@@ -36,18 +36,30 @@ def _state_split(y, n, prescribed, th_p, thd_p):
     return y[0], y[n + 1], y[1 : n + 1], y[n + 2 : 2 * n + 2]
 
 
+CONTACT_NONE, CONTACT_FORCE, CONTACT_CONSTRAINT = 0, 1, 2
+
+
 @njit(cache=True)
 def rhs_kernel(
     y, n, prescribed, th_p, thd_p, thdd_p, tau, g,
     Jc, m1, Mc, Mff, mtf, Kff, sf, G,
     pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal,
-    in_contact, lawp, extra_force, extra_J,
+    contact_mode, p,
 ):  # fmt: skip
-    """Right-hand side dy/dt of the beam with an optional CCFM contact force.
+    """Right-hand side dy/dt of the beam in one of three contact modes.
 
-    ``extra_force * extra_J`` is an additional generalised force (used by the
-    constrained method for the multiplier); pass 0.0 and any array otherwise.
-    Returns (dy/dt, F, joint torque).
+    ``contact_mode``:
+
+    * 0 -- no contact (unimpact equations M z'' = Q);
+    * 1 -- CCFM: the law force F(d, d'), ``p = [K, n, chi/d'_0, C]``, enters as J^T F;
+    * 2 -- CCM: the unilateral contact held closed by the multiplier lambda of
+      [M J^T; J 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
+      (Baumgarte stabilisation, ``p = [alpha, beta, 0, 0]``), i.e.
+      lambda = (-gamma - 2 alpha delta' - beta^2 delta - J M^-1 Q) / (J M^-1 J^T).
+
+    With theta(t) prescribed only the modal rows are solved (theta'' is known and
+    moves to the right-hand side) and the joint torque is the first row's residual.
+    Returns (dy/dt, contact force [N], joint torque [N m]).
     """
     N = n + 1
     theta, omega, q, qd = _state_split(y, n, prescribed, th_p, thd_p)
@@ -57,18 +69,29 @@ def rhs_kernel(
     generalized_forces(theta, omega, q, qd, 0.0 if prescribed else tau, g, m1, Mc, Kff, sf, G, Q)
     F = 0.0
     diss = 0.0
-    if in_contact:
+    J = np.zeros(N)
+    if contact_mode != 0:
         dr = np.empty((2, N))
-        J = np.empty(N)
         r, v, a0 = point_kinematics(theta, omega, q, qd, pbase, pphi, pdphi, pH, pc, dr)
         delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, okind, ocentre, oradius, onormal, J)
-        F, Fk = law_force(lawp, -delta, -vn)
+        if contact_mode == 1:
+            F, Fk = law_force(p, -delta, -vn)
+            diss = (F - Fk) * (-vn)
+        else:
+            rhs_c = -gamma - 2.0 * p[0] * vn - p[1] * p[1] * delta
+            if prescribed:
+                rhs_c -= J[0] * thdd_p
+                if n > 0:
+                    Qr = Q[1:] - M[1:, 0] * thdd_p
+                    a = np.linalg.solve(M[1:, 1:], Qr)
+                    b = np.linalg.solve(M[1:, 1:], J[1:])
+                    F = (rhs_c - J[1:] @ a) / (J[1:] @ b)
+            else:
+                a = np.linalg.solve(M, Q)
+                b = np.linalg.solve(M, J)
+                F = (rhs_c - J @ a) / (J @ b)
         for i in range(N):
             Q[i] += J[i] * F
-        diss = (F - Fk) * (-vn)
-    if extra_force != 0.0:
-        for i in range(N):
-            Q[i] += extra_J[i] * extra_force
     dy = np.empty(y.size)
     if prescribed:
         qdd = np.empty(n)
@@ -200,48 +223,43 @@ class BeamSystem:
             P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal,
         )  # fmt: skip
 
-    def rhs(self, t: float, y: np.ndarray, lawp: np.ndarray | None = None) -> np.ndarray:
-        """dy/dt; with ``lawp`` (contact-law parameters) the CCFM force is included."""
-        in_contact = lawp is not None
-        p = lawp if in_contact else _NO_LAW
-        return rhs_kernel(*self._args(t, y), in_contact, p, 0.0, _NO_LAW)[0]
+    def rhs(self, t: float, y: np.ndarray, mode: int = CONTACT_NONE, p: np.ndarray | None = None):
+        """(dy/dt, contact force, joint torque) in contact ``mode`` with parameters ``p``."""
+        return rhs_kernel(*self._args(t, y), mode, _NO_LAW if p is None else p)
 
-    def rhs_function(self, lawp: np.ndarray | None = None):
-        """A fast ``fun(t, y)`` for scipy's solvers (constant arrays bound once)."""
+    def rhs_function(self, mode: int = CONTACT_NONE, p: np.ndarray | None = None):
+        """A fast ``fun(t, y)`` for scipy's solvers (constant arrays bound once).
+
+        ``mode``/``p`` as in :func:`rhs_kernel`: no contact, CCFM law parameters, or
+        CCM Baumgarte parameters.
+        """
         b, P, o = self.beam, self.contact.point, self.contact
         const = (
             b.hub_inertia + b.J0, b.m1, np.ascontiguousarray(b.Mff - b.D), b.Mff, b.mtf, b.Kff,
             b.sf, b.G, P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal,
         )  # fmt: skip
         n, prescribed, g, drive = b.n, self.prescribed, self.g, self.drive
-        in_contact = lawp is not None
-        p = lawp if in_contact else _NO_LAW
+        p = _NO_LAW if p is None else p
 
         if prescribed:
 
             def fun(t: float, y: np.ndarray) -> np.ndarray:
                 th, thd, thdd = drive.motion(t)
-                return rhs_kernel(y, n, True, th, thd, thdd, 0.0, g, *const, in_contact, p, 0.0, _NO_LAW)[0]
+                return rhs_kernel(y, n, True, th, thd, thdd, 0.0, g, *const, mode, p)[0]
 
         else:
             tau_const = drive.spec.kind != "torque"
 
             def fun(t: float, y: np.ndarray) -> np.ndarray:
                 tau = 0.0 if tau_const else drive.torque(t)
-                return rhs_kernel(y, n, False, 0.0, 0.0, 0.0, tau, g, *const, in_contact, p, 0.0, _NO_LAW)[0]
+                return rhs_kernel(y, n, False, 0.0, 0.0, 0.0, tau, g, *const, mode, p)[0]
 
         return fun
 
-    def contact_force(self, t: float, y: np.ndarray, lawp: np.ndarray) -> tuple[float, float]:
-        """(F, F_k): CCFM contact force and its elastic part at state y."""
-        delta, vn = self.gap(t, y)[:2]
-        return law_force(lawp, -delta, -vn)
-
-    def joint_torque(self, t: float, y: np.ndarray, lawp: np.ndarray | None = None) -> float:
+    def joint_torque(self, t: float, y: np.ndarray, mode: int = CONTACT_NONE,
+                     p: np.ndarray | None = None) -> float:
         """Joint torque: applied tau (free/torque) or the reaction needed for theta(t)."""
-        in_contact = lawp is not None
-        p = lawp if in_contact else _NO_LAW
-        return rhs_kernel(*self._args(t, y), in_contact, p, 0.0, _NO_LAW)[2]
+        return float(self.rhs(t, y, mode, p)[2])
 
     def mass_matrix(self, t: float, y: np.ndarray) -> np.ndarray:
         """Generalised mass matrix M(q), (n+1) x (n+1)."""

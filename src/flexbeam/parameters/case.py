@@ -248,6 +248,12 @@ class Solver(_Section):
     max_contacts: Annotated[int, Field(ge=1)] = Field(
         1000, description="stop with a status after this many contacts (Zeno guard)"
     )
+    baumgarte_frequency: NonNegative = Field(
+        2000.0, description="CCM: Baumgarte stabilisation alpha = beta [1/s]"
+    )
+    rest_velocity: NonNegative = Field(
+        1e-6, description="IMM: impacts slower than this [m/s] start resting contact (Zeno)"
+    )
 
 
 class Output(_Section):

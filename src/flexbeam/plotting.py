@@ -1,0 +1,102 @@
+"""Figures in the style of the paper's Figs. 6-9: contact force and P's normal velocity.
+
+Matplotlib is imported lazily with the non-interactive Agg backend.  Labels follow
+"Quantity [unit]".  Reference numbers (e.g. the experiment's reported peaks and
+contact duration) are drawn as dashed lines with their source in the legend.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .solution import Solution, atomic_path
+
+_STYLE = {"ccfm": "C0", "ccm": "C3", "imm": "C2", "fem": "C1"}
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _window(sol: Solution, before: float, after: float) -> tuple[float, np.ndarray]:
+    t0 = sol.contacts[0].onset if sol.contacts else 0.0
+    sel = (sol.time >= t0 - before) & (sol.time <= t0 + after)
+    return t0, sel
+
+
+def _mark_references(ax, reference: dict[str, Any], method: str, quantity: str) -> None:
+    exp = reference.get("experiment", {})
+    if quantity == "force":
+        if "peak_force" in exp:
+            ax.axhline(exp["peak_force"], ls="--", c="k", lw=0.8, label=f"experiment peak {exp['peak_force']:g} N")
+        if "second_peak_force" in exp:
+            ax.axhline(exp["second_peak_force"], ls=":", c="k", lw=0.8,
+                       label=f"experiment 2nd peak {exp['second_peak_force']:g} N")
+        if "contact_duration" in exp:
+            ax.axvline(exp["contact_duration"] * 1e3, ls="-.", c="0.5", lw=0.8,
+                       label=f"experiment duration ~{exp['contact_duration'] * 1e3:g} ms")
+        paper = reference.get(method, {})
+        if "peak_force" in paper:
+            ax.axhline(paper["peak_force"], ls="--", c=_STYLE.get(method, "C4"), lw=0.8, alpha=0.6,
+                       label=f"paper {method.upper()} peak {paper['peak_force']:g} N")
+    elif quantity == "velocity" and "impact_velocity" in exp:
+        ax.axhline(exp["impact_velocity"], ls="--", c="k", lw=0.8,
+                   label=f"experiment v0 = {exp['impact_velocity']:g} m/s")
+
+
+def plot_contact_force(solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None,
+                       title: str = "") -> Path:
+    """Contact force [N] against time after the first contact [ms], methods overlaid."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6.4, 4.0))
+    span = max((s.contacts[0].duration for s in solutions if s.contacts and math.isfinite(s.contacts[0].duration)),
+               default=1e-3)
+    for sol in solutions:
+        t0, sel = _window(sol, 0.1 * span, 1.6 * span)
+        ax.plot((sol.time[sel] - t0) * 1e3, sol["contact_force"][sel], c=_STYLE.get(sol.method, None),
+                label=f"flexbeam {sol.method.upper()}")
+    if reference:
+        _mark_references(ax, reference, solutions[0].method if len(solutions) == 1 else "", "force")
+    ax.set_xlabel("Time after first contact [ms]")
+    ax.set_ylabel("Contact force [N]")
+    ax.set_title(title or "Contact force")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def plot_normal_velocity(solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None,
+                         title: str = "") -> Path:
+    """Normal velocity of the contact point (measuring point 1) [m/s] against time [ms]."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6.4, 4.0))
+    for sol in solutions:
+        t0, sel = _window(sol, 0.5e-3, 4e-3)
+        ax.plot((sol.time[sel] - t0) * 1e3, sol["normal_velocity"][sel], c=_STYLE.get(sol.method, None),
+                label=f"flexbeam {sol.method.upper()}")
+    if reference:
+        _mark_references(ax, reference, "", "velocity")
+    ax.axhline(0.0, c="0.7", lw=0.5)
+    ax.set_xlabel("Time after first contact [ms]")
+    ax.set_ylabel("Normal velocity of P [m/s]")
+    ax.set_title(title or "Normal velocity of the impact point")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def _save(fig, path: str | Path) -> Path:
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=120, format="png", bbox_inches="tight")
+    _pyplot().close(fig)
+    return path
