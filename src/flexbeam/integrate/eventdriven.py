@@ -11,6 +11,9 @@ Dormand-Prince with 7th-order dense output) one step at a time, in the spirit of
   additionally checked for a dip between two check points by the cubic Hermite
   interpolant through (value, rate) at both ends; a predicted dip is searched by
   subdivision, so that a grazing impact inside one step is not lost;
+* a phase may bound the next step from the state (the free phase does: P may
+  travel at most a quarter of the obstacle's size, or half the gap, per step), so
+  that P cannot pass through an obstacle between two check points;
 * at an event the phase's method decides the next phase and may apply a velocity
   jump (impulse); the solver is restarted there, so every phase and every jump
   starts a new dense-output segment.
@@ -34,6 +37,7 @@ from scipy.optimize import brentq
 from ..errors import SolverError
 
 CHECK_POINTS = 4
+MAX_STALLED = 100  # consecutive zero-length phases before the run is declared stalled
 _HERMITE_DEPTH = 3
 
 
@@ -62,6 +66,8 @@ class Phase:
     data: dict[str, Any] = field(default_factory=dict)
     keep_dense: bool = False
     max_step: float = math.inf
+    #: optional ``(t, y) -> largest safe next step``, re-evaluated after every step
+    step_limit: Callable[[float, np.ndarray], float] | None = None
 
 
 class Stop(Exception):
@@ -217,6 +223,7 @@ def integrate(
         phase, y = method.start(t, np.asarray(y0, float))
     except Stop as stop:
         return RunResult([], stop.status, stop.message, t, 0.0, 0, 0)
+    stalled = 0
     while t < t_end:
         seg = Segment(phase, t, t)
         segments.append(seg)
@@ -224,6 +231,8 @@ def integrate(
         seg.states.append(y[None, :].copy())
         step_cap = min(max_step or math.inf, phase.max_step, t_end - t)
         solver = DOP853(phase.fun, t, y, t_end, rtol=rtol, atol=atol, max_step=step_cap)
+        if phase.step_limit is not None:
+            solver.max_step = min(step_cap, phase.step_limit(t, y))
         switched = False
         while solver.status == "running":
             ta = solver.t
@@ -253,6 +262,8 @@ def integrate(
             seg.states.append(y_stop[None, :].copy())
             seg.t1 = t_stop
             t, y = t_stop, y_stop
+            if phase.step_limit is not None:
+                solver.max_step = min(step_cap, phase.step_limit(t, y))
             if progress is not None:
                 progress(t)
             if hit:
@@ -271,6 +282,11 @@ def integrate(
             break
         if not switched and solver.status == "finished":
             t = solver.t
+            break
+        stalled = stalled + 1 if seg.t1 == seg.t0 else 0
+        if stalled > MAX_STALLED:
+            status = "failed"
+            message = f"events keep recurring without progress at t = {t:.9g} s (phase '{phase.name}')"
             break
     wall = time.perf_counter() - wall0
     return RunResult(segments, status, message, t, wall, steps, nfev)

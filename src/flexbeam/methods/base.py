@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -51,6 +52,8 @@ class ImpactMethod:
     name = "base"
     #: onsets with |delta'| below this are grazing touches, not impacts [m/s]
     grazing_speed = 1e-9
+    #: a gap this small counts as closed at the start of a run [m]
+    gap_tolerance = 1e-12
 
     def __post_init__(self) -> None:
         self._free_fun = self.system.rhs_function()
@@ -67,12 +70,35 @@ class ImpactMethod:
 
     def free_phase(self) -> Phase:
         """Unimpact motion until the gap closes."""
-        return Phase("free", self._free_fun, [self.impact_event], self.case.solver.sample_step)
+        return Phase("free", self._free_fun, [self.impact_event], self.case.solver.sample_step,
+                     step_limit=self.safe_step)
 
-    def approaching(self, t: float, y: np.ndarray) -> bool:
-        """Closed gap with P moving into the obstacle: an impact starts here."""
+    def safe_step(self, t: float, y: np.ndarray) -> float:
+        """Largest free-flight step that cannot carry P through the obstacle.
+
+        P moves at most |v_P| h (to first order) in a step h; allowing a quarter of the
+        obstacle's size (sphere radius; 1 mm for a point) or half the current gap keeps
+        at least one event check point inside the obstacle, and the Hermite check on
+        (delta, delta') catches a shallower dip.  A half-plane cannot be passed through.
+        """
+        if self.system.contact.kind != 0:
+            return math.inf
+        r, v, _, _ = self.system.point_state(t, y, self.system.contact.point)
+        speed = math.hypot(v[0], v[1])
+        if speed == 0.0:
+            return math.inf
+        size = self.system.contact.radius or 1e-3
+        gap = self.gap_event(t, y)[0]
+        return max(0.25 * size, 0.5 * gap) / speed
+
+    def approaching(self, t: float, y: np.ndarray, located: bool = False) -> bool:
+        """Closed gap with P moving into the obstacle: an impact starts here.
+
+        ``located``: the gap's zero was just located as an event, so only the
+        direction of motion decides (the located gap is zero to within round-off).
+        """
         delta, vn = self.gap_event(t, y)
-        return delta <= 1e-15 and vn < -self.grazing_speed
+        return (located or delta <= self.gap_tolerance) and vn < -self.grazing_speed
 
     def new_contact(self, t: float, y: np.ndarray) -> ContactEvent:
         """Log a contact onset, stopping the run past ``solver.max_contacts``."""

@@ -47,7 +47,7 @@ class CCFM(ImpactMethod):
 
     def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         if phase.name == "free":
-            if self.approaching(t, y):
+            if self.approaching(t, y, located=True):
                 return self.contact_phase(t, y), y
             return self.free_phase(), y  # grazing touch: keep flying
         ev = phase.data["contact"]

@@ -40,7 +40,7 @@ class CCM(ImpactMethod):
 
     def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         if phase.name == "free":
-            if self.approaching(t, y):
+            if self.approaching(t, y, located=True):
                 return self._onset(t, y)
             return self.free_phase(), y
         ev = phase.data["contact"]

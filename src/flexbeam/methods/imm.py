@@ -44,7 +44,7 @@ class IMM(ImpactMethod):
 
     def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         if phase.name == "free":
-            if self.approaching(t, y):
+            if self.approaching(t, y, located=True):
                 return self._impact(t, y)
             return self.free_phase(), y
         ev = phase.data["contact"]

@@ -1,0 +1,418 @@
+"""The finite-element beam on its hub: mesh, properties, obstacle and equations.
+
+The mesh has ``case.fem.elements`` two-node co-rotational elements (see
+:mod:`flexbeam.fem.kernels` for the element and the reasons for it), split so that a
+node lies at the contact point x_P: n_1 = round(N x_P / L) uniform elements on
+[0, x_P] and N - n_1 on [x_P, L] (at least one on each part of non-zero length).
+
+Generalised coordinates z = [theta, X_1, Y_1, psi_1, ..., X_N, Y_N, psi_N] (global
+node positions and absolute section rotations); node 0 is clamped to the hub at
+r_h e1(theta) with rotation theta.  The equations of motion are
+
+    R(z, z', z'', t) = f_in + f_int - f_g - J^T F + [J_h theta'' - tau, 0, ...] = 0,
+
+with f_in the exact inertia force of the interpolated field, f_int the
+co-rotational internal force, f_g the gravity force, F >= 0 the CCFM contact force at
+P and J = d delta / dz its gap Jacobian.  With theta(t) prescribed, theta is removed
+from the unknowns and the first component of R is the joint torque needed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import eigh
+
+from ..contact.laws import ContactLaw
+from ..errors import ParameterError
+from ..model.drive import JointDrive
+from ..model.system import BeamSystem
+from ..parameters.case import Case
+from . import kernels as kn
+
+NO_LAW = np.zeros(4)
+
+
+def build_mesh(length: float, elements: int, x_contact: float) -> np.ndarray:
+    """Node coordinates x_0 = 0 < ... < x_N = L with a node at ``x_contact``.
+
+    Parameters
+    ----------
+    length
+        Beam length L [m].
+    elements
+        Requested number of elements N; raised to 2 when x_P lies strictly inside.
+    x_contact
+        Material coordinate of the contact point x_P [m].
+    """
+    if elements < 1:
+        raise ParameterError(f"fem.elements: must be >= 1 (got {elements})")
+    tol = 1e-12 * length
+    if x_contact <= tol or x_contact >= length - tol:
+        return np.linspace(0.0, length, elements + 1)
+    n1 = int(round(elements * x_contact / length))
+    n1 = min(max(n1, 1), max(elements - 1, 1))
+    n2 = max(elements - n1, 1)
+    left = np.linspace(0.0, x_contact, n1 + 1)
+    right = np.linspace(x_contact, length, n2 + 1)
+    return np.concatenate((left, right[1:]))
+
+
+def locate(x_nodes: np.ndarray, x: float) -> tuple[int, float]:
+    """Element index and local coordinate xi in [0, 1] of material point x."""
+    e = int(np.searchsorted(x_nodes, x, side="right") - 1)
+    e = min(max(e, 0), x_nodes.size - 2)
+    xi = (x - x_nodes[e]) / (x_nodes[e + 1] - x_nodes[e])
+    return e, float(min(max(xi, 0.0), 1.0))
+
+
+@dataclass
+class FemBeam:
+    """Everything the time integrator needs about one case, for the FE model.
+
+    Build it with :meth:`from_case`.
+    """
+
+    case: Case
+    x_nodes: np.ndarray
+    l0: np.ndarray
+    pnode: int
+    mu: float
+    EA: float
+    EI: float
+    offset: float
+    hub_radius: float
+    hub_inertia: float
+    gravity: float
+    drive: JointDrive
+    law: ContactLaw
+    obstacle_kind: int
+    obstacle_centre: np.ndarray
+    obstacle_radius: float
+    obstacle_normal: np.ndarray
+    measuring: list[tuple[int, float]]
+
+    # ------------------------------------------------------------------ set-up
+    @classmethod
+    def from_case(cls, case: Case) -> FemBeam:
+        """Mesh, properties, drive and (shared with the modal model) obstacle and law."""
+        b = case.beam
+        x_nodes = build_mesh(b.length, case.fem.elements, case.contact.position)
+        pnode = int(np.argmin(np.abs(x_nodes - case.contact.position)))
+        # obstacle placement and contact law exactly as the modal model does them
+        # (they depend on x_P, c and the impact angle only, not on the modes)
+        rigid = case.model_copy(update={"model": case.model.model_copy(update={"modes": 0})})
+        system = BeamSystem.from_case(rigid)
+        geom = system.contact
+        measuring = [locate(x_nodes, x) for x in case.output.measuring_points]
+        return cls(
+            case=case,
+            x_nodes=x_nodes,
+            l0=np.diff(x_nodes),
+            pnode=pnode,
+            mu=b.line_density,
+            EA=b.youngs_modulus * b.section_area,
+            EI=b.bending_stiffness,
+            offset=b.surface_offset,
+            hub_radius=case.hub.radius,
+            hub_inertia=case.hub.inertia,
+            gravity=case.model.gravity,
+            drive=system.drive,
+            law=system.law,
+            obstacle_kind=int(geom.kind),
+            obstacle_centre=np.asarray(geom.centre, float),
+            obstacle_radius=float(geom.radius),
+            obstacle_normal=np.asarray(geom.normal, float),
+            measuring=measuring,
+        )
+
+    # -------------------------------------------------------------- sizes
+    @property
+    def elements(self) -> int:
+        return int(self.l0.size)
+
+    @property
+    def size(self) -> int:
+        """Number of generalised coordinates, 1 + 3 N."""
+        return 1 + 3 * self.elements
+
+    @property
+    def prescribed(self) -> bool:
+        return self.drive.prescribed
+
+    def torque(self, t: float) -> float:
+        """Applied joint torque tau(t) (0 when theta is prescribed)."""
+        return 0.0 if self.prescribed else self.drive.torque(t)
+
+    # ---------------------------------------------------------- equations
+    def model_args(self) -> tuple:
+        """Arguments of the kernels after the state: hub, mesh, material, gravity, quadrature."""
+        return (
+            self.hub_radius,
+            self.hub_inertia,
+            self.l0,
+            self.mu,
+            self.EA,
+            self.EI,
+            self.gravity,
+            kn.GAUSS_XI,
+            kn.GAUSS_W,
+        )
+
+    def contact_args(self) -> tuple:
+        """Arguments of the kernels describing P and the obstacle."""
+        return (
+            self.pnode,
+            self.offset,
+            self.obstacle_kind,
+            self.obstacle_centre,
+            self.obstacle_radius,
+            self.obstacle_normal,
+        )
+
+    def residual(
+        self,
+        t: float,
+        z: np.ndarray,
+        zd: np.ndarray,
+        zdd: np.ndarray,
+        coefficients: tuple[float, float, float] = (1.0, 0.0, 1.0),
+        want_matrix: bool = True,
+        lawp: np.ndarray | None = None,
+        out: tuple[np.ndarray, np.ndarray] | None = None,
+    ) -> tuple[np.ndarray, np.ndarray, tuple[float, float, float, float]]:
+        """Residual R and iteration matrix S = cM M + cC C + cK K (band storage).
+
+        Returns (R, ab, (F, F_k, delta, delta')).  ``lawp`` switches the contact
+        force on.
+        """
+        n = self.size
+        if out is None:
+            R = np.empty(n)
+            ab = np.zeros((3 * kn.BAND + 1, n))
+        else:
+            R, ab = out
+        cM, cC, cK = coefficients
+        in_contact = lawp is not None
+        info = kn.assemble(
+            z,
+            zd,
+            zdd,
+            self.torque(t),
+            *self.model_args(),
+            cM,
+            cC,
+            cK,
+            want_matrix,
+            *self.contact_args(),
+            in_contact,
+            lawp if in_contact else NO_LAW,
+            R,
+            ab,
+        )
+        return R, ab, info
+
+    @staticmethod
+    def band_to_dense(ab: np.ndarray) -> np.ndarray:
+        """Dense matrix from LAPACK general-band storage (kl = ku = BAND)."""
+        n = ab.shape[1]
+        A = np.zeros((n, n))
+        off = 2 * kn.BAND
+        for j in range(n):
+            for i in range(max(0, j - kn.BAND), min(n, j + kn.BAND + 1)):
+                A[i, j] = ab[off + i - j, j]
+        return A
+
+    def matrices(self, z: np.ndarray, zd: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Dense mass matrix M and tangent stiffness K at (z, z') (for small meshes)."""
+        zd = np.zeros_like(z) if zd is None else zd
+        zdd = np.zeros_like(z)
+        _, abM, _ = self.residual(0.0, z, zd, zdd, (1.0, 0.0, 0.0))
+        _, abK, _ = self.residual(0.0, z, zd, zdd, (0.0, 0.0, 1.0))
+        return self.band_to_dense(abM), self.band_to_dense(abK)
+
+    # --------------------------------------------------------- kinematics
+    def nodes(self, z: np.ndarray, zd: np.ndarray, zdd: np.ndarray | None = None):
+        """Node arrays (X, V, A), each (N + 1) x 3: X, Y, psi per node."""
+        nn = self.elements + 1
+        X, V, A = np.empty((nn, 3)), np.empty((nn, 3)), np.empty((nn, 3))
+        kn.node_states(z, zd, np.zeros_like(z) if zdd is None else zdd, self.hub_radius, X, V, A)
+        return X, V, A
+
+    def gap(self, z: np.ndarray, zd: np.ndarray, zdd: np.ndarray | None = None):
+        """(delta, delta', delta'', J_node) of the contact point P."""
+        X, V, A = self.nodes(z, zd, zdd)
+        J = np.empty(3)
+        p = self.pnode
+        d, vn, dd = kn.gap_at(
+            X[p],
+            V[p],
+            A[p],
+            self.offset,
+            self.obstacle_kind,
+            self.obstacle_centre,
+            self.obstacle_radius,
+            self.obstacle_normal,
+            J,
+        )
+        return float(d), float(vn), float(dd), J
+
+    def gap_jacobian(self, z: np.ndarray) -> np.ndarray:
+        """d delta / dz (dense, length 1 + 3N)."""
+        _, _, _, Jn = self.gap(z, np.zeros_like(z))
+        J = np.zeros(self.size)
+        p = self.pnode
+        if p == 0:
+            th = z[0]
+            J[0] = Jn @ np.array([-self.hub_radius * math.sin(th), self.hub_radius * math.cos(th), 1.0])
+        else:
+            J[3 * p - 2 : 3 * p + 1] = Jn
+        return J
+
+    def point_state(self, z: np.ndarray, zd: np.ndarray, where: tuple[int, float]):
+        """Position and velocity of a centre-line point (element, xi)."""
+        X, V, _ = self.nodes(z, zd)
+        e, xi = where
+        xe = np.concatenate((X[e], X[e + 1]))
+        ve = np.concatenate((V[e], V[e + 1]))
+        return kn.point_on_element(xe, ve, self.l0[e], xi)
+
+    def measuring_velocities(self, z: np.ndarray, zd: np.ndarray) -> np.ndarray:
+        """Velocities along e2(theta) of all measuring points [m/s]."""
+        if not self.measuring:
+            return np.empty(0)
+        if not hasattr(self, "_meas"):
+            self._meas = (
+                np.array([m[0] for m in self.measuring], np.int64),
+                np.array([m[1] for m in self.measuring], float),
+            )
+        return kn.normal_velocities(z, zd, self.hub_radius, self.l0, *self._meas)
+
+    def tip_deflection(self, z: np.ndarray) -> float:
+        """Transverse tip displacement in the hub frame, e2(theta) . r_tip [m]."""
+        th = z[0]
+        return float(-math.sin(th) * z[-3] + math.cos(th) * z[-2])
+
+    def effective_mass(self, z: np.ndarray) -> float:
+        """1 / (J M^-1 J^T) at P with the FE mass matrix (theta fixed if prescribed) [kg]."""
+        M, _ = self.matrices(z)
+        J = self.gap_jacobian(z)
+        if self.prescribed:
+            M, J = M[1:, 1:], J[1:]
+        return float(1.0 / (J @ np.linalg.solve(M, J)))
+
+    def energies(self, z: np.ndarray, zd: np.ndarray) -> tuple[float, float, float]:
+        """(kinetic, elastic, gravitational) energy [J]; V_g = g int mu Y dx."""
+        T, Ve, Vg = kn.energies(
+            z,
+            zd,
+            self.hub_radius,
+            self.hub_inertia,
+            self.l0,
+            self.mu,
+            self.EA,
+            self.EI,
+            self.gravity,
+            kn.GAUSS_XI,
+            kn.GAUSS_W,
+        )
+        return float(T), float(Ve), float(Vg)
+
+    # ------------------------------------------------------ configurations
+    def straight(self, theta: float, omega: float) -> tuple[np.ndarray, np.ndarray]:
+        """Straight beam at hub angle theta in rigid rotation at rate omega: (z, z')."""
+        x = self.hub_radius + self.x_nodes[1:]
+        e1 = np.array([math.cos(theta), math.sin(theta)])
+        e2 = np.array([-math.sin(theta), math.cos(theta)])
+        z = np.empty(self.size)
+        zd = np.empty(self.size)
+        z[0], zd[0] = theta, omega
+        nodes = np.empty((x.size, 3))
+        rates = np.empty((x.size, 3))
+        nodes[:, :2] = x[:, None] * e1
+        nodes[:, 2] = theta
+        rates[:, :2] = omega * x[:, None] * e2
+        rates[:, 2] = omega
+        z[1:] = nodes.ravel()
+        zd[1:] = rates.ravel()
+        return z, zd
+
+    def static_equilibrium(
+        self,
+        theta: float,
+        load: np.ndarray | None = None,
+        z0: np.ndarray | None = None,
+        steps: int = 1,
+        tol: float = 1e-11,
+        max_iter: int = 30,
+    ) -> np.ndarray:
+        """Static equilibrium with the hub held at ``theta`` (Newton, load stepping).
+
+        Solves f_int(z) - f_g(z) - lambda ``load`` = 0 up to lambda = 1, ``load``
+        being an external generalised force (length 1 + 3N), with load increments of
+        1/``steps`` that are halved whenever Newton fails.  No contact.
+
+        Raises
+        ------
+        SolverError
+            When the load increment becomes too small.
+        """
+        from scipy.linalg import solve_banded
+
+        from ..errors import SolverError
+
+        z = self.straight(theta, 0.0)[0] if z0 is None else z0.copy()
+        z[0] = theta
+        zero = np.zeros_like(z)
+        load = np.zeros_like(z) if load is None else np.asarray(load, float)
+        scale = self._increment_scale()
+        lam, dlam = 0.0, 1.0 / steps
+        while lam < 1.0:
+            target = min(1.0, lam + dlam)
+            trial = z.copy()
+            converged = False
+            for _ in range(max_iter):
+                R, ab, _ = self.residual(0.0, trial, zero, zero, (0.0, 0.0, 1.0))
+                R = R - target * load
+                R[0] = 0.0
+                kn.fix_first_dof(ab)
+                dz = solve_banded((kn.BAND, kn.BAND), ab[kn.BAND :], -R)
+                if not np.all(np.isfinite(dz)):
+                    break
+                trial += dz
+                if np.max(np.abs(dz) / scale) < tol:
+                    converged = True
+                    break
+            if converged:
+                z, lam = trial, target
+                dlam = min(2.0 * dlam, 1.0 / steps)
+            else:
+                dlam *= 0.5
+                if dlam < 1e-6 / steps:
+                    raise SolverError(f"fem: static equilibrium did not converge (load factor {lam:.6g})")
+        return z
+
+    def _increment_scale(self) -> np.ndarray:
+        """Per-DOF scale of Newton increments: L for positions, 1 rad for rotations."""
+        s = np.ones(self.size)
+        L = float(self.x_nodes[-1])
+        s[1::3] = L
+        s[2::3] = L
+        return s
+
+    def frequencies(self, theta: float = 0.0, pinned: bool | None = None) -> np.ndarray:
+        """Natural frequencies [rad/s] of small vibration about the straight beam at rest.
+
+        ``pinned`` (default: the joint is free) keeps theta as a coordinate (the root
+        rotates with the hub: pinned-free for J_h = r_h = 0); otherwise the root is
+        clamped.  Zero-frequency (rigid-body) modes are included.
+        """
+        pinned = (not self.prescribed) if pinned is None else pinned
+        z, _ = self.straight(theta, 0.0)
+        M, K = self.matrices(z)
+        if not pinned:
+            M, K = M[1:, 1:], K[1:, 1:]
+        w2 = eigh(K, M, eigvals_only=True)
+        return np.sqrt(np.clip(w2, 0.0, None))
