@@ -63,9 +63,12 @@ class ContactLaw:
         """Parameter vector [K, n, chi/d'_0, C] for a contact that starts at rate ``onset_rate``.
 
         ``effective_mass`` = 1/(J M^-1 J^T) at onset; only the linear law needs it.
+        A contact that starts at rest (``onset_rate`` <= 1e-9 m/s: resting, not an
+        impact) has no reference speed and gets no hysteresis damping.
         """
-        v0 = max(onset_rate, 1e-12)
-        return np.array([self.stiffness, self.exponent, self.chi() / v0, 0.0])
+        if onset_rate <= 1e-9:
+            return np.array([self.stiffness, self.exponent, 0.0, 0.0])
+        return np.array([self.stiffness, self.exponent, self.chi() / onset_rate, 0.0])
 
     def force(self, d: float, dd: float, onset_rate: float, effective_mass: float = 1.0) -> float:
         """Contact force [N] at penetration ``d`` [m] and rate ``dd`` [m/s]."""

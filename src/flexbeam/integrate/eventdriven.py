@@ -32,7 +32,7 @@ from typing import Any, Protocol
 
 import numpy as np
 from scipy.integrate import DOP853, OdeSolution
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from ..errors import SolverError
 
@@ -84,6 +84,10 @@ class PhaseMethod(Protocol):
 
     def start(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         """Initial phase (and possibly a jumped state) at the start."""
+        ...
+
+    def free_phase(self) -> Phase:
+        """The phase of unconstrained motion."""
         ...
 
     def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
@@ -171,6 +175,24 @@ def _find_event(events: list[Event], dense, ta: float, tb: float) -> tuple[float
     return best
 
 
+def _hump(ev: Event, dense, ta: float, tb: float) -> float | None:
+    """Root after an excursion that starts at (or just behind) zero.
+
+    A phase that starts exactly on its event surface (the gap right after a
+    rebound) has g(ta) = 0 up to round-off, moving the right way (g' > 0 for a
+    downward event), and may come back within the same step.  The excursion's
+    extremum is located on the dense output and the crossing bracketed after it.
+    """
+    s = float(ev.direction) if ev.direction else 1.0
+    g = lambda t: ev.fun(t, dense(t))[0]  # noqa: E731
+    res = minimize_scalar(lambda t: s * g(t), bounds=(ta, tb), method="bounded",
+                          options={"xatol": 1e-14 * max(1.0, abs(tb))})
+    t_ext = float(res.x)
+    if -s * g(t_ext) <= 0.0:
+        return None
+    return float(brentq(g, t_ext, tb, xtol=1e-15, rtol=1e-13))
+
+
 def _scan(ev: Event, dense, ts, vals, depth) -> float | None:
     for i in range(len(ts) - 1):
         (ga, ra), (gb, rb) = vals[i], vals[i + 1]
@@ -179,6 +201,11 @@ def _scan(ev: Event, dense, ts, vals, depth) -> float | None:
             if gb == 0.0:
                 return ts[i + 1]
             return float(brentq(g, ts[i], ts[i + 1], xtol=1e-15, rtol=1e-13))
+        d = ev.direction
+        if d != 0 and math.isfinite(ra) and -d * ga <= 0.0 and -d * ra > 0.0 and -d * gb < 0.0:
+            root = _hump(ev, dense, ts[i], ts[i + 1])
+            if root is not None:
+                return root
         if depth < _HERMITE_DEPTH and _hermite_dip(ts[i], ts[i + 1], ga, gb, ra, rb, ev.direction):
             sub = list(np.linspace(ts[i], ts[i + 1], 9))
             sub_vals = [vals[i]] + [ev.fun(t, dense(t)) for t in sub[1:-1]] + [vals[i + 1]]
@@ -219,10 +246,14 @@ def integrate(
     steps = nfev = 0
     status, message = "success", "integration reached t_end"
     wall0 = time.perf_counter()
+    y0 = np.asarray(y0, float)
     try:
-        phase, y = method.start(t, np.asarray(y0, float))
+        phase, y = method.start(t, y0)
     except Stop as stop:
         return RunResult([], stop.status, stop.message, t, 0.0, 0, 0)
+    if not np.array_equal(y, y0):  # a jump at the start: keep the state before it
+        before = method.free_phase()
+        segments.append(Segment(before, t, t, [np.array([t])], [y0[None, :].copy()]))
     stalled = 0
     while t < t_end:
         seg = Segment(phase, t, t)

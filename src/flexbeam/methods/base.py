@@ -91,14 +91,31 @@ class ImpactMethod:
         gap = self.gap_event(t, y)[0]
         return max(0.25 * size, 0.5 * gap) / speed
 
-    def approaching(self, t: float, y: np.ndarray, located: bool = False) -> bool:
-        """Closed gap with P moving into the obstacle: an impact starts here.
+    def gap_acceleration(self, t: float, y: np.ndarray) -> float:
+        """delta'' under free motion (no contact force) at state y."""
+        _, _, gamma, J = self.system.gap(t, y)
+        yd = self.system.rhs(t, y)[0]
+        n1 = self.system.n + 1
+        if self.system.prescribed:
+            thdd = self.system.drive.motion(t)[2]
+            zdd = np.concatenate(([thdd], yd[self.system.n : 2 * self.system.n]))
+        else:
+            zdd = yd[n1 : 2 * n1]
+        return float(J @ zdd + gamma)
 
-        ``located``: the gap's zero was just located as an event, so only the
-        direction of motion decides (the located gap is zero to within round-off).
+    def approaching(self, t: float, y: np.ndarray, located: bool = False) -> bool:
+        """Does a contact start here?  The gap is closed and P moves into the obstacle,
+        or rests on it (|delta'| below ``grazing_speed``) while free motion would press it in.
+
+        ``located``: the gap's zero was just located as an event, so it is zero to
+        within round-off and only the motion decides.
         """
         delta, vn = self.gap_event(t, y)
-        return (located or delta <= self.gap_tolerance) and vn < -self.grazing_speed
+        if not (located or delta <= self.gap_tolerance):
+            return False
+        if vn < -self.grazing_speed:
+            return True
+        return abs(vn) <= self.grazing_speed and self.gap_acceleration(t, y) < 0.0
 
     def new_contact(self, t: float, y: np.ndarray) -> ContactEvent:
         """Log a contact onset, stopping the run past ``solver.max_contacts``."""
