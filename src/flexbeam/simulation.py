@@ -14,7 +14,8 @@ from .errors import ParameterError, closest
 from .integrate.eventdriven import RunResult, Stop, integrate
 from .methods.base import ImpactMethod
 from .methods.ccfm import CCFM
-from .model.system import BeamSystem
+from .model.outputs import COLUMNS, evaluate
+from .model.system import _NO_LAW, CONTACT_NONE, BeamSystem
 from .parameters.case import Case
 from .parameters.io import dump_case
 from .solution import Solution
@@ -164,37 +165,24 @@ def collect(run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case
         phases.append(np.full(t_seg.size, seg.phase.name, dtype=object))
         rows.append((seg.phase, t_seg, y_seg))
     t_all = np.concatenate(times) if times else np.empty(0)
-    m = t_all.size
-    out = {name: np.empty(m) for name in (
-        "theta", "theta_rate", "contact_force", "gap", "normal_velocity", "kinetic_energy",
-        "elastic_energy", "gravitational_energy", "contact_energy", "dissipated_energy",
-        "drive_work", "joint_torque", "tip_deflection")}
-    out["q"] = np.empty((m, n))
-    out["q_rate"] = np.empty((m, n))
-    out["measuring_velocity"] = np.empty((m, npts))
-    tip = system.beam.point(case.beam.length) if n else None
-    k = 0
+    columns: dict[str, list[np.ndarray]] = {}
+    qs, qds, mvs = [], [], []
     for phase, t_seg, y_seg in rows:
-        for t, y in zip(t_seg, y_seg):
-            th, thd, q, qd = system.split(t, y)
-            out["theta"][k], out["theta_rate"][k] = th, thd
-            out["q"][k], out["q_rate"][k] = q, qd
-            delta, vn, _, _ = system.gap(t, y)
-            out["gap"][k], out["normal_velocity"][k] = delta, vn
-            F, Uc = method.force(phase, t, y)
-            out["contact_force"][k], out["contact_energy"][k] = F, Uc
-            e = system.energies(t, y)
-            out["kinetic_energy"][k] = e["kinetic"]
-            out["elastic_energy"][k] = e["elastic"]
-            out["gravitational_energy"][k] = e["gravitational"]
-            out["dissipated_energy"][k] = e["dissipated"]
-            out["drive_work"][k] = e["drive_work"]
-            out["joint_torque"][k] = method.joint_torque(phase, t, y) if system.prescribed else (
-                system.drive.torque(t))
-            out["tip_deflection"][k] = float(tip.phi @ q) if tip is not None else 0.0
-            for j, pt in enumerate(system.measuring):
-                out["measuring_velocity"][k, j] = system.normal_velocity(t, y, pt)
-            k += 1
+        cols, mv = evaluate(system, t_seg, y_seg, phase.data.get("mode", CONTACT_NONE),
+                            phase.data.get("p", _NO_LAW))
+        for name, arr in cols.items():
+            columns.setdefault(name, []).append(arr)
+        mvs.append(mv)
+        if system.prescribed:
+            qs.append(y_seg[:, :n])
+            qds.append(y_seg[:, n : 2 * n])
+        else:
+            qs.append(y_seg[:, 1 : n + 1])
+            qds.append(y_seg[:, n + 2 : 2 * n + 2])
+    out = {name: np.concatenate(columns[name]) if name in columns else np.empty(0) for name in COLUMNS}
+    out["q"] = np.concatenate(qs) if qs else np.empty((0, n))
+    out["q_rate"] = np.concatenate(qds) if qds else np.empty((0, n))
+    out["measuring_velocity"] = np.concatenate(mvs) if mvs else np.empty((0, npts))
     out["total_energy"] = (out["kinetic_energy"] + out["elastic_energy"] + out["gravitational_energy"]
                            + out["contact_energy"] + out["dissipated_energy"] - out["drive_work"])
     _fill_contact_log(method, t_all, out, np.concatenate(phases) if phases else np.empty(0))

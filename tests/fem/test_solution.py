@@ -104,3 +104,9 @@ def test_release_angle_is_solved_by_shooting():
     case = seed(initial__kind="release", solver__t_end=0.04, fem__elements=16)
     sol = simulate_fem(case)
     assert sol.contacts and sol.contacts[0].velocity_before == pytest.approx(-0.4, rel=1e-6)
+
+
+def test_progress_is_reported():
+    times: list[float] = []
+    simulate_fem(seed(solver__t_end=3e-4, fem__elements=4), progress=times.append)
+    assert times and times == sorted(times) and times[-1] <= 3e-4

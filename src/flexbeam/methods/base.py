@@ -151,16 +151,18 @@ class ImpactMethod:
         """Contact held closed by the unilateral constraint until lambda turns tensile.
 
         Baumgarte stabilisation (Baumgarte 1972; Hairer & Wanner, Solving ODEs II,
-        Sec. VII.2) with alpha = beta = ``solver.baumgarte_frequency``: the phase starts
+        Sec. VII.2) with alpha = beta = ``solver.baumgarte_frequency``.  A CCM contact is
+        sampled at the contact spacing, IMM's resting contact at the free one.  The phase starts
         consistent (delta = 0 at the located event, delta' = 0 after the e = 0 jump),
         so the terms only damp the integration drift, critically, on a time scale far
         slower than the beam's modes (no added stiffness for the explicit solver).
         """
+        step = self.case.solver.contact_sample_step if name == "constrained" else self.case.solver.sample_step
         return Phase(
             name,
             self.system.rhs_function(CONTACT_CONSTRAINT, self.baumgarte),
             [self.release_event],
-            self.case.solver.contact_sample_step,
+            step,
             data={"mode": CONTACT_CONSTRAINT, "p": self.baumgarte, "contact": contact},
             keep_dense=True,
         )

@@ -327,7 +327,8 @@ class BeamSystem:
             th, thd, np.ascontiguousarray(q), np.ascontiguousarray(qd), b.hub_inertia + b.J0,
             b.Mff - b.D, b.Mff, b.mtf, b.Kff, b.m1, b.sf, b.G, self.g,
         )  # fmt: skip
-        return {"kinetic": T, "elastic": Ve, "gravitational": Vg, "dissipated": float(y[-2]), "drive_work": float(y[-1])}
+        return {"kinetic": T, "elastic": Ve, "gravitational": Vg,
+                "dissipated": float(y[-2]), "drive_work": float(y[-1])}
 
     # ----------------------------------------------------------- initial state
     def state(self, theta: float, omega: float, q=None, qd=None) -> np.ndarray:

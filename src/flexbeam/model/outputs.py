@@ -1,0 +1,98 @@
+"""Output variables at many samples in one compiled loop.
+
+Evaluates, for every sample of one phase, the quantities a :class:`~flexbeam.solution.Solution`
+stores (gap, contact force, energies, joint torque, velocities of measuring points),
+with the same kernels the equations of motion use, so that outputs and dynamics
+cannot disagree.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..contact.laws import law_potential
+from .kernels import energies, gap_state, point_kinematics
+from .system import BeamSystem, _state_split, rhs_kernel
+
+#: column order of :func:`sample_outputs`
+COLUMNS = (
+    "theta", "theta_rate", "gap", "normal_velocity", "contact_force", "contact_energy",
+    "kinetic_energy", "elastic_energy", "gravitational_energy", "dissipated_energy", "drive_work",
+    "joint_torque", "tip_deflection",
+)  # fmt: skip
+
+
+@njit(cache=True)
+def sample_outputs(
+    Y, n, prescribed, TH, THD, THDD, TAU, g,
+    Jc, m1, Mc, Mff, mtf, Kff, sf, G,
+    pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal,
+    mode, p, tip_phi, mbase, mphi, mdphi, mH,
+):  # fmt: skip
+    """Rows of :data:`COLUMNS` and measuring-point normal velocities for states ``Y``."""
+    m = Y.shape[0]
+    N = n + 1
+    out = np.empty((m, len(COLUMNS)))
+    mv = np.empty((m, mbase.size))
+    dr = np.empty((2, N))
+    J = np.empty(N)
+    for k in range(m):
+        y = Y[k]
+        theta, omega, q, qd = _state_split(y, n, prescribed, TH[k], THD[k])
+        q = np.ascontiguousarray(q)
+        qd = np.ascontiguousarray(qd)
+        r, v, a0 = point_kinematics(theta, omega, q, qd, pbase, pphi, pdphi, pH, pc, dr)
+        delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, okind, ocentre, oradius, onormal, J)
+        dy, F, torque = rhs_kernel(
+            y, n, prescribed, TH[k], THD[k], THDD[k], TAU[k], g, Jc, m1, Mc, Mff, mtf, Kff, sf, G,
+            pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal, mode, p,
+        )  # fmt: skip
+        T, Ve, Vg = energies(theta, omega, q, qd, Jc, Mc, Mff, mtf, Kff, m1, sf, G, g)
+        out[k, 0] = theta
+        out[k, 1] = omega
+        out[k, 2] = delta
+        out[k, 3] = vn
+        out[k, 4] = F
+        out[k, 5] = law_potential(p, -delta) if mode == 1 else 0.0
+        out[k, 6] = T
+        out[k, 7] = Ve
+        out[k, 8] = Vg
+        out[k, 9] = y[y.size - 2]
+        out[k, 10] = y[y.size - 1]
+        out[k, 11] = torque
+        out[k, 12] = tip_phi @ q if n > 0 else 0.0
+        ct, st = math.cos(theta), math.sin(theta)
+        for j in range(mbase.size):
+            rj, vj, aj = point_kinematics(theta, omega, q, qd, mbase[j], mphi[j], mdphi[j], mH[j], 0.0, dr)
+            mv[k, j] = -st * vj[0] + ct * vj[1]
+    return out, mv
+
+
+def evaluate(system: BeamSystem, times: np.ndarray, states: np.ndarray, mode: int,
+             p: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """Output columns (dict) and measuring-point velocities for samples of one phase."""
+    b, P, o = system.beam, system.contact.point, system.contact
+    m = times.size
+    TH, THD, THDD = np.zeros(m), np.zeros(m), np.zeros(m)
+    if system.prescribed:
+        for k, t in enumerate(times):
+            TH[k], THD[k], THDD[k] = system.drive.motion(float(t))
+    TAU = np.array([system.drive.torque(float(t)) for t in times]) if system.drive.spec.kind == "torque" \
+        else np.zeros(m)
+    tip = b.point(b.length) if b.n else None
+    pts = system.measuring
+    n = b.n
+    mbase = np.array([pt.base for pt in pts], float)
+    mphi = np.array([pt.phi for pt in pts], float).reshape(len(pts), n)
+    mdphi = np.array([pt.dphi for pt in pts], float).reshape(len(pts), n)
+    mH = np.array([pt.H for pt in pts], float).reshape(len(pts), n, n)
+    out, mv = sample_outputs(
+        np.ascontiguousarray(states), n, system.prescribed, TH, THD, THDD, TAU, system.g,
+        b.hub_inertia + b.J0, b.m1, np.ascontiguousarray(b.Mff - b.D), b.Mff, b.mtf, b.Kff, b.sf, b.G,
+        P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal,
+        mode, p, tip.phi if tip is not None else np.zeros(0), mbase, mphi, mdphi, mH,
+    )  # fmt: skip
+    return {name: out[:, i] for i, name in enumerate(COLUMNS)}, mv
