@@ -128,6 +128,32 @@ def _print_metrics(metrics: dict[str, Any], title: str) -> None:
     Console().print(table)
 
 
+@app.command()
+def compare(
+    case: Annotated[str, typer.Argument(help="built-in case name or TOML file")],
+    set_: SetOpt = None,
+    out: OutOpt = None,
+    methods: Annotated[str, typer.Option("--methods", help="comma-separated methods")] = "ccfm,ccm,fem",
+    json_: JsonOpt = False,
+) -> None:
+    """Run CCFM, CCM and the FE reference on one case; figures and a table against the paper."""
+    from .report import _markdown, compare as run_compare
+    from .parameters.io import reference_data
+
+    c = _load(case, set_)
+    chosen = tuple(m.strip() for m in methods.split(",") if m.strip())
+    for m in chosen:
+        if m not in ("ccfm", "ccm", "imm", "fem"):
+            raise ParameterError(f"--methods: unknown method '{m}'; allowed: ccfm, ccm, imm, fem")
+    _, rows = run_compare(c, out, chosen, lambda m: _Progress(c.solver.t_end, f"{c.name} [{m}]"))
+    if json_:
+        from .solution import _jsonable
+
+        typer.echo(json.dumps(_jsonable(rows), indent=2))
+    else:
+        typer.echo(_markdown(rows, reference_data(c.name)), nl=False)
+
+
 @cases_app.callback(invoke_without_command=True)
 def cases(ctx: typer.Context) -> None:
     """List the built-in cases."""

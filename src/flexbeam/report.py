@@ -28,3 +28,86 @@ def write_run_outputs(sol: Solution, case: Case, out: str | Path) -> dict[str, P
                                                 f"{case.name}: normal velocity of P ({sol.method.upper()})"),
     }
     return files
+
+
+COMPARE_METHODS = ("ccfm", "ccm", "fem")
+
+
+def compare_table(solutions: list[Solution], reference: dict) -> list[dict]:
+    """One row per method: peaks, duration, wall time and errors against the experiment."""
+    exp = reference.get("experiment", {})
+    rows = []
+    for sol in solutions:
+        m = sol.metrics()
+        row = {
+            "method": sol.method,
+            "peak_force": m["peak_force"],
+            "second_peak_force": m["second_peak_force"],
+            "contact_duration": m["contact_duration"],
+            "force_peaks": len(m["force_peaks"]),
+            "contacts": m["contacts"],
+            "wall_time": m["wall_time"],
+        }
+        for key in ("peak_force", "second_peak_force", "contact_duration"):
+            if key in exp and m[key] == m[key]:
+                row[f"{key}_error"] = (m[key] - exp[key]) / exp[key]
+        paper = reference.get(sol.method, {})
+        if "peak_force" in paper:
+            row["paper_peak_force"] = paper["peak_force"]
+        rows.append(row)
+    return rows
+
+
+def _markdown(rows: list[dict], reference: dict) -> str:
+    def fmt(v, scale=1.0, digits=4):
+        return "-" if v is None or v != v else f"{v * scale:.{digits}g}"
+
+    exp = reference.get("experiment", {})
+    lines = [
+        "| method | peak [N] | error | 2nd peak [N] | error | duration [ms] | error | peaks | contacts | "
+        "wall time [s] | paper's peak [N] |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        lines.append(
+            f"| {r['method']} | {fmt(r['peak_force'])} | {fmt(r.get('peak_force_error'), 100, 3)} % | "
+            f"{fmt(r['second_peak_force'])} | {fmt(r.get('second_peak_force_error'), 100, 3)} % | "
+            f"{fmt(r['contact_duration'], 1e3)} | {fmt(r.get('contact_duration_error'), 100, 3)} % | "
+            f"{r['force_peaks']} | {r['contacts']} | {fmt(r['wall_time'])} | {fmt(r.get('paper_peak_force'))} |"
+        )
+    if exp:
+        lines.append("")
+        lines.append(
+            f"Experiment (Duan et al. 2013): peak {exp.get('peak_force')} N, second peak "
+            f"{exp.get('second_peak_force')} N, duration ~{exp.get('contact_duration', 0) * 1e3:g} ms."
+        )
+    return "\n".join(lines) + "\n"
+
+
+def compare(case: Case, out: str | Path | None = None, methods: tuple[str, ...] = COMPARE_METHODS,
+            progress_factory=None) -> tuple[list[Solution], list[dict]]:
+    """Run ``case`` with several methods; write overlaid figures and the comparison table."""
+    from .simulation import simulate
+
+    solutions = []
+    for method in methods:
+        progress = progress_factory(method) if progress_factory else None
+        try:
+            solutions.append(simulate(case, method, progress=progress))
+        finally:
+            if progress is not None:
+                progress.close()
+    reference = reference_data(case.name)
+    rows = compare_table(solutions, reference)
+    if out is not None:
+        from .plotting import plot_contact_force, plot_normal_velocity
+
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        plot_contact_force(solutions, out / "contact_force.png", reference, f"{case.name}: contact force")
+        plot_normal_velocity(solutions, out / "normal_velocity.png", reference,
+                             f"{case.name}: normal velocity of P")
+        write_text_atomic(out / "comparison.md", _markdown(rows, reference))
+        write_text_atomic(out / "comparison.json", json.dumps(_jsonable({"rows": rows, "reference": reference}),
+                                                              indent=2))
+    return solutions, rows

@@ -267,7 +267,11 @@ def integrate(
         switched = False
         while solver.status == "running":
             ta = solver.t
-            msg = solver.step()
+            try:
+                msg = solver.step()
+            except (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError, ValueError) as exc:
+                status, message = "failed", f"step failed at t = {ta:.9g} s: {type(exc).__name__}: {exc}"
+                break
             steps += 1
             if solver.status == "failed":
                 status, message = "failed", f"step failed at t = {solver.t:.9g} s: {msg}"

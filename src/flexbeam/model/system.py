@@ -62,6 +62,8 @@ def rhs_kernel(
     Returns (dy/dt, contact force [N], joint torque [N m]).
     """
     N = n + 1
+    if not np.all(np.isfinite(y)):  # a trial stage that blew up: let the solver reject it
+        return np.full(y.size, np.nan), np.nan, np.nan
     theta, omega, q, qd = _state_split(y, n, prescribed, th_p, thd_p)
     M = np.empty((N, N))
     Q = np.empty(N)
@@ -70,10 +72,14 @@ def rhs_kernel(
     F = 0.0
     diss = 0.0
     J = np.zeros(N)
+    if not (np.all(np.isfinite(M)) and np.all(np.isfinite(Q))):
+        return np.full(y.size, np.nan), np.nan, np.nan
     if contact_mode != 0:
         dr = np.empty((2, N))
         r, v, a0 = point_kinematics(theta, omega, q, qd, pbase, pphi, pdphi, pH, pc, dr)
         delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, okind, ocentre, oradius, onormal, J)
+        if not (np.all(np.isfinite(J)) and math.isfinite(gamma)):
+            return np.full(y.size, np.nan), np.nan, np.nan
         if contact_mode == 1:
             F, Fk = law_force(p, -delta, -vn)
             diss = (F - Fk) * (-vn)
