@@ -13,8 +13,12 @@ import time
 from pathlib import Path
 from typing import Annotated, Any
 
-import click
 import typer
+
+try:  # typer >= 0.22 vendors click
+    from typer._click import exceptions as click_exc
+except ImportError:  # pragma: no cover - older typer with click as a dependency
+    from click import exceptions as click_exc
 
 from .errors import FlexbeamError, ParameterError, SolverError
 
@@ -220,12 +224,12 @@ def main(argv: list[str] | None = None) -> None:
     """Console-script entry point: one-line errors with exit code 2 for bad input."""
     try:
         app(args=argv, standalone_mode=False, prog_name="flexbeam")
-    except click.exceptions.Exit as exc:
+    except typer.Exit as exc:
         sys.exit(exc.exit_code)
-    except click.exceptions.Abort:
+    except typer.Abort:
         sys.stderr.write("aborted\n")
         sys.exit(130)
-    except click.exceptions.ClickException as exc:
+    except click_exc.ClickException as exc:
         sys.stderr.write(f"error: {exc.format_message()}\n")
         sys.exit(exc.exit_code if exc.exit_code else 2)
     except ParameterError as exc:

@@ -141,8 +141,8 @@ def simulate(
     methods = _methods()
     if method not in methods:
         raise ParameterError(
-            f"method: unknown impact method '{method}'; allowed: {', '.join(methods)}"
-            f"{closest(method, methods)}"
+            f"method: unknown impact method '{method}'; allowed: {', '.join(METHOD_NAMES)}"
+            f"{closest(method, METHOD_NAMES)}"
         )
     system = BeamSystem.from_case(case)
     y0, info = initial_state(system, case)
