@@ -9,6 +9,11 @@ Five lines to a result::
     sol.to_xarray().to_netcdf("result.nc")
 
 Heavy libraries (xarray, matplotlib, dask) are imported only when used.
+
+Sweeps and calibration::
+
+    ds = fb.sweep(case, grid={"contact.restitution": [0.6, 0.8]}, out="store")
+    fit = fb.calibrate(case, fit=["contact.stiffness"], features={"peak_force": 584.0})
 """
 
 from __future__ import annotations
@@ -20,7 +25,18 @@ from .parameters import Case, builtin_cases, dump_case, load_case
 
 __version__ = "0.1.0"
 
+# ``sweep`` and ``calibrate`` are both submodules and functions of the package.  The
+# submodules are imported here (they are light: Dask, xarray and scipy.optimize are
+# imported when used) so that the functions defined below are what ``fb.sweep`` and
+# ``fb.calibrate`` stay bound to: importing a submodule later would otherwise rebind
+# the package attribute to the module.
+from . import calibrate as _calibrate_module
+from . import sweep as _sweep_module
+
 if TYPE_CHECKING:
+    import xarray as xr
+
+    from .calibrate import Calibration
     from .solution import Solution
 
 
@@ -39,6 +55,22 @@ def simulate(case: Case | str, method: str = "ccfm", **overrides: Any) -> Soluti
     return _simulate(case, method)
 
 
+def sweep(case: Case | str, **kwargs: Any) -> xr.Dataset:
+    """Parameter sweep on Dask; see :func:`flexbeam.sweep.sweep`.
+
+    ``fb.sweep("seed-experiment", grid={"contact.restitution": [0.6, 0.8]}, out="store")``
+    """
+    return _sweep_module.sweep(case, **kwargs)
+
+
+def calibrate(case: Case | str, **kwargs: Any) -> Calibration:
+    """Least-squares fit of case parameters to measurements; see :func:`flexbeam.calibrate.calibrate`.
+
+    ``fb.calibrate("seed-experiment", fit=["contact.stiffness"], features={"peak_force": 584})``
+    """
+    return _calibrate_module.calibrate(case, **kwargs)
+
+
 __all__ = [
     "Case",
     "FlexbeamError",
@@ -46,8 +78,10 @@ __all__ = [
     "ParameterError",
     "SolverError",
     "builtin_cases",
+    "calibrate",
     "dump_case",
     "load_case",
     "simulate",
+    "sweep",
     "__version__",
 ]

@@ -220,10 +220,169 @@ def frequencies(
         typer.echo(note)
 
 
+class _SweepProgress:
+    """A Rich progress bar of a sweep's cases on stderr (on a terminal)."""
+
+    def __init__(self, label: str) -> None:
+        self.label = label
+        self.bar: Any = None
+        self.task: Any = None
+        self.enabled = sys.stderr.isatty()
+
+    def __call__(self, done: int, total: int) -> None:
+        if not self.enabled or total == 0:
+            return
+        if self.bar is None:
+            from rich.console import Console
+            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+            self.bar = Progress(
+                TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TextColumn("cases"),
+                TimeElapsedColumn(), console=Console(stderr=True), transient=True,
+            )  # fmt: skip
+            self.bar.start()
+            self.task = self.bar.add_task(self.label, total=total)
+        self.bar.update(self.task, completed=done)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+
+
+@app.command()
+def sweep(
+    case: Annotated[str, typer.Argument(help="built-in case name or TOML file")],
+    out: Annotated[Path, typer.Option("--out", "-o", help="store directory (cases/KEY.json, result.nc); a re-run "
+                                      "computes only the missing cases")],
+    grid: Annotated[list[str] | None, typer.Option(
+        "--grid", "-g", help="KEY=v1,v2,... or KEY=linspace(a,b,n) / geomspace(a,b,n); repeated: their product"
+    )] = None,
+    sample: Annotated[list[str] | None, typer.Option(
+        "--sample", help="KEY=DIST: uniform(a,b), normal(mu,sigma), loguniform(a,b), choice(v1,...)")] = None,
+    count: Annotated[int | None, typer.Option("-n", help="number of random samples (with --sample)")] = None,
+    seed: Annotated[int, typer.Option("--seed", help="random seed of the samples")] = 0,
+    method: MethodOpt = "ccfm",
+    scheduler: Annotated[str | None, typer.Option(
+        "--scheduler", help="Dask scheduler address, e.g. tcp://host:8786 (default: a local cluster)")] = None,
+    workers: Annotated[int | None, typer.Option(
+        "--workers", "-w", help="worker processes of the local cluster (default: all cores)")] = None,
+    histories: Annotated[bool, typer.Option(
+        "--histories", help="also keep each case's history (cases/KEY.nc)")] = False,
+    set_: SetOpt = None,
+    json_: Annotated[bool, typer.Option("--json", help="print the summary as one JSON object")] = False,
+) -> None:
+    """Run a case over a grid or random samples of its fields on Dask (metrics in STORE/result.nc)."""
+    from .sweep import parse_grid, parse_samples, summary
+    from .sweep import sweep as run_sweep
+
+    if bool(grid) == bool(sample):
+        raise ParameterError("--grid, --sample: give the fields to sweep with one of them (not both)")
+    if grid and count is not None:
+        raise ParameterError("-n: only with --sample")
+    c = _load(case, set_)
+    progress = _SweepProgress(f"{c.name} [{method}]")
+    # sys.exit rather than typer.Exit: main() runs the app with standalone_mode=False, where
+    # typer turns Exit and Ctrl-C into a returned code instead of raising them
+    try:
+        ds = run_sweep(c, grid=parse_grid(grid) if grid else None, samples=parse_samples(sample) if sample else None,
+                       n=count, seed=seed, method=method, scheduler=scheduler, workers=workers, out=out,
+                       histories=histories, progress=progress)
+    except KeyboardInterrupt:
+        progress.close()
+        sys.stderr.write(f"interrupted: the finished cases are kept in {out}; the same command resumes\n")
+        sys.exit(130)
+    finally:
+        progress.close()
+    info = summary(ds)
+    info["result"] = str(out / "result.nc")
+    if json_:
+        from .solution import _jsonable
+
+        typer.echo(json.dumps(_jsonable(info), indent=2))
+    else:
+        typer.echo(f"{info['cases']} cases: {info['computed']} computed, {info['reused']} reused, "
+                   f"{info['failed']} failed, {info['missing']} missing -> {info['result']}")
+        for f in info["failures"][:20]:
+            where = ", ".join(f"{k}={v}" for k, v in f["parameters"].items())
+            typer.echo(f"  {f['status']}: {where}: {f['error']}")
+    if info["missing"]:
+        sys.exit(1)
+
+
+@app.command()
+def calibrate(
+    case: Annotated[str, typer.Argument(help="built-in case name or TOML file (starting values)")],
+    fit: Annotated[str, typer.Option("--fit", help="case fields to fit, comma-separated, e.g. "
+                                     "contact.stiffness,contact.restitution")],
+    data: Annotated[Path | None, typer.Option(
+        "--data", help="CSV with a time column and force and/or velocity columns [s, N, m/s]")] = None,
+    columns: Annotated[str | None, typer.Option(
+        "--columns", help="CSV column names by role: time=t,force=F,velocity=v")] = None,
+    features: Annotated[str | None, typer.Option(
+        "--features", help="measured metrics: peak_force=584,second_peak_force=297,contact_duration=0.6e-3")] = None,
+    method: MethodOpt = "ccfm",
+    set_: SetOpt = None,
+    out: Annotated[Path | None, typer.Option(
+        "--out", "-o", help="directory for calibration.json, fitted.toml, overlay.png, residuals.csv")] = None,
+    json_: Annotated[bool, typer.Option("--json", help="print the report as one JSON object")] = False,
+) -> None:
+    """Fit case fields (e.g. contact stiffness and restitution) to measured histories or features."""
+    from .calibrate import calibrate as run_calibrate
+    from .calibrate import parse_columns, parse_features
+
+    c = _load(case, set_)
+    result = run_calibrate(c, fit=fit, data=data, features=parse_features(features), method=method,
+                           columns=parse_columns(columns), out=out)
+    report = result.to_dict()
+    if json_:
+        typer.echo(json.dumps(report, indent=2))
+    else:
+        _print_calibration(report, f"{c.name} [{method}]")
+    if not report["success"]:
+        sys.exit(1)
+
+
+def _print_calibration(report: dict[str, Any], title: str) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    def num(v: Any) -> str:
+        return "-" if v is None or (isinstance(v, float) and not math.isfinite(v)) else f"{v:.6g}"
+
+    from rich.markup import escape
+
+    table = Table(title=escape(f"{title}: calibration"))
+    for col in ("parameter", "initial", "fitted", "std. uncertainty", "units"):
+        table.add_column(col, justify="left" if col in ("parameter", "units") else "right")
+    for key, p in report["parameters"].items():
+        table.add_row(key + (" (at bound)" if p["at_bound"] else ""), num(p["initial"]), num(p["value"]),
+                      num(p["uncertainty"]), p["units"])
+    console = Console()
+    console.print(table)
+    if "features" in report:
+        ft = Table(title="features")
+        for col in ("feature", "measured", "initial model", "fitted model"):
+            ft.add_column(col, justify="left" if col == "feature" else "right")
+        for key, f in report["features"].items():
+            ft.add_row(key, num(f["measured"]), num(f["initial"]), num(f["fitted"]))
+        console.print(ft)
+    if "data" in report:
+        d = report["data"]
+        for chan, rms in d["rms"].items():
+            console.print(f"{chan} residual rms: {num(rms)} (initial {num(d['rms_initial'][chan])})")
+        console.print(f"time shift: {num(d['time_shift'])} s +- {num(d['time_shift_uncertainty'])} s, "
+                      f"{d['samples']} samples of {d['file']}")
+    r = report["residuals"]
+    console.print(f"residual sigma {num(r['sigma'])} (dof {r['dof']}), {report['nfev']} evaluations: "
+                  f"{report['message']}")
+
+
 def main(argv: list[str] | None = None) -> None:
     """Console-script entry point: one-line errors with exit code 2 for bad input."""
     try:
-        app(args=argv, standalone_mode=False, prog_name="flexbeam")
+        rc = app(args=argv, standalone_mode=False, prog_name="flexbeam")
+        if isinstance(rc, int) and rc != 0:
+            sys.exit(rc)
     except typer.Exit as exc:
         sys.exit(exc.exit_code)
     except typer.Abort:

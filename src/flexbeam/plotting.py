@@ -100,3 +100,45 @@ def _save(fig, path: str | Path) -> Path:
         fig.savefig(tmp, dpi=120, format="png", bbox_inches="tight")
     _pyplot().close(fig)
     return path
+
+
+def _run_label(sol: Solution) -> str:
+    """'first-order, 5 modes, W = 6 rad/s' from a solution's provenance (fallback: the method)."""
+    import tomllib
+
+    try:
+        case = tomllib.loads(str(sol.provenance.get("case_toml", "")))
+        model, drive = case["model"], case.get("drive", {})
+        label = f"{model['coupling']}, {model['modes']} mode{'' if model['modes'] == 1 else 's'}"
+        if drive.get("kind") == "prescribed":
+            label += f", W = {drive.get('spin_rate', 0.0):g} rad/s"
+        return label
+    except (tomllib.TOMLDecodeError, KeyError, TypeError):
+        return f"flexbeam {sol.method.upper()}"
+
+
+def plot_tip_deflection(solutions: list[Solution], path: str | Path, labels: list[str] | None = None,
+                        reference: tuple[np.ndarray, np.ndarray] | None = None, reference_label: str = "reference",
+                        title: str = "", ylim: tuple[float, float] | None = None) -> Path:
+    """Tip deflection in the rotating frame [m] against time [s] (e.g. the Kane spin-up).
+
+    ``labels`` default to the coupling model, number of modes and spin rate of each run;
+    ``reference`` = (t [s], deflection [m]) is drawn dashed; ``ylim`` clips divergent runs.
+    """
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6.4, 4.0))
+    for k, sol in enumerate(solutions):
+        label = labels[k] if labels is not None else _run_label(sol)
+        tip = np.asarray(sol["tip_deflection"], float)
+        ax.plot(sol.time, np.where(np.isfinite(tip), tip, np.nan), c=f"C{k}", lw=1.0, label=label)
+    if reference is not None:
+        ax.plot(reference[0], reference[1], "--", c="k", lw=0.9, label=reference_label)
+    if ylim is not None:
+        ax.set_ylim(*ylim)
+    ax.axhline(0.0, c="0.7", lw=0.5)
+    ax.set_xlabel("Time [s]")
+    ax.set_ylabel("Tip deflection [m]")
+    ax.set_title(title or "Tip deflection in the rotating frame")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return _save(fig, path)

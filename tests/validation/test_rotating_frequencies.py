@@ -11,9 +11,10 @@ clamped at x = 0 (w = w' = 0), free at x = L (w'' = w''' = 0, N(L) = 0), so
 omega_chord^2 = omega_flap^2 - Omega^2.
 
 Published values (``data/rotating_cantilever.toml``, with their sources) cover only part of
-the grid; the whole grid delta in {0, 1}, gamma = 0..10, modes 1-3 is computed here by a
-Frobenius power series of the ODE (the method of Wright et al. 1982), written for these
-tests and independent of flexbeam's assumed-mode code.  The series is first checked against
+the grid; the whole grid delta in {0, 1}, gamma = 0..10, modes 1-3 is computed by a
+Frobenius power series of the ODE (the method of Wright et al. 1982), independent of
+flexbeam's assumed-mode code; it lives in :func:`flexbeam.validation.reference_flapwise`
+so that the validation report uses it too.  The series is first checked against
 the published numbers, then flexbeam's first-order model (12 cantilever modes) must match it
 within 0.5 %.
 """
@@ -32,8 +33,10 @@ from scipy.optimize import brentq
 from flexbeam.model.beam import build_modal_beam
 from flexbeam.model.frequencies import case_frequencies, spin_frequencies
 from flexbeam.parameters.case import Case
+from flexbeam.validation import ROTATING_DATA, reference_flapwise
 
-DATA = tomllib.loads((Path(__file__).parent / "data" / "rotating_cantilever.toml").read_text("utf-8"))
+DATA_FILE = Path(__file__).parent / "data" / "rotating_cantilever.toml"
+DATA = tomllib.loads(DATA_FILE.read_text("utf-8"))
 GAMMAS = [float(g) for g in range(11)]
 DELTAS = [0.0, 1.0]
 MODES = 12
@@ -44,49 +47,8 @@ def _entry_id(e: dict) -> str:
     return f"d{e['delta']:g}-g{e['gamma']:g}-m{e['mode']}"
 
 
-# ----------------------------------------------------------------------------------------
-# Independent reference: Frobenius power series (dimensionless, L = 1, xi in [0, 1])
-# ----------------------------------------------------------------------------------------
-def _series_tip(lam: np.ndarray, gamma: float, delta: float, nterms: int = 160) -> np.ndarray:
-    """w''(1), w'''(1) of the two clamped-root solutions, for each lam = omega_bar^2.
-
-    w'''' = (tau w')' + lam w with tau = gamma^2 [delta (1 - xi) + (1 - xi^2)/2], i.e.
-    w'''' = gamma^2 [(delta + 1/2 - delta xi - xi^2/2) w'' - (delta + xi) w'] + lam w.
-    With w = sum a_k xi^k, a_0 = a_1 = 0 and (a_2, a_3) = (1, 0) or (0, 1):
-    (n+1)(n+2)(n+3)(n+4) a_{n+4} = gamma^2 [(delta + 1/2)(n+1)(n+2) a_{n+2}
-        - delta (n+1)^2 a_{n+1} - n(n+1)/2 a_n] + lam a_n.
-    Returns an array (len(lam), 2, 2): [.., row (w'', w'''), column (basis)].
-    """
-    lam = np.atleast_1d(np.asarray(lam, float))
-    g2, c0 = gamma * gamma, delta + 0.5
-    k = np.arange(nterms + 4)[:, None]
-    out = np.empty((lam.size, 2, 2))
-    for j, basis in enumerate(((1.0, 0.0), (0.0, 1.0))):
-        a = np.zeros((nterms + 4, lam.size))
-        a[2], a[3] = basis
-        for n in range(nterms):
-            rhs = g2 * (c0 * (n + 1) * (n + 2) * a[n + 2] - delta * (n + 1) ** 2 * a[n + 1]
-                        - 0.5 * n * (n + 1) * a[n]) + lam * a[n]
-            a[n + 4] = rhs / ((n + 1) * (n + 2) * (n + 3) * (n + 4))
-        out[:, 0, j] = np.sum(k * (k - 1) * a, axis=0)
-        out[:, 1, j] = np.sum(k * (k - 1) * (k - 2) * a, axis=0)
-    return out
-
-
-def _frequency_determinant(wbar, gamma: float, delta: float) -> np.ndarray:
-    m = _series_tip(np.asarray(wbar, float) ** 2, gamma, delta)
-    return m[:, 0, 0] * m[:, 1, 1] - m[:, 0, 1] * m[:, 1, 0]
-
-
-@functools.cache
-def reference_flapwise(gamma: float, delta: float, nmodes: int = 3) -> tuple[float, ...]:
-    """First ``nmodes`` dimensionless flapwise frequencies by the power series."""
-    grid = np.arange(0.5, 120.0, 0.25)
-    d = _frequency_determinant(grid, gamma, delta)
-    brackets = np.nonzero(np.sign(d[:-1]) != np.sign(d[1:]))[0][:nmodes]
-    assert brackets.size == nmodes, "power series: not enough roots bracketed"
-    f = lambda w: float(_frequency_determinant(w, gamma, delta)[0])  # noqa: E731
-    return tuple(brentq(f, grid[i], grid[i + 1], xtol=1e-13, rtol=1e-13) for i in brackets)
+def test_report_reads_the_same_published_values():
+    assert ROTATING_DATA.resolve() == DATA_FILE.resolve()
 
 
 def test_series_reference_is_the_clamped_free_beam_at_rest():

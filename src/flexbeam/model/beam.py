@@ -16,6 +16,7 @@ The zeroth-order model sets D = G = H = 0.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -85,8 +86,13 @@ def _auto_points(n: int, requested: int) -> int:
     return requested if requested > 0 else 8 * n + 48
 
 
+@functools.cache
+def _leggauss(m: int) -> tuple[np.ndarray, np.ndarray]:
+    return np.polynomial.legendre.leggauss(m)
+
+
 def _gauss(a: float, b: float, m: int) -> tuple[np.ndarray, np.ndarray]:
-    xi, wi = np.polynomial.legendre.leggauss(m)
+    xi, wi = _leggauss(m)
     return 0.5 * (b - a) * xi + 0.5 * (b + a), 0.5 * (b - a) * wi
 
 

@@ -237,7 +237,22 @@ class Initial(_Section):
 
 
 class Solver(_Section):
-    """Integration settings."""
+    """Integration settings.
+
+    ``integrator = "exponential"``: exact modal propagation with Gauss collocation of the
+    coupling and contact terms (fast; tolerances ``fast_rtol``/``fast_atol``).
+    ``"reference"``: scipy's DOP853, event-driven (``rtol``/``atol``).
+    """
+
+    integrator: Literal["exponential", "reference"] = Field(
+        "reference", description="time integrator (exponential: CCFM only, opt-in)"
+    )
+    fast_rtol: Annotated[float, Field(gt=0, lt=1)] = Field(
+        1e-6, description="relative tolerance of the exponential integrator"
+    )
+    fast_atol: Annotated[float, Field(gt=0, lt=1)] = Field(
+        1e-9, description="absolute tolerance of the exponential integrator"
+    )
 
     t_end: Positive = Field(0.1, description="simulated time [s]")
     rtol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-9, description="relative tolerance")

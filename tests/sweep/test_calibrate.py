@@ -1,0 +1,134 @@
+"""Calibration recovers known contact parameters from synthetic noisy measurements."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import flexbeam as fb
+from flexbeam.calibrate import Parameter, covariance, parse_columns, parse_features, read_measured
+from flexbeam.errors import ParameterError
+
+TRUE = {"contact.stiffness": 2.0e9, "contact.restitution": 0.6}
+
+
+def _synthetic_csv(path, case, seed=1, offset=3.7e-4, noise=0.01):
+    """Force and velocity of the true case sampled at 1 MHz from 0.1 ms before contact, on a
+    shifted clock, with Gaussian noise of ``noise`` x peak force and 5 mm/s."""
+    sol = fb.simulate(fb.load_case(case, TRUE))
+    t = np.arange(-1e-4, 1.2e-3, 1e-6)
+    force = np.interp(t, sol.time, sol["contact_force"], left=0.0)
+    velocity = np.interp(t, sol.time, sol["normal_velocity"])
+    rng = np.random.default_rng(seed)
+    force = force + rng.normal(0.0, noise * force.max(), t.size)
+    velocity = velocity + rng.normal(0.0, 5e-3, t.size)
+    rows = "\n".join(f"{a:.9g},{b:.9g},{c:.9g}" for a, b, c in zip(t + offset, force, velocity))
+    path.write_text("# synthetic measurement\nt,F,v\n" + rows + "\n")
+    return sol
+
+
+def test_force_history_recovers_stiffness_and_restitution_from_the_cli(tmp_path):
+    """Rigid beam; the fit starts from the Hertz stiffness (4.4e9) and e = 0.8."""
+    sets = ["--set", "model.modes=0", "--set", "solver.t_end=2e-3"]
+    case = fb.load_case("seed-experiment", {"model.modes": 0, "solver.t_end": 2e-3})
+    data = tmp_path / "measured.csv"
+    _synthetic_csv(data, case)
+    r = subprocess.run([sys.executable, "-m", "flexbeam.cli", "calibrate", "seed-experiment", *sets,
+                        "--data", str(data), "--columns", "time=t,force=F",
+                        "--fit", "contact.stiffness,contact.restitution", "--json", "--out", str(tmp_path / "out")],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    report = json.loads(r.stdout)
+    K, e = report["parameters"]["contact.stiffness"], report["parameters"]["contact.restitution"]
+    assert K["value"] == pytest.approx(TRUE["contact.stiffness"], rel=0.01)
+    assert e["value"] == pytest.approx(TRUE["contact.restitution"], abs=0.02)
+    # the standard uncertainties are consistent with the actual errors and small
+    assert abs(K["value"] - TRUE["contact.stiffness"]) < 4 * K["uncertainty"] < 0.01 * K["value"]
+    assert abs(e["value"] - TRUE["contact.restitution"]) < 4 * e["uncertainty"] < 0.02
+    assert report["data"]["channels"] == ["force"]
+    assert report["residuals"]["sigma"] == pytest.approx(0.01, rel=0.1)  # the noise put in (x peak)
+    assert abs(report["data"]["time_shift"]) < 1e-6
+    for name in ("calibration.json", "fitted.toml", "overlay.png", "residuals.csv"):
+        assert (tmp_path / "out" / name).stat().st_size > 0
+    fitted = fb.load_case(tmp_path / "out" / "fitted.toml")
+    assert fitted.contact.stiffness == K["value"] and fitted.contact.restitution == e["value"]
+
+
+def test_features_of_a_two_mode_beam_recover_the_parameters():
+    case = fb.load_case("seed-experiment", {"model.modes": 2, "solver.t_end": 0.1})
+    m = fb.simulate(fb.load_case(case, TRUE)).metrics()
+    features = {k: m[k] for k in ("peak_force", "contact_duration", "post_impact_velocity")}
+    fit = fb.calibrate(case, fit=["contact.stiffness", "contact.restitution"], features=features)
+    assert fit.success
+    assert fit.fitted["contact.stiffness"] == pytest.approx(TRUE["contact.stiffness"], rel=1e-3)
+    assert fit.fitted["contact.restitution"] == pytest.approx(TRUE["contact.restitution"], abs=1e-3)
+    # the fit simulated only the first contact and its aftermath; the fitted case keeps t_end
+    assert fit.solution.time[-1] < 5e-3 and fit.case.solver.t_end == 0.1
+    assert fit.to_dict()["features"]["peak_force"]["fitted"] == pytest.approx(m["peak_force"], rel=1e-4)
+
+
+def test_force_and_velocity_together(tmp_path):
+    case = fb.load_case("seed-experiment", {"model.modes": 0, "solver.t_end": 2e-3})
+    data = tmp_path / "measured.csv"
+    _synthetic_csv(data, case, seed=2)
+    fit = fb.calibrate(case, fit="contact.stiffness,contact.restitution", data=read_measured(
+        data, {"time": "t", "force": "F", "velocity": "v"}))
+    assert fit.fitted["contact.stiffness"] == pytest.approx(TRUE["contact.stiffness"], rel=0.01)
+    assert fit.fitted["contact.restitution"] == pytest.approx(TRUE["contact.restitution"], abs=0.02)
+    assert fit.channel_rms["velocity"] == pytest.approx(5e-3, rel=0.1)
+    assert fit.channel_rms["force"] < 0.1 * fit.channel_rms_initial["force"]
+
+
+def test_covariance_is_sigma2_inverse_normal_matrix():
+    rng = np.random.default_rng(0)
+    x = np.linspace(0.0, 1.0, 40)
+    J = np.column_stack([np.ones_like(x), x])
+    r = rng.normal(0.0, 0.1, x.size)
+    cov, s2, dof = covariance(J, r)
+    assert dof == 38 and s2 == pytest.approx(r @ r / 38)
+    np.testing.assert_allclose(cov, s2 * np.linalg.inv(J.T @ J), rtol=1e-12)
+    singular, _, _ = covariance(np.column_stack([x, 2 * x]), r)
+    assert np.all(np.isinf(singular))
+    _, s2, dof = covariance(J[:2], r[:2])
+    assert dof == 0 and np.isnan(s2)
+
+
+def test_parameter_scaling_follows_the_field_ranges():
+    case = fb.load_case("seed-experiment")
+    K = Parameter.of(case, "contact.stiffness")  # case gives none: the Hertz value
+    assert K.log and K.x0 == pytest.approx(4.43e9, rel=1e-2) and K.units.startswith("N/m")
+    e = Parameter.of(case, "contact.restitution")
+    assert not e.log and (e.lower, e.upper) == (0.0, 1.0) and e.bounds() == pytest.approx((-0.8, 0.2))
+    assert K.value(np.log(0.5)) == pytest.approx(0.5 * K.x0)
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        (lambda: Parameter.of(fb.load_case("seed-experiment"), "model.modes"), "model.modes"),
+        (lambda: Parameter.of(fb.load_case("seed-experiment"), "contact.law"), "contact.law"),
+        (lambda: Parameter.of(fb.load_case("seed-experiment"), "contact.stifness"), "contact.stiffness"),
+        (lambda: parse_columns("tim=t"), "best matches: time"),
+        (lambda: parse_features("peak_force=abc"), "--features"),
+        (lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"]), "--data"),
+        (lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"], features={"peak_forc": 1.0}),
+         "peak_force"),
+    ],
+)
+def test_bad_input_names_the_field(call, match):
+    with pytest.raises(ParameterError, match=match):
+        call()
+
+
+def test_missing_column_is_one_line_exit_2(tmp_path):
+    data = tmp_path / "m.csv"
+    data.write_text("time,force\n0,0\n1e-6,1\n2e-6,2\n")
+    r = subprocess.run([sys.executable, "-m", "flexbeam.cli", "calibrate", "seed-experiment", "--data", str(data),
+                        "--columns", "force=F", "--fit", "contact.stiffness"], capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 2
+    assert r.stderr.count("\n") == 1 and "--columns force" in r.stderr and "force" in r.stderr

@@ -1,0 +1,103 @@
+"""The validation report (``python -m flexbeam.validation``) cannot drift from the code.
+
+The reduced report is regenerated into a temporary directory: every section must be present,
+every compared quantity within its stated tolerance (checked on the structured result and on
+the written Markdown), every figure written.  The full page kept in the tree,
+``docs/validation.md``, must have the same sections and only passing rows.
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from pathlib import Path
+
+import pytest
+
+from flexbeam.validation import SECTIONS, main, run_validation
+
+DOCS = Path(__file__).resolve().parents[2] / "docs"
+BUDGET = 60.0  # s, the reduced report's time budget
+
+
+@pytest.fixture(scope="module")
+def reduced(tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    t0 = time.perf_counter()
+    sections = run_validation(reduced=True, out=out)
+    return out, sections, time.perf_counter() - t0
+
+
+def _split(line: str) -> list[str]:
+    """Cells of a Markdown table row (escaped pipes stay inside their cell)."""
+    return [c.strip() for c in re.split(r"(?<!\\)\|", line.strip())[1:-1]]
+
+
+def _tables(text: str) -> dict[str, list[dict[str, str]]]:
+    """Section heading -> rows (header name -> cell) of the table under it."""
+    out: dict[str, list[dict[str, str]]] = {}
+    heading, header = None, None
+    for line in text.splitlines():
+        if line.startswith("## "):
+            heading, header = line[3:].strip(), None
+            out[heading] = []
+        elif heading and line.startswith("|"):
+            cells = _split(line)
+            if header is None:
+                header = cells
+            elif not set(line) <= set("|-"):
+                out[heading].append(dict(zip(header, cells)))
+    return out
+
+
+def test_reduced_report_is_fast(reduced):
+    _, _, seconds = reduced
+    assert seconds < 1.5 * BUDGET  # margin for a loaded machine; typically ~25 s
+
+
+def test_every_section_is_present_and_passes(reduced):
+    out, sections, _ = reduced
+    assert [s.key for s in sections] == list(SECTIONS)
+    for s in sections:
+        assert s.rows, f"{s.key}: no compared quantities"
+        bad = [(r.quantity, r.extra, r.reference, r.value, r.error, r.tolerance) for r in s.rows if not r.passed]
+        assert not bad, f"{s.key}: {bad}"
+        for name, _ in s.figures:
+            assert (out / "figures" / name).stat().st_size > 1000
+
+
+def test_written_page_matches_the_results(reduced):
+    out, sections, _ = reduced
+    text = (out / "validation.md").read_text("utf-8")
+    tables = _tables(text)
+    assert list(tables) == [s.title for s in sections]
+    for s in sections:
+        rows = tables[s.title]
+        assert len(rows) == len(s.rows)
+        for row in rows:
+            assert float(row["error"]) <= float(row["tolerance"]), (s.key, row)
+            assert row["status"] == "pass", (s.key, row)
+        for name, _ in s.figures:
+            assert f"](figures/{name})" in text
+    assert "FAIL" not in text
+
+
+def test_committed_page_is_a_full_run_with_the_same_sections(reduced):
+    _, sections, _ = reduced
+    page = DOCS / "validation.md"
+    assert page.is_file(), "docs/validation.md missing: run `python -m flexbeam.validation`"
+    text = page.read_text("utf-8")
+    assert "(full run" in text
+    tables = _tables(text)
+    assert list(tables) == [s.title for s in sections]
+    for title, rows in tables.items():
+        assert rows, title
+        assert all(r["status"] == "pass" and float(r["error"]) <= float(r["tolerance"]) for r in rows), title
+    for link in re.findall(r"\]\((figures/[^)]+)\)", text):
+        assert (DOCS / link).is_file(), link
+
+
+def test_command_line_runs_a_subset(tmp_path):
+    assert main(["--reduced", "--only", "roots", "pendulum", "--out", str(tmp_path)]) == 0
+    text = (tmp_path / "validation.md").read_text("utf-8")
+    assert list(_tables(text)) == [SECTIONS["roots"](True, None).title, SECTIONS["pendulum"](True, None).title]
