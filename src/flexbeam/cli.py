@@ -141,8 +141,9 @@ def compare(
     json_: JsonOpt = False,
 ) -> None:
     """Run CCFM, CCM and the FE reference on one case; figures and a table against the paper."""
-    from .report import _markdown, compare as run_compare
     from .parameters.io import reference_data
+    from .report import _markdown
+    from .report import compare as run_compare
 
     c = _load(case, set_)
     chosen = tuple(m.strip() for m in methods.split(",") if m.strip())

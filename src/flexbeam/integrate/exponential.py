@@ -38,8 +38,8 @@ from .exponential_kernels import (
     P_NODES,
     collocation_step,
     dense_states,
-    gauss_tables,
     gaps_at,
+    gauss_tables,
     integrate_rates,
     node_forcing,
 )
@@ -286,7 +286,6 @@ def integrate_modal(
                 h_ev = s_ev * h
                 if h_ev <= 0.0:
                     event_hit = True
-                    t_stop = t
                 else:
                     ok2, eta1, v1, f2, F2, err2, diss2, power2 = integ.step(t, h_ev, eta, v, mode, lawp, f, F)
                     if ok2:

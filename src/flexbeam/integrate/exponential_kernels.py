@@ -235,7 +235,7 @@ def collocation_step(
     thdd_n = np.empty(p)
     ok = False
     want_gap = mode != 0
-    for it in range(40):
+    for _it in range(40):
         for i in range(p):
             eta, v, z, zd = _states(eta0, v0, f, C, SW, WS, RE, RV, i, Psi)
             r_i, g_i, th, om, thdd, d_i, vn_i, J = node_forcing(
@@ -278,7 +278,7 @@ def collocation_step(
                 kappa = 1.0 / h
                 F = np.linalg.solve(Dv + kappa * D, -base_v - kappa * base_d)
             else:
-                for newton in range(30):
+                for _newton in range(30):
                     res = np.empty(p)
                     Jac = np.zeros((p, p))
                     for i in range(p):
