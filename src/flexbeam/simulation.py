@@ -22,12 +22,9 @@ from .solution import Solution
 
 
 def _methods() -> dict[str, type[ImpactMethod]]:
-    methods: dict[str, type[ImpactMethod]] = {"ccfm": CCFM}
-    try:
-        from .methods.ccm import CCM
-        from .methods.imm import IMM
-    except ImportError:  # pragma: no cover - during development
-        return methods
+    from .methods.ccm import CCM
+    from .methods.imm import IMM
+
     return {"ccfm": CCFM, "ccm": CCM, "imm": IMM}
 
 

@@ -27,9 +27,9 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import solve_bvp
 
 import flexbeam as fb
+from flexbeam import validation
 from flexbeam.model.frequencies import case_frequencies
 
 MU, EI, L = 1.2, 1.4e4, 10.0
@@ -49,27 +49,8 @@ def hub_rates(t: float, W: float, Ts: float) -> tuple[float, float]:
 
 
 def quasi_static_tip(rate: float, accel: float, hub_radius: float = 0.0) -> float:
-    """Static tip deflection [m] of the spinning cantilever under the hub acceleration.
-
-    Dimensionless (xi = x/L, u = w/L, T^2 = mu L^4/EI, g2 = rate^2 T^2, d = r_h/L):
-    u'''' = (tau u')' + g2 u - accel T^2 (d + xi),  tau = g2 [d (1 - xi) + (1 - xi^2)/2],
-    u(0) = u'(0) = 0, u''(1) = u'''(1) = 0.
-    """
-    T2 = MU * L**4 / EI
-    g2, d, f = rate * rate * T2, hub_radius / L, -accel * T2
-
-    def fun(x, y):
-        tau = g2 * (d * (1 - x) + 0.5 * (1 - x * x))
-        dtau = -g2 * (d + x)
-        return np.vstack((y[1], y[2], y[3], dtau * y[1] + tau * y[2] + g2 * y[0] + f * (d + x)))
-
-    def bc(ya, yb):
-        return np.array([ya[0], ya[1], yb[2], yb[3]])
-
-    x = np.linspace(0.0, 1.0, 41)
-    sol = solve_bvp(fun, bc, x, np.zeros((4, x.size)), tol=1e-8, max_nodes=100_000)
-    assert sol.success, sol.message
-    return L * float(sol.sol(1.0)[0])
+    """Static tip deflection of the Kane beam (flexbeam.validation's solve_bvp reference)."""
+    return validation.quasi_static_tip(MU, EI, L, rate, accel, hub_radius)
 
 
 # ------------------------------------------------------------------------------ the preset

@@ -81,6 +81,7 @@ import numpy as np
 from numba import njit
 
 from ..contact.laws import law_force
+from ..model.kernels import gap_state
 
 #: half-bandwidth of the assembled matrices
 BAND = 5
@@ -333,22 +334,8 @@ def gap_at(xp, vp, ap, c, kind, centre, radius, normal, J):
     """
     r, v, dpsi, a0 = contact_point(xp, vp, c)
     acc = np.array([ap[0] + dpsi[0] * ap[2] + a0[0], ap[1] + dpsi[1] * ap[2] + a0[1]])
-    if kind == 0:
-        dx = r[0] - centre[0]
-        dy = r[1] - centre[1]
-        dist = math.sqrt(dx * dx + dy * dy)
-        nx, ny = dx / dist, dy / dist
-        delta = dist - radius
-        vn = nx * v[0] + ny * v[1]
-        dd = nx * acc[0] + ny * acc[1] + (v[0] * v[0] + v[1] * v[1] - vn * vn) / dist
-    else:
-        nx, ny = normal[0], normal[1]
-        delta = nx * (r[0] - centre[0]) + ny * (r[1] - centre[1])
-        vn = nx * v[0] + ny * v[1]
-        dd = nx * acc[0] + ny * acc[1]
-    J[0] = nx
-    J[1] = ny
-    J[2] = nx * dpsi[0] + ny * dpsi[1]
+    dr = np.array([[1.0, 0.0, dpsi[0]], [0.0, 1.0, dpsi[1]]])  # d r_P / d(X, Y, psi)
+    delta, vn, dd, nx, ny = gap_state(r, v, acc, dr, kind, centre, radius, normal, J)
     return delta, vn, dd
 
 

@@ -215,6 +215,21 @@ def _scan(ev: Event, dense, ts, vals, depth) -> float | None:
     return None
 
 
+def start_run(method: PhaseMethod, y0: np.ndarray, segments: list[Segment]) -> tuple[Phase, np.ndarray] | RunResult:
+    """Initial phase at t = 0; a jump at the start keeps the state before it as a sample.
+
+    Returns a finished RunResult when the method stops the run at once.
+    """
+    y0 = np.asarray(y0, float)
+    try:
+        phase, y = method.start(0.0, y0)
+    except Stop as stop:
+        return RunResult([], stop.status, stop.message, 0.0, 0.0, 0, 0)
+    if not np.array_equal(y, y0):
+        segments.append(Segment(method.free_phase(), 0.0, 0.0, [np.array([0.0])], [y0[None, :].copy()]))
+    return phase, y
+
+
 def integrate(
     method: PhaseMethod,
     y0: np.ndarray,
@@ -246,14 +261,10 @@ def integrate(
     steps = nfev = 0
     status, message = "success", "integration reached t_end"
     wall0 = time.perf_counter()
-    y0 = np.asarray(y0, float)
-    try:
-        phase, y = method.start(t, y0)
-    except Stop as stop:
-        return RunResult([], stop.status, stop.message, t, 0.0, 0, 0)
-    if not np.array_equal(y, y0):  # a jump at the start: keep the state before it
-        before = method.free_phase()
-        segments.append(Segment(before, t, t, [np.array([t])], [y0[None, :].copy()]))
+    started = start_run(method, y0, segments)
+    if isinstance(started, RunResult):
+        return started
+    phase, y = started
     stalled = 0
     while t < t_end:
         seg = Segment(phase, t, t)

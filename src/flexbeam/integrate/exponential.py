@@ -33,7 +33,7 @@ from scipy.linalg import eigh
 from scipy.optimize import brentq
 
 from ..model.system import BeamSystem
-from .eventdriven import MAX_STALLED, Phase, PhaseMethod, RunResult, Segment, Stop, _sample_grid
+from .eventdriven import MAX_STALLED, Phase, PhaseMethod, RunResult, Segment, Stop, _sample_grid, start_run
 from .exponential_kernels import (
     P_NODES,
     collocation_step,
@@ -237,13 +237,10 @@ def integrate_modal(
     steps = nfev = 0
     status, message = "success", "integration reached t_end"
     wall0 = time.perf_counter()
-    y0 = np.asarray(y0, float)
-    try:
-        phase, y = method.start(t, y0)
-    except Stop as stop:
-        return RunResult([], stop.status, stop.message, t, 0.0, 0, 0)
-    if not np.array_equal(y, y0):
-        segments.append(Segment(method.free_phase(), t, t, [np.array([t])], [y0[None, :].copy()]))
+    started = start_run(method, y0, segments)
+    if isinstance(started, RunResult):
+        return started
+    phase, y = started
     h = min(1e-4, t_end)
     cap = max_step or math.inf
     records: list[tuple[Segment, _StepDense]] = []

@@ -167,6 +167,27 @@ class ImpactMethod:
             keep_dense=True,
         )
 
+    # phase machine of the methods whose contacts start with a velocity jump ----
+    def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        """Phase and state right after an impact (CCM, IMM override this)."""
+        raise NotImplementedError
+
+    def start(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        if self.approaching(t, y):
+            return self.on_impact(t, y)
+        return self.free_phase(), y
+
+    def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        """Free flight -> impact at a located gap closure; any contact phase -> free at its end."""
+        if phase.name == "free":
+            if self.approaching(t, y, located=True):
+                return self.on_impact(t, y)
+            return self.free_phase(), y  # grazing touch: keep flying
+        ev = phase.data["contact"]
+        ev.end = t
+        ev.velocity_after = self.gap_event(t, y)[1]
+        return self.free_phase(), y
+
     # outputs --------------------------------------------------------------
     def force(self, phase: Phase, t: float, y: np.ndarray) -> tuple[float, float]:
         """(contact force F [N], contact potential U_c [J]) at a sample of ``phase``."""

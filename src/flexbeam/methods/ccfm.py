@@ -40,17 +40,5 @@ class CCFM(ImpactMethod):
             keep_dense=True,
         )
 
-    def start(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        if self.approaching(t, y):
-            return self.contact_phase(t, y), y
-        return self.free_phase(), y
-
-    def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        if phase.name == "free":
-            if self.approaching(t, y, located=True):
-                return self.contact_phase(t, y), y
-            return self.free_phase(), y  # grazing touch: keep flying
-        ev = phase.data["contact"]
-        ev.end = t
-        ev.velocity_after = self.gap_event(t, y)[1]
-        return self.free_phase(), y
+    def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        return self.contact_phase(t, y), y

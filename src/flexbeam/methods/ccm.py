@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..contact.impulse import impulse_jump
-from ..integrate.eventdriven import Event, Phase
+from ..integrate.eventdriven import Phase
 from .base import ImpactMethod
 
 
@@ -23,7 +23,7 @@ class CCM(ImpactMethod):
 
     name = "ccm"
 
-    def _onset(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+    def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         jump = impulse_jump(self.system, t, y, 0.0)
         ev = self.log_jump(t, jump)
         if self.holds(t, jump.y):
@@ -32,18 +32,3 @@ class CCM(ImpactMethod):
         ev.end = t
         ev.velocity_after = jump.velocity_after
         return self.free_phase(), jump.y
-
-    def start(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        if self.approaching(t, y):
-            return self._onset(t, y)
-        return self.free_phase(), y
-
-    def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        if phase.name == "free":
-            if self.approaching(t, y, located=True):
-                return self._onset(t, y)
-            return self.free_phase(), y
-        ev = phase.data["contact"]
-        ev.end = t
-        ev.velocity_after = self.gap_event(t, y)[1]
-        return self.free_phase(), y

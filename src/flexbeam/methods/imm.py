@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..contact.impulse import impulse_jump
-from ..integrate.eventdriven import Event, Phase
+from ..integrate.eventdriven import Phase
 from .base import ImpactMethod
 
 
@@ -26,7 +26,7 @@ class IMM(ImpactMethod):
 
     name = "imm"
 
-    def _impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+    def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         speed = -self.gap_event(t, y)[1]
         resting = speed < self.case.solver.rest_velocity
         jump = impulse_jump(self.system, t, y, 0.0 if resting else self.case.contact.restitution)
@@ -36,18 +36,3 @@ class IMM(ImpactMethod):
         ev.end = t
         ev.velocity_after = jump.velocity_after
         return self.free_phase(), jump.y
-
-    def start(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        if self.approaching(t, y):
-            return self._impact(t, y)
-        return self.free_phase(), y
-
-    def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        if phase.name == "free":
-            if self.approaching(t, y, located=True):
-                return self._impact(t, y)
-            return self.free_phase(), y
-        ev = phase.data["contact"]
-        ev.end = t
-        ev.velocity_after = self.gap_event(t, y)[1]
-        return self.free_phase(), y
