@@ -13,7 +13,8 @@ Two kinds of measurement, which may be combined:
   The model's samples are interpolated linearly onto the data times.  Residuals are
   divided by the channel's largest measured magnitude.
 * **features** -- summary numbers such as ``peak_force=584``; residuals are relative,
-  (model - measured) / |measured|.
+  (model - measured) / |measured|.  A trial whose force has no second peak counts
+  ``second_peak_force = 0`` (the limit of a vanishing shoulder).
 
 The fit is :func:`scipy.optimize.least_squares` (trust-region reflective) in scaled
 variables: ``z = ln(x / x0)`` for a field that is positive without an upper limit
@@ -587,6 +588,10 @@ class _Problem:
             metrics = sol.metrics()
             for k, v in self.features.items():
                 m = float(metrics.get(k, math.nan))
+                if k == "second_peak_force" and not math.isfinite(m):
+                    # a trial force with a single peak: its second peak has shrunk to nothing
+                    # (the limit of a vanishing shoulder), so the residual stays defined
+                    m = 0.0
                 if not math.isfinite(m):
                     raise ModelError(f"calibration: feature {k} is undefined at {self._where(x)}")
                 parts.append(np.array([(m - v) / (abs(v) or 1.0)]))

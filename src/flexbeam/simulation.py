@@ -14,7 +14,7 @@ from .errors import ParameterError, closest
 from .integrate.eventdriven import RunResult, Stop, integrate
 from .methods.base import ImpactMethod
 from .methods.ccfm import CCFM
-from .model.outputs import COLUMNS, evaluate
+from .model.outputs import COLUMNS, SUPPORT_COLUMNS, evaluate
 from .model.system import _NO_LAW, CONTACT_NONE, BeamSystem
 from .parameters.case import Case
 from .parameters.io import dump_case
@@ -130,6 +130,9 @@ def simulate(
 ) -> Solution:
     """Run ``case`` with an impact method and return the :class:`Solution`."""
     if method == "fem":
+        if case.obstacle.support.compliant:
+            raise ParameterError("obstacle.support: the finite-element reference (method 'fem') takes a rigidly "
+                                 "fixed obstacle only; omit obstacle.support.stiffness")
         try:
             from .fem import simulate_fem
         except ImportError:
@@ -183,7 +186,8 @@ def collect(run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case
         else:
             qs.append(y_seg[:, 1 : n + 1])
             qds.append(y_seg[:, n + 2 : 2 * n + 2])
-    out = {name: np.concatenate(columns[name]) if name in columns else np.empty(0) for name in COLUMNS}
+    names = [c for c in COLUMNS if system.compliant or c not in SUPPORT_COLUMNS]
+    out = {name: np.concatenate(columns[name]) if name in columns else np.empty(0) for name in names}
     out["q"] = np.concatenate(qs) if qs else np.empty((0, n))
     out["q_rate"] = np.concatenate(qds) if qds else np.empty((0, n))
     out["measuring_velocity"] = np.concatenate(mvs) if mvs else np.empty((0, npts))

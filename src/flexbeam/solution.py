@@ -17,7 +17,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from .methods.base import ContactEvent
 
@@ -35,11 +34,13 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "elastic_energy": ("J", "Elastic energy"),
     "gravitational_energy": ("J", "Gravitational energy"),
     "contact_energy": ("J", "Contact potential energy"),
-    "dissipated_energy": ("J", "Energy dissipated by contact"),
+    "dissipated_energy": ("J", "Energy dissipated by contact (and the support's dashpot)"),
     "drive_work": ("J", "Work of the joint torque"),
     "total_energy": ("J", "Total energy including dissipated and drive work"),
     "joint_torque": ("N m", "Joint torque"),
     "tip_deflection": ("m", "Tip deflection in the rotating frame"),
+    "support_displacement": ("m", "Displacement s of the compliant obstacle along its support axis"),
+    "sensor_force": ("N", "Force read under the compliant obstacle support, -(k_s s + c_s s')"),
 }
 
 
@@ -104,6 +105,8 @@ class Solution:
         a, b = max(lo, t_guess - h), min(hi, t_guess + h)
         if b <= a:
             return t_guess, float(self._force_at(t_guess))
+        from scipy.optimize import minimize_scalar
+
         res = minimize_scalar(lambda t: -self._force_at(t), bounds=(a, b), method="bounded",
                               options={"xatol": 1e-12})
         f_guess = float(self._force_at(t_guess))
@@ -180,6 +183,8 @@ class Solution:
                 out["force_peak_times"] = [p[0] - ev.onset for p in peaks]
                 others = [p[1] for p in peaks if p[0] != tp]
                 out["second_peak_force"] = max(others) if others else math.nan
+        if "sensor_force" in self.arrays and self.arrays["sensor_force"].size:
+            out["sensor_peak_force"] = float(np.max(self.arrays["sensor_force"]))
         if "tip_deflection" in self.arrays and self.arrays["tip_deflection"].size:
             out["tip_deflection_min"] = float(np.min(self.arrays["tip_deflection"]))
             out["tip_deflection_max"] = float(np.max(self.arrays["tip_deflection"]))

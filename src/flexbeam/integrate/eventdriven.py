@@ -193,6 +193,34 @@ def _hump(ev: Event, dense, ta: float, tb: float) -> float | None:
     return float(brentq(g, t_ext, tb, xtol=1e-15, rtol=1e-13))
 
 
+def _leaves_surface(ev: Event, dense, ta: float, tb: float) -> float:
+    """Event time when g starts on its surface, at rest on it, and ends beyond it.
+
+    A phase that starts on the event surface with zero rate (P left resting on the
+    obstacle, e.g. a CCM contact released at lambda = 0 right after the e = 0 jump)
+    can cross within an excursion far below round-off.  The first instant on a
+    geometric grid from ta where g is beyond the surface by more than 1e-6 |g(tb)|
+    and still moving away (brentq-refined when g is seen on the near side before it)
+    is reported, so that the method decides there -- the gap then closes at a
+    resolvable rate -- and the contact is not skipped.
+    """
+    s = float(ev.direction)
+    g = lambda t: ev.fun(t, dense(t))[0]  # noqa: E731
+    h = tb - ta
+    prev_t, prev_g = ta, g(ta)
+    noise = 1e-6 * abs(g(tb))  # round-off of g near the surface, far below its excursion
+    for k in range(48, -1, -1):
+        t = ta + h * 2.0**-k
+        gt, rt = ev.fun(t, dense(t))
+        # beyond the surface (not round-off noise around g = 0) and moving further
+        if -s * gt < -noise and not (-s * rt >= 0.0):
+            if -s * prev_g > 0.0:
+                return float(brentq(g, prev_t, t, xtol=1e-15, rtol=1e-13))
+            return t
+        prev_t, prev_g = t, gt
+    return tb
+
+
 def _scan(ev: Event, dense, ts, vals, depth) -> float | None:
     for i in range(len(ts) - 1):
         (ga, ra), (gb, rb) = vals[i], vals[i + 1]
@@ -202,10 +230,10 @@ def _scan(ev: Event, dense, ts, vals, depth) -> float | None:
                 return ts[i + 1]
             return float(brentq(g, ts[i], ts[i + 1], xtol=1e-15, rtol=1e-13))
         d = ev.direction
-        if d != 0 and math.isfinite(ra) and -d * ga <= 0.0 and -d * ra > 0.0 and -d * gb < 0.0:
-            root = _hump(ev, dense, ts[i], ts[i + 1])
-            if root is not None:
-                return root
+        if d != 0 and math.isfinite(ra) and -d * ga <= 0.0 and -d * gb < 0.0:
+            # starts on (or round-off behind) the surface and ends beyond it
+            root = _hump(ev, dense, ts[i], ts[i + 1]) if -d * ra > 0.0 else None
+            return root if root is not None else _leaves_surface(ev, dense, ts[i], ts[i + 1])
         if depth < _HERMITE_DEPTH and _hermite_dip(ts[i], ts[i + 1], ga, gb, ra, rb, ev.direction):
             sub = list(np.linspace(ts[i], ts[i + 1], 9))
             sub_vals = [vals[i]] + [ev.fun(t, dense(t)) for t in sub[1:-1]] + [vals[i + 1]]

@@ -14,22 +14,25 @@ import numpy as np
 from numba import njit
 
 from ..contact.laws import law_potential
-from .kernels import energies, gap_state, point_kinematics
-from .system import BeamSystem, _state_split, rhs_kernel
+from .kernels import energies, point_kinematics
+from .system import BeamSystem, _state_split, contact_gap, rhs_kernel
 
 #: column order of :func:`sample_outputs`
 COLUMNS = (
     "theta", "theta_rate", "gap", "normal_velocity", "contact_force", "contact_energy",
     "kinetic_energy", "elastic_energy", "gravitational_energy", "dissipated_energy", "drive_work",
-    "joint_torque", "tip_deflection",
+    "joint_torque", "tip_deflection", "support_displacement", "sensor_force",
 )  # fmt: skip
+
+#: columns that exist only for a compliant obstacle support
+SUPPORT_COLUMNS = ("support_displacement", "sensor_force")
 
 
 @njit(cache=True)
 def sample_outputs(
     Y, n, prescribed, TH, THD, THDD, TAU, g,
     Jc, m1, Mc, Mff, mtf, Kff, sf, G,
-    pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal,
+    pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal, osup,
     mode, p, tip_phi, mbase, mphi, mdphi, mH,
 ):  # fmt: skip
     """Rows of :data:`COLUMNS` and measuring-point normal velocities for states ``Y``."""
@@ -45,12 +48,19 @@ def sample_outputs(
         q = np.ascontiguousarray(q)
         qd = np.ascontiguousarray(qd)
         r, v, a0 = point_kinematics(theta, omega, q, qd, pbase, pphi, pdphi, pH, pc, dr)
-        delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, okind, ocentre, oradius, onormal, J)
+        s_ob, sd_ob = 0.0, 0.0
+        if osup[0] > 0.0:
+            s_ob, sd_ob = y[y.size - 4], y[y.size - 3]
+        delta, vn, gamma, nx, ny, Js = contact_gap(
+            r, v, a0, dr, okind, ocentre, oradius, onormal, osup, s_ob, sd_ob, J
+        )
         dy, F, torque = rhs_kernel(
             y, n, prescribed, TH[k], THD[k], THDD[k], TAU[k], g, Jc, m1, Mc, Mff, mtf, Kff, sf, G,
-            pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal, mode, p,
+            pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal, osup, mode, p,
         )  # fmt: skip
         T, Ve, Vg = energies(theta, omega, q, qd, Jc, Mc, Mff, mtf, Kff, m1, sf, G, g)
+        T += 0.5 * osup[0] * sd_ob * sd_ob
+        Ve += 0.5 * osup[1] * s_ob * s_ob
         out[k, 0] = theta
         out[k, 1] = omega
         out[k, 2] = delta
@@ -64,6 +74,8 @@ def sample_outputs(
         out[k, 10] = y[y.size - 1]
         out[k, 11] = torque
         out[k, 12] = tip_phi @ q if n > 0 else 0.0
+        out[k, 13] = s_ob
+        out[k, 14] = -(osup[1] * s_ob + osup[2] * sd_ob)
         ct, st = math.cos(theta), math.sin(theta)
         for j in range(mbase.size):
             rj, vj, aj = point_kinematics(theta, omega, q, qd, mbase[j], mphi[j], mdphi[j], mH[j], 0.0, dr)
@@ -92,7 +104,7 @@ def evaluate(system: BeamSystem, times: np.ndarray, states: np.ndarray, mode: in
     out, mv = sample_outputs(
         np.ascontiguousarray(states), n, system.prescribed, TH, THD, THDD, TAU, system.g,
         b.hub_inertia + b.J0, b.m1, np.ascontiguousarray(b.Mff - b.D), b.Mff, b.mtf, b.Kff, b.sf, b.G,
-        P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal,
+        P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal, o.support,
         mode, p, tip.phi if tip is not None else np.zeros(0), mbase, mphi, mdphi, mH,
     )  # fmt: skip
     return {name: out[:, i] for i, name in enumerate(COLUMNS)}, mv

@@ -4,11 +4,13 @@ State vector (first-order form, with two bookkeeping integrals appended):
 
 * joint free or torque-driven:  y = [theta, q_1..q_n, theta', q'_1..q'_n, E_d, W]
 * theta(t) prescribed:          y = [q_1..q_n, q'_1..q'_n, E_d, W]
+* compliant obstacle support:   [s, s'] inserted just before [E_d, W]
 
-E_d is the energy dissipated by the contact force, int (F - F_k) d' dt, and W the
-work of the joint torque, int tau theta' dt; the total energy
-T + V_e + V_g + U_c + E_d - W is then conserved exactly by the equations, which the
-tests check.
+E_d is the energy dissipated by the contact force, int (F - F_k) d' dt (plus the
+support's dashpot, int c_s s'^2 dt), and W the work of the joint torque,
+int tau theta' dt; the total energy T + V_e + V_g + U_c + E_d - W (T and V_e include
+the support's 1/2 m_s s'^2 and 1/2 k_s s^2) is then conserved exactly by the
+equations, which the tests check.
 """
 
 from __future__ import annotations
@@ -40,13 +42,38 @@ CONTACT_NONE, CONTACT_FORCE, CONTACT_CONSTRAINT = 0, 1, 2
 
 
 @njit(cache=True)
+def contact_gap(r, v, a0, dr, okind, ocentre, oradius, onormal, osup, s, sd, J):
+    """:func:`gap_state` for an obstacle displaced by s along its support axis u.
+
+    ``osup = [m_s, k_s, c_s, u_x, u_y]`` (m_s = 0: rigid obstacle, s = s' = 0).  The
+    obstacle translates, so the gap uses P's position and velocity relative to it,
+    r - s u and r' - s' u; the curvature term of a sphere's gamma then holds with the
+    relative velocity, and d delta/d s = -n.u is returned as ``Js`` (the obstacle's
+    acceleration at s'' = 0 is zero, so gamma needs no other change).
+    Returns (delta, delta', gamma, nx, ny, Js).
+    """
+    if osup[0] <= 0.0:
+        delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, okind, ocentre, oradius, onormal, J)
+        return delta, vn, gamma, nx, ny, 0.0
+    ux, uy = osup[3], osup[4]
+    c = np.empty(2)
+    c[0] = ocentre[0] + s * ux
+    c[1] = ocentre[1] + s * uy
+    vr = np.empty(2)
+    vr[0] = v[0] - sd * ux
+    vr[1] = v[1] - sd * uy
+    delta, vn, gamma, nx, ny = gap_state(r, vr, a0, dr, okind, c, oradius, onormal, J)
+    return delta, vn, gamma, nx, ny, -(nx * ux + ny * uy)
+
+
+@njit(cache=True)
 def rhs_kernel(
     y, n, prescribed, th_p, thd_p, thdd_p, tau, g,
     Jc, m1, Mc, Mff, mtf, Kff, sf, G,
-    pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal,
+    pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal, osup,
     contact_mode, p,
 ):  # fmt: skip
-    """Right-hand side dy/dt of the beam in one of three contact modes.
+    """Right-hand side dy/dt of the beam (and a compliant obstacle) in one of three contact modes.
 
     ``contact_mode``:
 
@@ -59,12 +86,23 @@ def rhs_kernel(
 
     With theta(t) prescribed only the modal rows are solved (theta'' is known and
     moves to the right-hand side) and the joint torque is the first row's residual.
+
+    A compliant obstacle (``osup[0] = m_s > 0``, see :func:`contact_gap`) adds
+    m_s s'' = -k_s s - c_s s' + Js F, the obstacle's row of the same system (its mass
+    matrix block is m_s, uncoupled from the beam's but for the contact); in CCM the
+    multiplier then sees the effective inverse mass J M^-1 J^T + Js^2/m_s.
     Returns (dy/dt, contact force [N], joint torque [N m]).
     """
     N = n + 1
     if not np.all(np.isfinite(y)):  # a trial stage that blew up: let the solver reject it
         return np.full(y.size, np.nan), np.nan, np.nan
     theta, omega, q, qd = _state_split(y, n, prescribed, th_p, thd_p)
+    nb = 2 * n if prescribed else 2 * N  # beam part of the state
+    ms = osup[0]
+    s_ob = y[nb] if ms > 0.0 else 0.0
+    sd_ob = y[nb + 1] if ms > 0.0 else 0.0
+    Fs = -osup[1] * s_ob - osup[2] * sd_ob if ms > 0.0 else 0.0  # support force on the obstacle
+    Js = 0.0
     M = np.empty((N, N))
     Q = np.empty(N)
     mass_matrix(q, Jc, Mc, Mff, mtf, M)
@@ -77,7 +115,9 @@ def rhs_kernel(
     if contact_mode != 0:
         dr = np.empty((2, N))
         r, v, a0 = point_kinematics(theta, omega, q, qd, pbase, pphi, pdphi, pH, pc, dr)
-        delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, okind, ocentre, oradius, onormal, J)
+        delta, vn, gamma, nx, ny, Js = contact_gap(
+            r, v, a0, dr, okind, ocentre, oradius, onormal, osup, s_ob, sd_ob, J
+        )
         if not (np.all(np.isfinite(J)) and math.isfinite(gamma)):
             return np.full(y.size, np.nan), np.nan, np.nan
         if contact_mode == 1:
@@ -85,20 +125,32 @@ def rhs_kernel(
             diss = (F - Fk) * (-vn)
         else:
             rhs_c = -gamma - 2.0 * p[0] * vn - p[1] * p[1] * delta
+            inv_mass = 0.0
+            if ms > 0.0:  # the obstacle's share of J M^-1 J^T and J M^-1 Q
+                rhs_c -= Js * Fs / ms
+                inv_mass = Js * Js / ms
             if prescribed:
                 rhs_c -= J[0] * thdd_p
                 if n > 0:
                     Qr = Q[1:] - M[1:, 0] * thdd_p
                     a = np.linalg.solve(M[1:, 1:], Qr)
                     b = np.linalg.solve(M[1:, 1:], J[1:])
-                    F = (rhs_c - J[1:] @ a) / (J[1:] @ b)
+                    rhs_c -= J[1:] @ a
+                    inv_mass += J[1:] @ b
             else:
                 a = np.linalg.solve(M, Q)
                 b = np.linalg.solve(M, J)
-                F = (rhs_c - J @ a) / (J @ b)
+                rhs_c -= J @ a
+                inv_mass += J @ b
+            if inv_mass > 0.0:
+                F = rhs_c / inv_mass
         for i in range(N):
             Q[i] += J[i] * F
     dy = np.empty(y.size)
+    if ms > 0.0:
+        dy[nb] = sd_ob
+        dy[nb + 1] = (Fs + Js * F) / ms
+        diss += osup[2] * sd_ob * sd_ob
     if prescribed:
         qdd = np.empty(n)
         if n > 0:
@@ -109,8 +161,8 @@ def rhs_kernel(
             torque += M[0, i + 1] * qdd[i]
             dy[i] = qd[i]
             dy[n + i] = qdd[i]
-        dy[2 * n] = diss
-        dy[2 * n + 1] = torque * omega
+        dy[y.size - 2] = diss
+        dy[y.size - 1] = torque * omega
         return dy, F, torque
     zdd = np.linalg.solve(M, Q)
     dy[0] = omega
@@ -118,8 +170,8 @@ def rhs_kernel(
         dy[i + 1] = qd[i]
     for i in range(N):
         dy[N + i] = zdd[i]
-    dy[2 * N] = diss
-    dy[2 * N + 1] = tau * omega
+    dy[y.size - 2] = diss
+    dy[y.size - 1] = tau * omega
     return dy, F, tau
 
 
@@ -132,6 +184,12 @@ class ContactGeometry:
     centre: np.ndarray
     radius: float
     normal: np.ndarray
+    #: [m_s, k_s, c_s, u_x, u_y] of a compliant support, zeros for a rigid obstacle
+    support: np.ndarray = field(default_factory=lambda: np.zeros(5))
+
+    @property
+    def compliant(self) -> bool:
+        return bool(self.support[0] > 0.0)
 
 
 @dataclass
@@ -184,9 +242,18 @@ class BeamSystem:
         return self.drive.prescribed
 
     @property
+    def compliant(self) -> bool:
+        """Is the obstacle on a compliant support (two more states s, s')?"""
+        return self.contact.compliant
+
+    @property
     def size(self) -> int:
         """Length of the state vector."""
-        return 2 * self.n + 2 if self.prescribed else 2 * self.n + 4
+        return (2 * self.n + 2 if self.prescribed else 2 * self.n + 4) + (2 if self.compliant else 0)
+
+    @property
+    def _support_index(self) -> int:
+        return 2 * self.n if self.prescribed else 2 * self.n + 2
 
     @property
     def g(self) -> float:
@@ -201,19 +268,29 @@ class BeamSystem:
             return th, thd, y[:n], y[n : 2 * n]
         return float(y[0]), float(y[n + 1]), y[1 : n + 1], y[n + 2 : 2 * n + 2]
 
+    def support_state(self, y: np.ndarray) -> tuple[float, float]:
+        """(s, s') of a compliant obstacle support; (0, 0) for a rigid obstacle."""
+        if not self.compliant:
+            return 0.0, 0.0
+        k = self._support_index
+        return float(y[k]), float(y[k + 1])
+
     def velocities(self, t: float, y: np.ndarray) -> np.ndarray:
-        """Generalised velocities z' = [theta', q']."""
+        """Generalised velocities z' = [theta', q'] (and s' of a compliant support)."""
         _, thd, _, qd = self.split(t, y)
-        return np.concatenate(([thd], qd))
+        extra = [self.support_state(y)[1]] if self.compliant else []
+        return np.concatenate(([thd], qd, extra))
 
     def with_velocities(self, t: float, y: np.ndarray, zd: np.ndarray) -> np.ndarray:
         """Copy of y with generalised velocities replaced (theta' only if free)."""
         y = y.copy()
         n = self.n
         if self.prescribed:
-            y[n : 2 * n] = zd[1:]
+            y[n : 2 * n] = zd[1 : n + 1]
         else:
-            y[n + 1 : 2 * n + 2] = zd
+            y[n + 1 : 2 * n + 2] = zd[: n + 1]
+        if self.compliant:
+            y[self._support_index + 1] = zd[n + 1]
         return y
 
     # ----------------------------------------------------------- equations
@@ -226,7 +303,7 @@ class BeamSystem:
         return (
             y, b.n, self.prescribed, th, thd, thdd, self.drive.torque(t), self.g,
             b.hub_inertia + b.J0, b.m1, b.Mff - b.D, b.Mff, b.mtf, b.Kff, b.sf, b.G,
-            P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal,
+            P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal, o.support,
         )  # fmt: skip
 
     def rhs(self, t: float, y: np.ndarray, mode: int = CONTACT_NONE, p: np.ndarray | None = None):
@@ -243,6 +320,7 @@ class BeamSystem:
         const = (
             b.hub_inertia + b.J0, b.m1, np.ascontiguousarray(b.Mff - b.D), b.Mff, b.mtf, b.Kff,
             b.sf, b.G, P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal,
+            o.support,
         )  # fmt: skip
         n, prescribed, g, drive = b.n, self.prescribed, self.g, self.drive
         p = _NO_LAW if p is None else p
@@ -268,11 +346,16 @@ class BeamSystem:
         return float(self.rhs(t, y, mode, p)[2])
 
     def mass_matrix(self, t: float, y: np.ndarray) -> np.ndarray:
-        """Generalised mass matrix M(q), (n+1) x (n+1)."""
+        """Generalised mass matrix M(q), (n+1) x (n+1), bordered by m_s for a compliant support."""
         _, _, q, _ = self.split(t, y)
         b = self.beam
-        M = np.empty((b.n + 1, b.n + 1))
-        mass_matrix(np.ascontiguousarray(q), b.hub_inertia + b.J0, b.Mff - b.D, b.Mff, b.mtf, M)
+        N = b.n + 1 + (1 if self.compliant else 0)
+        M = np.zeros((N, N))
+        Mb = np.empty((b.n + 1, b.n + 1))
+        mass_matrix(np.ascontiguousarray(q), b.hub_inertia + b.J0, b.Mff - b.D, b.Mff, b.mtf, Mb)
+        M[: b.n + 1, : b.n + 1] = Mb
+        if self.compliant:
+            M[-1, -1] = self.contact.support[0]
         return M
 
     def generalized_forces(self, t: float, y: np.ndarray) -> np.ndarray:
@@ -299,12 +382,24 @@ class BeamSystem:
         return r, v, a0, dr
 
     def gap(self, t: float, y: np.ndarray) -> tuple[float, float, float, np.ndarray]:
-        """(delta, delta', gamma, J): gap, its rate, J' z' and the Jacobian d delta/dz."""
+        """(delta, delta', gamma, J): gap, its rate, J' z' and the Jacobian d delta/dz.
+
+        For a compliant support z includes s and J ends with d delta/d s.
+        """
         r, v, a0, dr = self.point_state(t, y, self.contact.point)
         J = np.empty(self.n + 1)
         o = self.contact
-        delta, vn, gamma, _, _ = gap_state(r, v, a0, dr, o.kind, o.centre, o.radius, o.normal, J)
+        s, sd = self.support_state(y)
+        delta, vn, gamma, _, _, Js = contact_gap(r, v, a0, dr, o.kind, o.centre, o.radius, o.normal,
+                                                 o.support, s, sd, J)
+        if self.compliant:
+            J = np.append(J, Js)
         return delta, vn, gamma, J
+
+    def sensor_force(self, y: np.ndarray) -> float:
+        """Force read by a sensor under a compliant support, -(k_s s + c_s s') [N] (0 if rigid)."""
+        s, sd = self.support_state(y)
+        return -(self.contact.support[1] * s + self.contact.support[2] * sd)
 
     def normal_velocity(self, t: float, y: np.ndarray, point: PointData) -> float:
         """Velocity of a beam point along the floating-frame normal e2 [m/s]."""
@@ -324,7 +419,10 @@ class BeamSystem:
 
     # ------------------------------------------------------------- energies
     def energies(self, t: float, y: np.ndarray) -> dict[str, float]:
-        """Kinetic, elastic, gravitational energy [J] and the two bookkeeping integrals."""
+        """Kinetic, elastic, gravitational energy [J] and the two bookkeeping integrals.
+
+        Kinetic and elastic energy include the support's 1/2 m_s s'^2 and 1/2 k_s s^2.
+        """
         from .kernels import energies
 
         th, thd, q, qd = self.split(t, y)
@@ -333,6 +431,9 @@ class BeamSystem:
             th, thd, np.ascontiguousarray(q), np.ascontiguousarray(qd), b.hub_inertia + b.J0,
             b.Mff - b.D, b.Mff, b.mtf, b.Kff, b.m1, b.sf, b.G, self.g,
         )  # fmt: skip
+        s, sd = self.support_state(y)
+        T += 0.5 * self.contact.support[0] * sd * sd
+        Ve += 0.5 * self.contact.support[1] * s * s
         return {"kinetic": T, "elastic": Ve, "gravitational": Vg,
                 "dissipated": float(y[-2]), "drive_work": float(y[-1])}
 
@@ -342,9 +443,10 @@ class BeamSystem:
         n = self.n
         q = np.zeros(n) if q is None else np.asarray(q, float)
         qd = np.zeros(n) if qd is None else np.asarray(qd, float)
+        tail = [0.0, 0.0, 0.0, 0.0] if self.compliant else [0.0, 0.0]  # [s, s',] E_d, W
         if self.prescribed:
-            return np.concatenate((q, qd, [0.0, 0.0]))
-        return np.concatenate(([theta], q, [omega], qd, [0.0, 0.0]))
+            return np.concatenate((q, qd, tail))
+        return np.concatenate(([theta], q, [omega], qd, tail))
 
 
 _NO_LAW = np.zeros(4)
@@ -368,7 +470,17 @@ def _place_obstacle(case: Case, P: PointData) -> ContactGeometry:
     r_P = P.base * e1 - P.offset * e2  # beam straight
     if ob.kind == "sphere":
         centre = np.array(ob.centre, float) if ob.centre is not None else r_P - ob.radius * e2
-        return ContactGeometry(P, OBSTACLE_SPHERE, centre, float(ob.radius), np.zeros(2))
-    centre = np.array(ob.centre, float) if ob.centre is not None else r_P
-    normal = np.array(ob.normal, float) if ob.normal is not None else e2
-    return ContactGeometry(P, OBSTACLE_PLANE, centre, 0.0, normal)
+        geometry = ContactGeometry(P, OBSTACLE_SPHERE, centre, float(ob.radius), np.zeros(2))
+        outward = r_P - centre
+        norm = math.hypot(*outward)
+        outward = outward / norm if norm > 0.0 else e2
+    else:
+        centre = np.array(ob.centre, float) if ob.centre is not None else r_P
+        normal = np.array(ob.normal, float) if ob.normal is not None else e2
+        geometry = ContactGeometry(P, OBSTACLE_PLANE, centre, 0.0, normal)
+        outward = normal
+    sup = ob.support
+    if sup.compliant:
+        u = np.array(sup.direction, float) if sup.direction is not None else outward
+        geometry.support = np.array([sup.mass, sup.stiffness, sup.damping, u[0], u[1]], float)
+    return geometry

@@ -1,6 +1,6 @@
 """Case parameters: validated sections, built-in presets and TOML input/output."""
 
-from .case import CONTACT_LAWS, Beam, Case, Contact, Drive, Hub, Initial, Model, Obstacle, Output, Solver
+from .case import CONTACT_LAWS, Beam, Case, Contact, Drive, Hub, Initial, Model, Obstacle, Output, Solver, Support
 from .io import builtin_cases, dump_case, load_case, parse_overrides, reference_data
 
 __all__ = [
@@ -15,6 +15,7 @@ __all__ = [
     "Obstacle",
     "Output",
     "Solver",
+    "Support",
     "builtin_cases",
     "dump_case",
     "load_case",

@@ -155,14 +155,54 @@ class Drive(_Section):
     spin_up_time: Positive = Field(15.0, description="spin-up time T_s [s] (kane-spinup)")
 
 
+class Support(_Section):
+    """How the obstacle is held: rigidly (default) or on a mass-spring-damper.
+
+    With ``stiffness`` given the obstacle (e.g. the hemisphere on its force sensor) is a
+    body of ``mass`` m_s that translates by s along the unit ``direction`` u on a linear
+    spring k_s and dashpot c_s to ground:  m_s s'' + c_s s' + k_s s = (d delta / d s) F,
+    with s measured from the static equilibrium (gravity preload cancels).  A force
+    sensor under it reads the support force -(k_s s + c_s s').
+    """
+
+    stiffness: Positive | None = Field(
+        None, description="support stiffness k_s [N/m] (omitted = rigidly fixed obstacle)"
+    )
+    mass: Positive | None = Field(None, description="moving mass m_s of the obstacle [kg]")
+    damping: NonNegative = Field(0.0, description="support damping c_s [N s/m]")
+    direction: tuple[Finite, Finite] | None = Field(
+        None, description="unit axis u along which the obstacle moves (default: its outward "
+        "contact normal at impact)"
+    )
+
+    @model_validator(mode="after")
+    def _complete(self) -> Support:
+        if self.stiffness is not None and self.mass is None:
+            raise ValueError("obstacle.support.mass: required (> 0 kg) when obstacle.support.stiffness is given")
+        if self.stiffness is None and (self.mass is not None or self.damping != 0.0):
+            raise ValueError(
+                "obstacle.support.stiffness: required (> 0 N/m) when obstacle.support.mass or damping is given"
+            )
+        if self.direction is not None:
+            norm = math.hypot(*self.direction)
+            if not math.isclose(norm, 1.0, rel_tol=1e-9):
+                raise ValueError(f"obstacle.support.direction: must be a unit vector (got length {norm:.6g})")
+        return self
+
+    @property
+    def compliant(self) -> bool:
+        return self.stiffness is not None
+
+
 class Obstacle(_Section):
-    """A fixed rigid-body obstacle in the plane of motion.
+    """The obstacle in the plane of motion, fixed or on a compliant support.
 
     ``kind = "sphere"``: a hemisphere (or point, radius 0) with ``centre`` and
     ``radius``; ``kind = "half-plane"``: the plane through ``centre`` with outward
     unit ``normal``.  When ``centre`` is omitted the obstacle is placed so that it
     touches the contact point P with the beam straight at ``initial.impact_angle``
     (sphere directly beneath P along the beam normal; plane tangent there).
+    ``support``: rigid, or a mass-spring-damper (see :class:`Support`).
     """
 
     kind: Literal["sphere", "half-plane"] = "sphere"
@@ -173,6 +213,7 @@ class Obstacle(_Section):
     )
     youngs_modulus: Positive = Field(68.95e9, description="obstacle Young's modulus [Pa]")
     poisson_ratio: Annotated[float, Field(ge=-1.0, lt=0.5)] = 0.3
+    support: Support = Field(default_factory=Support)
 
     @model_validator(mode="after")
     def _normal_is_unit(self) -> Obstacle:
