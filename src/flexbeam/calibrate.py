@@ -55,7 +55,10 @@ if TYPE_CHECKING:
 
 #: metrics of the first contact alone (the fit may stop the simulation after it)
 FIRST_CONTACT_FEATURES = ("peak_force", "peak_time", "contact_duration", "second_peak_force", "impact_velocity",
-                          "post_impact_velocity", "impulse", "energy_before", "energy_after")
+                          "post_impact_velocity", "impulse", "energy_before", "energy_after",
+                          "sensor_peak_force", "sensor_second_peak_force", "sensor_duration")
+#: features that read 0 when a trial's force has a single peak
+SECOND_PEAKS = ("second_peak_force", "sensor_second_peak_force")
 #: metrics that can be fitted as features
 FEATURES = FIRST_CONTACT_FEATURES + ("contacts", "tip_deflection_min", "tip_deflection_max")
 #: CSV column roles and the column names tried when ``columns`` does not name them
@@ -588,7 +591,7 @@ class _Problem:
             metrics = sol.metrics()
             for k, v in self.features.items():
                 m = float(metrics.get(k, math.nan))
-                if k == "second_peak_force" and not math.isfinite(m):
+                if k in SECOND_PEAKS and not math.isfinite(m):
                     # a trial force with a single peak: its second peak has shrunk to nothing
                     # (the limit of a vanishing shoulder), so the residual stays defined
                     m = 0.0

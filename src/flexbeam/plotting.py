@@ -64,6 +64,9 @@ def plot_contact_force(solutions: list[Solution], path: str | Path, reference: d
         t0, sel = _window(sol, 0.1 * span, 1.6 * span)
         ax.plot((sol.time[sel] - t0) * 1e3, sol["contact_force"][sel], c=_STYLE.get(sol.method, None),
                 label=f"flexbeam {sol.method.upper()}")
+        if "sensor_force" in sol.arrays:  # compliant support: what the sensor under it reads
+            ax.plot((sol.time[sel] - t0) * 1e3, sol["sensor_force"][sel], c=_STYLE.get(sol.method, None),
+                    ls=":", label=f"flexbeam {sol.method.upper()}, sensor force")
     if reference:
         _mark_references(ax, reference, solutions[0].method if len(solutions) == 1 else "", "force")
     ax.set_xlabel("Time after first contact [ms]")

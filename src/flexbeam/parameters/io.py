@@ -27,11 +27,15 @@ def builtin_cases() -> dict[str, str]:
 
 
 def reference_data(name: str) -> dict[str, Any]:
-    """Published reference numbers shipped beside a built-in case ({} if none)."""
-    entry = resources.files(_PRESETS) / f"{name}.reference.toml"
-    if not entry.is_file():
-        return {}
-    return tomllib.loads(entry.read_text(encoding="utf-8"))
+    """Published reference numbers shipped beside a built-in case ({} if none).
+
+    A calibrated variant (``NAME-calibrated``) shares the numbers of its base case ``NAME``.
+    """
+    for base in (name, name.removesuffix("-calibrated")):
+        entry = resources.files(_PRESETS) / f"{base}.reference.toml"
+        if entry.is_file():
+            return tomllib.loads(entry.read_text(encoding="utf-8"))
+    return {}
 
 
 def _read_source(source: str | Path) -> dict[str, Any]:
