@@ -19,7 +19,6 @@ from typing import ClassVar
 
 import numpy as np
 from numba import njit
-from scipy.optimize import brentq
 
 from ..errors import ParameterError, closest
 
@@ -148,6 +147,8 @@ def exact_hunt_crossley_chi(e: float) -> float:
     hi = (1.0 - 1e-15) / e
     if f(hi) >= 0.0:
         return hi
+    from scipy.optimize import brentq
+
     return float(brentq(f, chi_star, hi, xtol=1e-15, rtol=1e-14))
 
 

@@ -28,13 +28,14 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
-from scipy.integrate import DOP853, OdeSolution
-from scipy.optimize import brentq, minimize_scalar
 
 from ..errors import SolverError
+
+if TYPE_CHECKING:
+    from scipy.integrate import OdeSolution
 
 CHECK_POINTS = 4
 MAX_STALLED = 100  # consecutive zero-length phases before the run is declared stalled
@@ -110,6 +111,8 @@ class Segment:
     def interpolant(self) -> OdeSolution | None:
         if not self.dense:
             return None
+        from scipy.integrate import OdeSolution
+
         return OdeSolution(np.array(self.dense_ts), self.dense)
 
 
@@ -124,6 +127,8 @@ class RunResult:
     wall_time: float
     steps: int
     nfev: int
+    #: which integrator produced it (recorded in the Solution's provenance)
+    integrator: str = "scipy DOP853, event-driven (reference)"
 
 
 def _sample_grid(ta: float, tb: float, h: float) -> np.ndarray:
@@ -183,6 +188,8 @@ def _hump(ev: Event, dense, ta: float, tb: float) -> float | None:
     downward event), and may come back within the same step.  The excursion's
     extremum is located on the dense output and the crossing bracketed after it.
     """
+    from scipy.optimize import brentq, minimize_scalar
+
     s = float(ev.direction) if ev.direction else 1.0
     g = lambda t: ev.fun(t, dense(t))[0]  # noqa: E731
     res = minimize_scalar(lambda t: s * g(t), bounds=(ta, tb), method="bounded",
@@ -204,6 +211,8 @@ def _leaves_surface(ev: Event, dense, ta: float, tb: float) -> float:
     is reported, so that the method decides there -- the gap then closes at a
     resolvable rate -- and the contact is not skipped.
     """
+    from scipy.optimize import brentq
+
     s = float(ev.direction)
     g = lambda t: ev.fun(t, dense(t))[0]  # noqa: E731
     h = tb - ta
@@ -225,6 +234,8 @@ def _scan(ev: Event, dense, ts, vals, depth) -> float | None:
     for i in range(len(ts) - 1):
         (ga, ra), (gb, rb) = vals[i], vals[i + 1]
         if _crosses(ga, gb, ev.direction):
+            from scipy.optimize import brentq
+
             g = lambda t: ev.fun(t, dense(t))[0]  # noqa: E731
             if gb == 0.0:
                 return ts[i + 1]
@@ -284,6 +295,8 @@ def integrate(
     progress
         Called with the current time after each step (for progress bars).
     """
+    from scipy.integrate import DOP853  # imported here: the fast path does not need scipy
+
     t = 0.0
     segments: list[Segment] = []
     steps = nfev = 0

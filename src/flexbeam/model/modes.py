@@ -24,18 +24,25 @@ import functools
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 
 @functools.cache
 def _root(k: int) -> float:
-    def f(z: float) -> float:
-        return math.cos(z) + 1.0 / math.cosh(z)
+    """k-th root of cos z + 1/cosh z = 0 (i.e. cos z cosh z = -1) by Newton's method.
 
-    centre = (2 * k - 1) * math.pi / 2
-    if k == 1:
-        return float(brentq(f, 1.5, 2.5, xtol=1e-15, rtol=1e-15))
-    return float(brentq(f, centre - 0.5, centre + 0.5, xtol=1e-15, rtol=1e-15))
+    Started at 1.875 (k = 1) or the asymptote (2k - 1) pi/2, where |f'| ~ 1 and the
+    correction is below 1/cosh z: quadratic convergence to round-off in a few steps
+    (scipy.optimize is not imported for this, to keep start-up short).
+    """
+    z = 1.875 if k == 1 else (2 * k - 1) * math.pi / 2
+    for _ in range(50):
+        f = math.cos(z) + 1.0 / math.cosh(z)
+        df = -math.sin(z) - math.tanh(z) / math.cosh(z)
+        step = f / df
+        z -= step
+        if abs(step) <= 4e-16 * z:
+            break
+    return z
 
 
 def cantilever_roots(n: int) -> np.ndarray:
