@@ -20,6 +20,10 @@ interpolant of its values at the p Gauss-Legendre nodes of the step, which are f
 by fixed-point iteration (Gauss collocation); the scalar contact force (CCFM) or
 multiplier (CCM) at the nodes is solved by Newton's method inside each iteration,
 with its exact linear modal response, so a stiff contact needs no small step.
+
+Each step moves the diagonal of the mass-matrix change frozen at its start into the
+frequencies (:func:`_frozen_shift`), and :func:`advance` runs a phase's whole step loop
+(steps, step control, event search and location, output sampling) in compiled code.
 """
 
 from __future__ import annotations
@@ -64,6 +68,8 @@ def _phis(z, p, out):
         for j in range(1, 18):  # |z|^17 / 17! < 3e-15
             term = term * z / (j + p)
             acc += term
+            if abs(term) < 1e-17 * abs(acc):
+                break
         out[p] = acc
         for k in range(p, 0, -1):
             fact /= max(k, 1)
@@ -100,10 +106,12 @@ def step_weights(omega, h, s, Vinv, C, SW, WS, RE, RV):
                     re = 0.0
                     rv = 0.0
                     sp = s[i]
+                    spm = sp
                     for m in range(p):
                         # int_0^T (tau/h)^m dtau = s^(m+1) h/(m+1); twice: s^(m+2) h^2/((m+1)(m+2))
-                        rv += sp ** (m + 1) * h / (m + 1) * Vinv[m, j]
-                        re += sp ** (m + 2) * h * h / ((m + 1) * (m + 2)) * Vinv[m, j]
+                        rv += spm * h / (m + 1) * Vinv[m, j]
+                        re += spm * sp * h * h / ((m + 1) * (m + 2)) * Vinv[m, j]
+                        spm *= sp
                     RE[k, i, j] = re
                     RV[k, i, j] = rv
             else:
@@ -114,10 +122,12 @@ def step_weights(omega, h, s, Vinv, C, SW, WS, RE, RV):
                 WS[k, i] = w * sn
                 _phis(1j * w * T, p, ph)
                 fact = 1.0
+                spm = s[i]
                 for m in range(p):
                     if m > 0:
                         fact *= m
-                    pw[m] = fact * s[i] ** (m + 1) * h * ph[m + 1]
+                    pw[m] = fact * spm * h * ph[m + 1]
+                    spm *= s[i]
                 for j in range(p):
                     acc = 0j
                     for m in range(p):
@@ -141,16 +151,17 @@ def drive_motion(profile, W, Ts, theta0, t):
 
 
 @njit(cache=True)
-def node_forcing(t, z, zd, model, prescribed, drive, point, obstacle, want_gap):
-    """Remainder R (modal: f = Psi^T R), contact direction g and the gap at one state.
+def node_forcing(t, z, zd, sysd, row0, inv00, sref, want_gap, J):
+    """Remainder R (physical; modal f = Psi^T R), contact direction g and the gap at one state.
 
-    Returns (rest, gdir, theta, omega, thdd, delta, vn, J) with rest = M0 M^-1 Q + K0 z and
-    gdir = M0 M^-1 J^T in physical coordinates (Sherman-Morrison rank-one update).
+    Returns (rest, gdir, theta, omega, thdd, delta, vn); ``J`` (n + 1) is filled with the
+    contact Jacobian when ``want_gap`` (else zeroed).  With M_ref = M0 + s_ref e0 e0^T the
+    linearisation's mass matrix, rest = M_ref M^-1 Q + K0 z and gdir = M_ref M^-1 J^T
+    (Sherman-Morrison: M(q) = M_ref + (s - s_ref) e0 e0^T, s = q^T M_c q).
     """
-    (n, Jc, m1, Mc, Mff, mtf, Kff, sf, G, g, row0, inv00) = model
+    model, prescribed, drive, point, obstacle = sysd
+    (n, Jc, m1, Mc, Mff, mtf, Kff, sf, G, g) = model
     (profile, W, Ts, theta0, tau) = drive
-    (pbase, pphi, pdphi, pH, pc) = point
-    (okind, ocentre, oradius, onormal) = obstacle
     N1 = n + 1
     if prescribed:
         theta, omega, thdd = drive_motion(profile, W, Ts, theta0, t)
@@ -164,13 +175,14 @@ def node_forcing(t, z, zd, model, prescribed, drive, point, obstacle, want_gap):
         qd = zd[1:]
     Q = np.empty(N1)
     generalized_forces(theta, omega, q, qd, 0.0 if prescribed else tau, g, m1, Mc, Kff, sf, G, Q)
-    J = np.zeros(N1)
     delta = 0.0
     vn = 0.0
     if want_gap:
         dr = np.empty((2, N1))
-        r, v, a0 = point_kinematics(theta, omega, q, qd, pbase, pphi, pdphi, pH, pc, dr)
-        delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, okind, ocentre, oradius, onormal, J)
+        r, v, a0 = point_kinematics(theta, omega, q, qd, point[0], point[1], point[2], point[3], point[4], dr)
+        delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, obstacle[0], obstacle[1], obstacle[2], obstacle[3], J)
+    else:
+        J[:] = 0.0
     Kq = Kff @ q
     if prescribed:
         rest = np.empty(n)
@@ -178,18 +190,17 @@ def node_forcing(t, z, zd, model, prescribed, drive, point, obstacle, want_gap):
         for i in range(n):
             rest[i] = Q[i + 1] - mtf[i] * thdd + Kq[i]
             gdir[i] = J[i + 1]
-        return rest, gdir, theta, omega, thdd, delta, vn, J
-    s = q @ (Mc @ q)
-    den = 1.0 + s * inv00
-    a = s * (row0 @ Q) / den
-    b = s * (row0 @ J) / den
+        return rest, gdir, theta, omega, thdd, delta, vn
+    ds = q @ (Mc @ q) - sref
+    den = 1.0 + ds * inv00
     rest = Q.copy()
     gdir = J.copy()
-    rest[0] -= a
-    gdir[0] -= b
+    rest[0] -= ds * (row0 @ Q) / den
+    if want_gap:
+        gdir[0] -= ds * (row0 @ J) / den
     for i in range(n):
         rest[i + 1] += Kq[i]
-    return rest, gdir, theta, omega, thdd, delta, vn, J
+    return rest, gdir, theta, omega, thdd, delta, vn
 
 
 @njit(cache=True)
@@ -206,48 +217,144 @@ def _states(eta0, v0, f, C, SW, WS, RE, RV, i, Psi):
 
 
 @njit(cache=True)
-def collocation_step(
-    t0, h, eta0, v0, f_guess, F_guess, mode, lawp, omega, Psi, PsiT, c, b, Vinv, proj, top,
-    model, prescribed, drive, point, obstacle, atol, rtol, C, SW, WS, RE, RV,
-):  # fmt: skip
+def _lagrange_end(c, j):
+    """l_j(1) of the Lagrange basis on the nodes c."""
+    lj = 1.0
+    for m in range(c.size):
+        if m != j:
+            lj *= (1.0 - c[m]) / (c[j] - c[m])
+    return lj
+
+
+@njit(cache=True)
+def _solve_small(A, rhs):
+    """x = A^-1 rhs for a small dense A (Gaussian elimination, partial pivoting; no LAPACK call)."""
+    n = rhs.size
+    M = A.copy()
+    x = rhs.copy()
+    for k in range(n):
+        piv = k
+        for i in range(k + 1, n):
+            if abs(M[i, k]) > abs(M[piv, k]):
+                piv = i
+        if piv != k:
+            for j in range(n):
+                M[k, j], M[piv, j] = M[piv, j], M[k, j]
+            x[k], x[piv] = x[piv], x[k]
+        for i in range(k + 1, n):
+            m = M[i, k] / M[k, k]
+            for j in range(k, n):
+                M[i, j] -= m * M[k, j]
+            x[i] -= m * x[k]
+    for k in range(n - 1, -1, -1):
+        acc = x[k]
+        for j in range(k + 1, n):
+            acc -= M[k, j] * x[j]
+        x[k] = acc / M[k, k]
+    return x
+
+
+ENERGY_NORM = True
+ITERATION_TOL = 1e-5  # fixed-point iteration: converged at |df| <= ITERATION_TOL rtol max|f|
+
+
+@njit(cache=True)
+def _error_norm(deta, dv, eta0, v0, eta1, v1, omega, Psi, atol, rtol):
+    """Scaled error of a step from the modal error bounds ``deta``, ``dv``.
+
+    Energy norm (ENERGY_NORM): the modal error vector (w_k deta_k, dv_k) -- whose square
+    is twice the energy of the error -- against atol + rtol sqrt(2 E_lin), E_lin the
+    linearised energy of the state, plus the position of every zero-frequency (rigid)
+    mode against atol + rtol |eta_k|.  The spurious top mode of a hub without inertia
+    moves theta' strongly but holds almost no energy and barely moves the contact point,
+    so the energy norm does not let it dictate the step.  Otherwise: componentwise in
+    the physical coordinates z, z'.
+    """
+    N = omega.size
+    err = 0.0
+    if ENERGY_NORM:
+        e2 = 0.0
+        s0 = 0.0
+        s1 = 0.0
+        for k in range(N):
+            w = omega[k]
+            e2 += (w * deta[k]) ** 2 + dv[k] ** 2
+            s0 += (w * eta0[k]) ** 2 + v0[k] ** 2
+            s1 += (w * eta1[k]) ** 2 + v1[k] ** 2
+            if w == 0.0:
+                err = max(err, deta[k] / (atol + rtol * max(abs(eta0[k]), abs(eta1[k]))))
+        return max(err, math.sqrt(e2) / (atol + rtol * math.sqrt(max(s0, s1))))
+    z0 = Psi @ eta0
+    zd0 = Psi @ v0
+    z1 = Psi @ eta1
+    zd1 = Psi @ v1
+    for i in range(N):
+        dz = 0.0
+        dzd = 0.0
+        for k in range(N):
+            a = abs(Psi[i, k])
+            dz += a * deta[k]
+            dzd += a * dv[k]
+        e1 = dz / (atol + rtol * max(abs(z0[i]), abs(z1[i])))
+        e2 = dzd / (atol + rtol * max(abs(zd0[i]), abs(zd1[i])))
+        err = max(err, e1, e2)
+    return err
+
+
+@njit(cache=True)
+def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, tab, sysd, atol, rtol, work, fresh):
     """One exponential Gauss-collocation step.
 
     ``mode``: 0 free, 1 CCFM (law parameters ``lawp``), 2 CCM (multiplier with
-    delta' = 0 at the nodes).  Returns (ok, eta1, v1, f (p x N), F (p), err,
-    diss_rates (p), power (p)); ``ok`` is False when the iteration did not converge.
+    delta' + lawp[0] delta = 0 at the nodes).  ``lin[0]`` are the step's frequencies w~ with
+    w~^2 = w^2 - ``shift`` (the collocated forcing is f - shift eta, so that the frozen
+    part of the coupling is propagated exactly).  ``fresh``: recompute the propagation weights
+    in ``work`` (else they are those of the same h).  Returns (ok, eta1, v1, f (p x N),
+    F (p), err, diss_rates (p), power (p), iterations); ``ok`` is False when the
+    iteration did not converge.
     """
+    omega, Psi, PsiT, toM, row0, inv00, sref = lin
+    c, b, Vinv = tab
+    C, SW, WS, RE, RV = work
+    model = sysd[0]
+    prescribed = sysd[1]
     p = c.size
     N = eta0.size
     n = model[0]
-    s_all = np.empty(p + 1)
-    s_all[:p] = c
-    s_all[p] = 1.0
-    step_weights(omega, h, s_all, Vinv, C, SW, WS, RE, RV)
+    if fresh:
+        s_all = np.empty(p + 1)
+        s_all[:p] = c
+        s_all[p] = 1.0
+        step_weights(omega, h, s_all, Vinv, C, SW, WS, RE, RV)
     f = f_guess.copy()
     F = F_guess.copy()
-    rest = np.empty((p, N))
     gvec = np.empty((p, N))
     PJ = np.empty((p, N))
     delta = np.empty(p)
     vn = np.empty(p)
-    theta_n = np.empty(p)
     omega_n = np.empty(p)
     thdd_n = np.empty(p)
+    theta_n = np.empty(p)
+    f_new = np.empty((p, N))
+    J = np.empty(n + 1)
     ok = False
     want_gap = mode != 0
+    iters = 0
     for _it in range(40):
+        iters += 1
         for i in range(p):
             eta, v, z, zd = _states(eta0, v0, f, C, SW, WS, RE, RV, i, Psi)
-            r_i, g_i, th, om, thdd, d_i, vn_i, J = node_forcing(
-                t0 + c[i] * h, z, zd, model, prescribed, drive, point, obstacle, want_gap)
-            rest[i] = PsiT @ r_i
-            gvec[i] = PsiT @ g_i
+            r_i, g_i, th, om, thdd, d_i, vn_i = node_forcing(
+                t0 + c[i] * h, z, zd, sysd, row0, inv00, sref, want_gap, J)
+            f_new[i] = PsiT @ r_i - shift * eta
             theta_n[i], omega_n[i], thdd_n[i] = th, om, thdd
-            delta[i], vn[i] = d_i, vn_i
-            if prescribed:
-                PJ[i] = PsiT @ J[1:]
-            else:
-                PJ[i] = PsiT @ J
+            if want_gap:
+                gvec[i] = PsiT @ g_i
+                delta[i], vn[i] = d_i, vn_i
+                if prescribed:
+                    PJ[i] = PsiT @ J[1:]
+                else:
+                    PJ[i] = PsiT @ J
         if mode != 0:
             # linear response of delta, delta' at node i to the force at node j (J frozen)
             D = np.zeros((p, p))
@@ -261,7 +368,6 @@ def collocation_step(
                         accv += PJ[i, k] * RV[k, i, j] * gvec[j, k]
                     D[i, j] = acc
                     Dv[i, j] = accv
-            # gap and rate at the nodes without the contact force
             base_d = np.empty(p)
             base_v = np.empty(p)
             for i in range(p):
@@ -273,14 +379,16 @@ def collocation_step(
                 base_d[i] = delta[i] - cd
                 base_v[i] = vn[i] - cv
             if mode == 2:
-                # CCM: delta' + delta / h = 0 at the nodes (velocity-level constraint with a
-                # drift correction that removes any gap offset over about one step)
-                kappa = 1.0 / h
-                F = np.linalg.solve(Dv + kappa * D, -base_v - kappa * base_d)
+                # delta' + kappa delta = 0 at the nodes, kappa = the Baumgarte frequency
+                # (lawp[0]): a drift correction on a fixed time scale (1/h would demand
+                # ever larger forces from a gap offset as the step shrinks)
+                kappa = lawp[0]
+                F = _solve_small(Dv + kappa * D, -base_v - kappa * base_d)
             else:
+                res = np.empty(p)
+                Jac = np.zeros((p, p))
                 for _newton in range(30):
-                    res = np.empty(p)
-                    Jac = np.zeros((p, p))
+                    Jac[:] = 0.0
                     for i in range(p):
                         di = base_d[i]
                         vi = base_v[i]
@@ -297,21 +405,28 @@ def collocation_step(
                             dF_dv = lawp[0] * dpen ** lawp[1] * lawp[2] + lawp[3]
                             for j in range(p):
                                 Jac[i, j] += dF_dd * D[i, j] + dF_dv * Dv[i, j]
-                    dF = np.linalg.solve(Jac, -res)
+                    dF = _solve_small(Jac, -res)
                     F = F + dF
                     scale = 1e-300
+                    big = 0.0
                     for i in range(p):
                         scale = max(scale, abs(F[i]))
-                    if np.max(np.abs(dF)) <= 1e-13 * scale:
+                        big = max(big, abs(dF[i]))
+                    if big <= 1e-13 * scale:
                         break
-        f_new = rest.copy()
-        if mode != 0:
             for j in range(p):
-                f_new[j] += gvec[j] * F[j]
-        diff = np.max(np.abs(f_new - f))
-        scale = np.max(np.abs(f_new)) + 1e-300
-        f = f_new
-        if diff <= 1e-11 * scale:
+                for k in range(N):
+                    f_new[j, k] += gvec[j, k] * F[j]
+        diff = 0.0
+        scale = 1e-300
+        for j in range(p):
+            for k in range(N):
+                diff = max(diff, abs(f_new[j, k] - f[j, k]))
+                scale = max(scale, abs(f_new[j, k]))
+        f[:] = f_new
+        if not (diff < math.inf):
+            break
+        if diff <= ITERATION_TOL * rtol * scale:
             ok = True
             break
     eta1, v1, z1, zd1 = _states(eta0, v0, f, C, SW, WS, RE, RV, p, Psi)
@@ -320,51 +435,35 @@ def collocation_step(
     # error: velocity ~ h d / (p + 1), displacement ~ d min(h^2 / ((p+1)(p+2)), 2 / w^2).
     # The collocation end state itself is superconvergent, so this order-p estimate is
     # conservative.
-    r_e, g_e, th_e, om_e, thdd_e, d_e, vn_e, J_e = node_forcing(
-        t0 + h, z1, zd1, model, prescribed, drive, point, obstacle, want_gap)
-    f_end = PsiT @ r_e
+    r_e, g_e, th_e, om_e, thdd_e, d_e, vn_e = node_forcing(t0 + h, z1, zd1, sysd, row0, inv00, sref, want_gap, J)
+    defect = PsiT @ r_e - shift * eta1
     if mode == 1:
         fe, fke = law_force(lawp, -d_e, -vn_e)
-        f_end = f_end + (PsiT @ g_e) * fe
+        defect += (PsiT @ g_e) * fe
     elif mode == 2:
         lam_end = 0.0
         for j in range(p):
-            lj = 1.0
-            for m in range(p):
-                if m != j:
-                    lj *= (1.0 - c[m]) / (c[j] - c[m])
-            lam_end += lj * F[j]
-        f_end = f_end + (PsiT @ g_e) * lam_end
-    defect = f_end.copy()
+            lam_end += _lagrange_end(c, j) * F[j]
+        defect += (PsiT @ g_e) * lam_end
     for j in range(p):
-        lj = 1.0
-        for m in range(p):
-            if m != j:
-                lj *= (1.0 - c[m]) / (c[j] - c[m])
-        defect -= lj * f[j]
+        defect -= _lagrange_end(c, j) * f[j]
     deta = np.empty(N)
     dv = np.empty(N)
+    lim0 = h * h / ((p + 1) * (p + 2))
     for k in range(N):
         dk = abs(defect[k])
         dv[k] = h * dk / (p + 1)
-        lim = h * h / ((p + 1) * (p + 2))
+        lim = lim0
         if omega[k] > 0.0:
             lim = min(lim, 2.0 / (omega[k] * omega[k]))
         deta[k] = dk * lim
-    z0 = Psi @ eta0
-    zd0 = Psi @ v0
-    absPsi = np.abs(Psi)
-    dz = absPsi @ deta
-    dzd = absPsi @ dv
-    err = 0.0
-    for k in range(N):
-        e1 = abs(dz[k]) / (atol + rtol * max(abs(z0[k]), abs(z1[k])))
-        e2 = abs(dzd[k]) / (atol + rtol * max(abs(zd0[k]), abs(zd1[k])))
-        err = max(err, e1, e2)
+    err = _error_norm(deta, dv, eta0, v0, eta1, v1, omega, Psi, atol, rtol)
+    if not ok:
+        err = math.inf
     # bookkeeping rates at the nodes: contact dissipation and drive power
     diss = np.zeros(p)
     power = np.zeros(p)
-    tau = drive[4]
+    tau = sysd[2][4]
     for i in range(p):
         if mode == 1:
             fi, fk = law_force(lawp, -delta[i], -vn[i])
@@ -372,28 +471,29 @@ def collocation_step(
         if prescribed:
             # joint torque = M[0,:] z'' - Q[0] - J[0] F, z'' = [theta'', Psi (f - w^2 eta)]
             eta, v, z, zd = _states(eta0, v0, f, C, SW, WS, RE, RV, i, Psi)
-            acc_m = f[i] - omega * omega * eta
-            qdd = Psi @ acc_m
+            qdd = Psi @ (f[i] - omega * omega * eta)
             th, om = theta_n[i], omega_n[i]
             Qf = np.empty(n + 1)
-            (nn, Jc, m1, Mc, Mff, mtf, Kff, sf, G, g, row0, inv00) = model
+            (nn, Jc, m1, Mc, Mff, mtf, Kff, sf, G, g) = model
             generalized_forces(th, om, z, zd, 0.0, g, m1, Mc, Kff, sf, G, Qf)
-            Jf = np.zeros(n + 1)
+            torque = (Jc + z @ (Mc @ z)) * thdd_n[i] + mtf @ qdd - Qf[0]
+            # the modal-acceleration part th' m_tf q'' (fast oscillation) is booked exactly by
+            # parts, [th' m_tf q'] - int th'' m_tf q' dt: the rate here omits it
+            torque -= mtf @ qdd
             if mode != 0:
+                point, obstacle = sysd[3], sysd[4]
                 dr = np.empty((2, n + 1))
                 r, vv, a0 = point_kinematics(th, om, z, zd, point[0], point[1], point[2], point[3], point[4], dr)
-                gap_state(r, vv, a0, dr, obstacle[0], obstacle[1], obstacle[2], obstacle[3], Jf)
-            torque = (Jc + z @ (Mc @ z)) * thdd_n[i] + mtf @ qdd - Qf[0]
-            if mode != 0:
-                torque -= Jf[0] * F[i]
-            power[i] = torque * om
+                gap_state(r, vv, a0, dr, obstacle[0], obstacle[1], obstacle[2], obstacle[3], J)
+                torque -= J[0] * F[i]
+            power[i] = torque * om - thdd_n[i] * (mtf @ zd)
         else:
             power[i] = tau * omega_n[i]
-    return ok, eta1, v1, f, F, err, diss, power
+    return ok, eta1, v1, f, F, err, diss, power, iters
 
 
 @njit(cache=True)
-def dense_states(t0, h, eta0, v0, f, s, Psi, omega, Vinv):
+def dense_states(h, eta0, v0, f, s, Psi, omega, Vinv):
     """z and z' at fractions ``s`` of a step (exact modal propagation of the step's f)."""
     p = Vinv.shape[0]
     N = eta0.size
@@ -428,8 +528,10 @@ def integrate_rates(rates, s, Vinv, h):
 
 
 @njit(cache=True)
-def gaps_at(times, Z, ZD, prescribed, drive, point, obstacle, n):
+def gaps_at(times, Z, ZD, sysd):
     """Gap delta and rate delta' at dense states (rows of Z, ZD)."""
+    model, prescribed, drive, point, obstacle = sysd
+    n = model[0]
     m = times.size
     d = np.empty(m)
     dv = np.empty(m)
@@ -440,16 +542,592 @@ def gaps_at(times, Z, ZD, prescribed, drive, point, obstacle, n):
     for i in range(m):
         if prescribed:
             th, om, thdd = drive_motion(profile, W, Ts, theta0, times[i])
-            q = Z[i]
-            qd = ZD[i]
+            q = np.ascontiguousarray(Z[i])
+            qd = np.ascontiguousarray(ZD[i])
         else:
             th = Z[i, 0]
             om = ZD[i, 0]
-            q = Z[i, 1:]
-            qd = ZD[i, 1:]
-        r, v, a0 = point_kinematics(th, om, np.ascontiguousarray(q), np.ascontiguousarray(qd),
-                                    point[0], point[1], point[2], point[3], point[4], dr)
+            q = np.ascontiguousarray(Z[i, 1:])
+            qd = np.ascontiguousarray(ZD[i, 1:])
+        r, v, a0 = point_kinematics(th, om, q, qd, point[0], point[1], point[2], point[3], point[4], dr)
         delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, obstacle[0], obstacle[1], obstacle[2], obstacle[3], J)
         d[i] = delta
         dv[i] = vn
     return d, dv
+
+
+# ------------------------------------------------------------------ events
+
+NO_EVENT = 2.0  # find_event: the step is free of the event
+UNDECIDED = -1.0  # find_event: too long a step to decide, shorten it
+
+
+@njit(cache=True)
+def _gaps(t0, h, eta0, v0, f, s, lin, tab, sysd):
+    omega, Psi = lin[0], lin[1]
+    Z, ZD = dense_states(h, eta0, v0, f, s, Psi, omega, tab[2])
+    return gaps_at(t0 + s * h, Z, ZD, sysd)
+
+
+@njit(cache=True)
+def _gap1(x, ctx):
+    t0, h, eta0, v0, f, lin, tab, sysd = ctx
+    s = np.empty(1)
+    s[0] = x
+    return _gaps(t0, h, eta0, v0, f, s, lin, tab, sysd)[0][0]
+
+
+@njit(cache=True)
+def _brent(a, b, fa, fb, ctx):
+    """Root of the gap on [a, b] (fa fb <= 0), Brent's method (xtol 1e-15, rtol 1e-14)."""
+    if fa == 0.0:
+        return a
+    if fb == 0.0:
+        return b
+    c, fc = a, fa
+    d = e = b - a
+    for _ in range(200):
+        if fb * fc > 0.0:
+            c, fc = a, fa
+            d = e = b - a
+        if abs(fc) < abs(fb):
+            a, b, c = b, c, b
+            fa, fb, fc = fb, fc, fb
+        tol = 2.0 * 2.2e-16 * abs(b) + 0.5 * (1e-15 + 1e-14 * abs(b))
+        m = 0.5 * (c - b)
+        if abs(m) <= tol or fb == 0.0:
+            return b
+        if abs(e) >= tol and abs(fa) > abs(fb):
+            s = fb / fa
+            if a == c:
+                p = 2.0 * m * s
+                q = 1.0 - s
+            else:
+                q = fa / fc
+                r = fb / fc
+                p = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
+                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
+            if p > 0.0:
+                q = -q
+            else:
+                p = -p
+            if 2.0 * p < min(3.0 * m * q - abs(tol * q), abs(e * q)):
+                e = d
+                d = p / q
+            else:
+                d = m
+                e = m
+        else:
+            d = m
+            e = m
+        a, fa = b, fb
+        if abs(d) > tol:
+            b += d
+        else:
+            b += tol if m > 0 else -tol
+        fb = _gap1(b, ctx)
+    return b
+
+
+@njit(cache=True)
+def _golden_min(ctx, lo, hi, sign):
+    """Argmin of sign * gap on [lo, hi] (golden-section search to 1e-14)."""
+    gr = 0.5 * (math.sqrt(5.0) - 1.0)
+    a, b = lo, hi
+    x1 = b - gr * (b - a)
+    x2 = a + gr * (b - a)
+    f1 = sign * _gap1(x1, ctx)
+    f2 = sign * _gap1(x2, ctx)
+    while b - a > 1e-14:
+        if f1 < f2:
+            b, x2, f2 = x2, x1, f1
+            x1 = b - gr * (b - a)
+            f1 = sign * _gap1(x1, ctx)
+        else:
+            a, x1, f1 = x1, x2, f2
+            x2 = a + gr * (b - a)
+            f2 = sign * _gap1(x2, ctx)
+    return 0.5 * (a + b)
+
+
+@njit(cache=True)
+def _scan(s, d, rate, direction, ctx):
+    """Earliest root (fraction s) of sampled (d, rate) in ``direction``, refined on the gap.
+
+    Checks, per interval: a sign change; an excursion that starts on (or just behind)
+    zero, leaves, and comes back; and a dip predicted by the cubic Hermite interpolant
+    through (d, rate) at both ends, searched on 16 sub-intervals.  NO_EVENT if none.
+    """
+    sign = -1.0 if direction < 0 else 1.0
+    for i in range(s.size - 1):
+        a, b = d[i], d[i + 1]
+        ra, rb = rate[i], rate[i + 1]
+        hh = s[i + 1] - s[i]
+        cross = (a > 0.0 and b <= 0.0) if sign < 0 else (a < 0.0 and b >= 0.0)
+        if cross:
+            if b == 0.0:
+                return s[i + 1]
+            return _brent(s[i], s[i + 1], a, b, ctx)
+        if -sign * a <= 0.0 and -sign * ra > 0.0 and -sign * b < 0.0:  # hump
+            x = _golden_min(ctx, s[i], s[i + 1], sign)
+            gx = _gap1(x, ctx)
+            if -sign * gx > 0.0:
+                return _brent(x, s[i + 1], gx, b, ctx)
+            continue
+        same = (a > 0.0 and b > 0.0) if sign < 0 else (a < 0.0 and b < 0.0)
+        if not same:
+            continue
+        dip = False
+        for k in range(17):
+            x = k / 16.0
+            poly = ((2 * x**3 - 3 * x**2 + 1) * a + (x**3 - 2 * x**2 + x) * hh * ra
+                    + (-2 * x**3 + 3 * x**2) * b + (x**3 - x**2) * hh * rb)
+            if (sign < 0 and poly < 0.0) or (sign > 0 and poly > 0.0):
+                dip = True
+                break
+        if not dip:
+            continue
+        prev_x = s[i]
+        prev_g = a
+        for k in range(1, 17):
+            x = s[i] + k / 16.0 * hh
+            gx = b if k == 16 else _gap1(x, ctx)
+            if (sign < 0 and prev_g > 0.0 >= gx) or (sign > 0 and prev_g < 0.0 <= gx):
+                return _brent(prev_x, x, prev_g, gx, ctx)
+            prev_x, prev_g = x, gx
+    return NO_EVENT
+
+
+@njit(cache=True)
+def _fast_bound(t0, h, eta0, v0, f, m, lin, sysd):
+    """Bound on the gap contribution of modes too fast for m samples per step.
+
+    B = sum over modes with w h / m > pi/4 of |(Psi^T J)_k| (free amplitude_k + 2 max|f_k| / w_k^2).
+    """
+    omega, Psi, PsiT, toM, row0, inv00, sref = lin
+    N = omega.size
+    any_fast = False
+    for k in range(N):
+        if omega[k] * h / m > 0.25 * math.pi:
+            any_fast = True
+    if not any_fast:
+        return 0.0
+    n = sysd[0][0]
+    J = np.empty(n + 1)
+    node_forcing(t0, Psi @ eta0, Psi @ v0, sysd, lin[4], lin[5], lin[6], True, J)
+    PJ = PsiT @ (J[1:] if sysd[1] else J)
+    B = 0.0
+    for k in range(N):
+        w = omega[k]
+        if w * h / m > 0.25 * math.pi:
+            amp = math.sqrt(eta0[k] ** 2 + (v0[k] / w) ** 2)
+            fmax = 0.0
+            for j in range(f.shape[0]):
+                fmax = max(fmax, abs(f[j, k]))
+            B += abs(PJ[k]) * (amp + 2.0 * fmax / (w * w))
+    return B
+
+
+@njit(cache=True)
+def _far(t0, h, eta0, v0, f, lin, sysd):
+    """Is the obstacle provably out of reach within the step (no sampling needed)?
+
+    Each mode's velocity stays below its free amplitude sqrt(v_k^2 + w_k^2 eta_k^2) plus
+    h LEBESGUE max_j |f_jk| (the interpolated forcing's bound), so the gap's rate stays
+    below R = sum_k |(Psi^T J)_k| (that bound) (+ |J_theta| max|theta'| for a prescribed
+    theta(t), whose profiles have monotone rates); the step is declared far if the gap at its
+    start exceeds 2 R h (a factor 2 for the variation of J over the step).
+    """
+    omega, Psi, PsiT, toM, row0, inv00, sref = lin
+    n = sysd[0][0]
+    J = np.empty(n + 1)
+    d0 = node_forcing(t0, Psi @ eta0, Psi @ v0, sysd, row0, inv00, sref, True, J)[5]
+    if d0 <= 0.0:
+        return False
+    PJ = PsiT @ (J[1:] if sysd[1] else J)
+    R = 0.0
+    for k in range(omega.size):
+        fmax = 0.0
+        for j in range(f.shape[0]):
+            fmax = max(fmax, abs(f[j, k]))
+        R += abs(PJ[k]) * (math.sqrt(v0[k] ** 2 + (omega[k] * eta0[k]) ** 2) + h * LEBESGUE * fmax)
+    if sysd[1]:  # prescribed theta: its (monotone) rate moves P too
+        profile, W, Ts, theta0, tau = sysd[2]
+        rate = max(abs(drive_motion(profile, W, Ts, theta0, t0)[1]),
+                   abs(drive_motion(profile, W, Ts, theta0, t0 + h)[1]))
+        R += abs(J[0]) * rate
+    return d0 > 2.0 * R * h
+
+
+SAMPLES = 16  # gap samples per step in the event search (refined x4 once if modes are unresolved)
+LEBESGUE = 3.0  # > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.0 for p = 4)
+
+
+@njit(cache=True)
+def find_event(t0, h, eta0, v0, f, direction, lin, tab, sysd):
+    """First crossing of the gap in ``direction`` inside the step, as a fraction s.
+
+    NO_EVENT when the step is provably free of it, a fraction in (0, 1] at a located
+    crossing, UNDECIDED when the step is too long to decide cheaply (modes that could
+    reach the obstacle are not resolved by 4 SAMPLES samples): the caller shortens the step.
+    A step is declared free of an impact only if min(samples) - 2B > 0 with B the
+    bound of :func:`_fast_bound` on the unresolved modes, or, all modes resolved, if
+    no sign change, excursion or Hermite-predicted dip is found.
+    """
+    ctx = (t0, h, eta0, v0, f, lin, tab, sysd)
+    if direction < 0 and _far(t0, h, eta0, v0, f, lin, sysd):
+        return NO_EVENT
+    m = SAMPLES
+    while True:
+        s = np.linspace(0.0, 1.0, m + 1)
+        d, dv = _gaps(t0, h, eta0, v0, f, s, lin, tab, sysd)
+        B = _fast_bound(t0, h, eta0, v0, f, m, lin, sysd)
+        leaving = d[0] > 0.0 or dv[0] > 0.0
+        if direction < 0 and leaving and np.min(d[1:]) - 2.0 * B > 0.0:
+            return NO_EVENT
+        if B == 0.0:
+            return _scan(s, d, dv * h, direction, ctx)
+        if m >= 4 * SAMPLES:
+            return UNDECIDED
+        m *= 4
+
+
+@njit(cache=True)
+def _lagrange_at(c, lam, x):
+    out = 0.0
+    for j in range(c.size):
+        lj = 1.0
+        for m in range(c.size):
+            if m != j:
+                lj *= (x - c[m]) / (c[j] - c[m])
+        out += lj * lam[j]
+    return out
+
+
+@njit(cache=True)
+def multiplier_release(c, lam):
+    """Fraction of the step where the collocated multiplier lambda(s) turns tensile, or NO_EVENT."""
+    prev = _lagrange_at(c, lam, 0.0)
+    for i in range(1, 33):
+        x = i / 32.0
+        val = _lagrange_at(c, lam, x)
+        if prev >= 0.0 > val:
+            if prev == 0.0:
+                return (i - 1) / 32.0
+            lo, hi = (i - 1) / 32.0, x
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                if _lagrange_at(c, lam, mid) >= 0.0:
+                    lo = mid
+                else:
+                    hi = mid
+            return hi
+        prev = val
+    return NO_EVENT
+
+
+# ---------------------------------------------------------------- the loop
+
+@njit(cache=True)
+def _grow1(a, need):
+    if need <= a.shape[0]:
+        return a
+    out = np.empty(max(need, 2 * a.shape[0]))
+    out[: a.shape[0]] = a
+    return out
+
+
+@njit(cache=True)
+def _grow2(a, need):
+    if need <= a.shape[0]:
+        return a
+    out = np.empty((max(need, 2 * a.shape[0]), a.shape[1]))
+    out[: a.shape[0]] = a
+    return out
+
+
+@njit(cache=True)
+def _grow3(a, need):
+    if need <= a.shape[0]:
+        return a
+    out = np.empty((max(need, 2 * a.shape[0]), a.shape[1], a.shape[2]))
+    out[: a.shape[0]] = a
+    return out
+
+
+@njit(cache=True)
+def _extrapolate(c, f, ratio):
+    """Values at the next step's nodes (1 + ratio c_i) of the interpolant through f (rows)."""
+    p = c.size
+    out = np.zeros_like(f)
+    for i in range(p):
+        x = 1.0 + ratio * c[i]
+        for j in range(p):
+            lj = 1.0
+            for m in range(p):
+                if m != j:
+                    lj *= (x - c[m]) / (c[j] - c[m])
+            out[i] += lj * f[j]
+    return out
+
+
+@njit(cache=True)
+def _extrapolate1(c, F, ratio):
+    out = np.empty(c.size)
+    for i in range(c.size):
+        out[i] = _lagrange_at(c, F, 1.0 + ratio * c[i])
+    return out
+
+
+@njit(cache=True)
+def _boundary_work(t, qd, sysd):
+    """theta'(t) m_tf q' of a prescribed theta(t): the integrated part of the joint work."""
+    profile, W, Ts, theta0, tau = sysd[2]
+    return drive_motion(profile, W, Ts, theta0, t)[1] * (sysd[0][5] @ qd)
+
+
+FREEZE = True  # move the frozen mass-matrix variation of each step into its frequencies
+
+
+@njit(cache=True)
+def _frozen_shift(z, lin, sysd):
+    """The step's frequencies w~ and shift = w^2 - w~^2 from the mass matrix frozen at z.
+
+    With M(q) = M_ref + ds e0 e0^T the coupling contains c u u^T W^2 eta (c = ds / (1 +
+    ds (M_ref^-1)_00), u = Psi^T e0); its diagonal, -c u_k^2 w_k^2 eta_k, is the frequency
+    change of mode k -- for a hub without inertia a large one of the highest mode, whose
+    mass is the small Schur complement of M_00 -- and is propagated exactly.
+    """
+    omega, Psi, PsiT, toM, row0, inv00, sref = lin
+    N = omega.size
+    shift = np.zeros(N)
+    if sysd[1] or not FREEZE:
+        return omega, shift
+    Mc = sysd[0][3]
+    q = z[1:]
+    ds = q @ (Mc @ q) - sref
+    cbar = ds / (1.0 + ds * inv00)
+    wt = np.empty(N)
+    for k in range(N):
+        w2 = omega[k] * omega[k]
+        sh = cbar * Psi[0, k] * Psi[0, k] * w2
+        if sh > w2:
+            sh = w2
+        shift[k] = sh
+        wt[k] = math.sqrt(w2 - sh)
+    return wt, shift
+
+
+ADVANCE_END, ADVANCE_EVENT, ADVANCE_UNDERFLOW, ADVANCE_NONFINITE = 0, 1, 2, 3
+
+
+@njit(cache=True)
+def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense, lin, tab, sysd, atol, rtol):
+    """Integrate one phase from (t, z, z', E_d, W) until ``t_end`` or its event.
+
+    ``mode`` 0 (free flight, event: the gap closes), 1 (CCFM, the gap opens), 2 (CCM, the
+    multiplier turns tensile).  Returns (code, t, h_next, steps, nfev, sample times,
+    sample states (reference layout [z, z', E_d, W]; every step end and the points of the
+    ``sample_step`` grid), and when ``keep_dense`` the accepted steps' records (t0, h,
+    eta0, v0, f, E_d0, W0, dissipation and power rates at the nodes) for dense output.
+    ``code``: ADVANCE_END, ADVANCE_EVENT, ADVANCE_UNDERFLOW (step size underflow) or
+    ADVANCE_NONFINITE.
+    """
+    omega, Psi, PsiT, toM, row0, inv00, sref = lin
+    c, b, Vinv = tab
+    N = omega.size
+    p = c.size
+    n = sysd[0][0]
+    size = 2 * N + 2
+    eta = toM @ z
+    v = toM @ zd
+    J = np.empty(n + 1)
+    rest, gdir, th, om, thdd, d0, vn0 = node_forcing(t, z, zd, sysd, row0, inv00, sref, mode != 0, J)
+    f0 = PsiT @ rest
+    f_guess = np.empty((p, N))
+    for j in range(p):
+        f_guess[j] = f0
+    F_guess = np.zeros(p)
+    work = (np.empty((N, p + 1)), np.empty((N, p + 1)), np.empty((N, p + 1)),
+            np.empty((N, p + 1, p)), np.empty((N, p + 1, p)))
+    h_w = -1.0
+    new_lin = True
+    wt = omega
+    shift = np.zeros(N)
+    lin_s = lin
+    ts = np.empty(256)
+    ys = np.empty((256, size))
+    ns = 0
+    cap_r = 64 if keep_dense else 0
+    r_t = np.empty(cap_r)
+    r_w = np.empty((cap_r, N))
+    r_h = np.empty(cap_r)
+    r_eta = np.empty((cap_r, N))
+    r_v = np.empty((cap_r, N))
+    r_f = np.empty((cap_r, p, N))
+    r_E = np.empty((cap_r, 2))
+    r_rates = np.empty((cap_r, 2, p))
+    nr = 0
+    steps = 0
+    nfev = 0
+    code = ADVANCE_END
+    direction = -1 if mode == 0 else 1
+    prescribed = sysd[1]
+    tau = sysd[2][4]
+    while t < t_end:
+        h = min(h, t_end - t, hcap)
+        if new_lin:
+            wt, shift = _frozen_shift(Psi @ eta, lin, sysd)
+            lin_s = (wt, Psi, PsiT, toM, row0, inv00, sref)
+            new_lin = False
+            h_w = -1.0
+        ok, eta1, v1, f, F, err, diss, power, iters = collocation_step(
+            t, h, eta, v, f_guess, F_guess, mode, lawp, lin_s, shift, tab, sysd, atol, rtol, work, h != h_w)
+        h_w = h
+        steps += 1
+        nfev += iters * p + 1
+        if not (err <= 1.0):
+            if not (err < math.inf):
+                h *= 0.25
+            else:
+                h *= max(0.2, 0.9 * err ** (-1.0 / p))
+            if h < 1e-15 * max(1.0, t):
+                code = ADVANCE_UNDERFLOW
+                break
+            continue
+        if mode == 2:
+            s_ev = multiplier_release(c, F)
+        else:
+            s_ev = find_event(t, h, eta, v, f, direction, lin_s, tab, sysd)
+        if s_ev < 0.0:  # undecided: too long a step near the obstacle
+            h *= 0.25
+            continue
+        event = s_ev <= 1.0
+        h_taken = h
+        if event:
+            h_ev = s_ev * h
+            if h_ev <= 0.0:
+                code = ADVANCE_EVENT
+                break
+            ok2, eta1, v1, f2, F2, err2, diss2, power2, iters2 = collocation_step(
+                t, h_ev, eta, v, f, F, mode, lawp, lin_s, shift, tab, sysd, atol, rtol, work, True)
+            h_w = h_ev
+            nfev += iters2 * p + 1
+            if not ok2:
+                h *= 0.5
+                continue
+            h_taken, f, F, diss, power = h_ev, f2, F2, diss2, power2
+        if keep_dense:
+            if nr == r_t.shape[0]:
+                r_t = _grow1(r_t, nr + 1)
+                r_w = _grow2(r_w, nr + 1)
+                r_h = _grow1(r_h, nr + 1)
+                r_eta = _grow2(r_eta, nr + 1)
+                r_v = _grow2(r_v, nr + 1)
+                r_f = _grow3(r_f, nr + 1)
+                r_E = _grow2(r_E, nr + 1)
+                r_rates = _grow3(r_rates, nr + 1)
+            r_t[nr] = t
+            r_w[nr] = wt
+            r_h[nr] = h_taken
+            r_eta[nr] = eta
+            r_v[nr] = v
+            r_f[nr] = f
+            r_E[nr, 0] = Ed
+            r_E[nr, 1] = W
+            r_rates[nr, 0] = diss
+            r_rates[nr, 1] = power
+            nr += 1
+        # output samples on the grid strictly inside the step, then the step end
+        theta_start = Psi[0] @ eta
+        b_start = _boundary_work(t, Psi @ v, sysd) if prescribed else 0.0
+        t1 = t + h_taken
+        k0 = math.floor(t / sample_step) + 1
+        k1 = math.floor(t1 / sample_step)
+        cnt = 0
+        for k in range(k0, k1 + 1):
+            tk = k * sample_step
+            if t < tk < t1:
+                cnt += 1
+        ts = _grow1(ts, ns + cnt + 1)
+        ys = _grow2(ys, ns + cnt + 1)
+        if cnt:
+            sg = np.empty(cnt)
+            tk_list = np.empty(cnt)
+            i = 0
+            for k in range(k0, k1 + 1):
+                tk = k * sample_step
+                if t < tk < t1:
+                    sg[i] = (tk - t) / h_taken
+                    tk_list[i] = tk
+                    ts[ns + i] = tk
+                    i += 1
+            Z, ZD = dense_states(h_taken, eta, v, f, sg, Psi, wt, Vinv)
+            Eds = integrate_rates(diss, sg, Vinv, h_taken)
+            Ws = integrate_rates(power, sg, Vinv, h_taken)
+            for i in range(cnt):
+                if prescribed:
+                    Ws[i] += _boundary_work(tk_list[i], ZD[i], sysd) - b_start
+                else:  # constant torque: W = tau (theta - theta_0), exactly
+                    Ws[i] = tau * (Z[i, 0] - theta_start)
+            for i in range(cnt):
+                ys[ns + i, :N] = Z[i]
+                ys[ns + i, N : 2 * N] = ZD[i]
+                ys[ns + i, 2 * N] = Ed + Eds[i]
+                ys[ns + i, 2 * N + 1] = W + Ws[i]
+            ns += cnt
+        Ed += h_taken * (b @ diss)
+        if prescribed:
+            W += h_taken * (b @ power) + _boundary_work(t1, Psi @ v1, sysd) - b_start
+        else:
+            # tau theta' holds the fast modes' oscillation, which Gauss quadrature over a
+            # long step would miss; for a constant torque the work is tau (theta1 - theta0)
+            W += tau * ((Psi[0] @ eta1) - theta_start)
+        t = t1
+        eta, v = eta1, v1
+        new_lin = True
+        if event:
+            f_guess, F_guess = f, F
+        else:
+            h_next = h_taken * min(4.0, max(0.2, 0.9 * max(err, 1e-10) ** (-1.0 / (p + 1))))
+            f_guess = _extrapolate(c, f, h_next / h_taken)
+            F_guess = _extrapolate1(c, F, h_next / h_taken)
+        ts[ns] = t
+        ys[ns, :N] = Psi @ eta
+        ys[ns, N : 2 * N] = Psi @ v
+        ys[ns, 2 * N] = Ed
+        ys[ns, 2 * N + 1] = W
+        ns += 1
+        if not np.all(np.isfinite(ys[ns - 1])):
+            code = ADVANCE_NONFINITE
+            break
+        if event:
+            code = ADVANCE_EVENT
+            break
+        h = h_next
+    return (code, t, h, steps, nfev, ts[:ns].copy(), ys[:ns].copy(),
+            r_t[:nr].copy(), r_h[:nr].copy(), r_w[:nr].copy(), r_eta[:nr].copy(), r_v[:nr].copy(), r_f[:nr].copy(),
+            r_E[:nr].copy(), r_rates[:nr].copy())
+
+
+@njit(cache=True)
+def dense_eval(tt, r_t, r_h, r_w, r_eta, r_v, r_f, r_E, r_rates, Psi, Vinv, sysd):
+    """States [z, z', E_d, W] at times ``tt`` from the step records (rows)."""
+    N = Psi.shape[0]
+    out = np.empty((tt.size, 2 * N + 2))
+    s = np.empty(1)
+    for i in range(tt.size):
+        k = np.searchsorted(r_t, tt[i], side="right") - 1
+        k = min(max(k, 0), r_t.size - 1)
+        h = r_h[k]
+        s[0] = (tt[i] - r_t[k]) / h
+        Z, ZD = dense_states(h, r_eta[k], r_v[k], r_f[k], s, Psi, r_w[k], Vinv)
+        out[i, :N] = Z[0]
+        out[i, N : 2 * N] = ZD[0]
+        out[i, 2 * N] = r_E[k, 0] + integrate_rates(r_rates[k, 0], s, Vinv, h)[0]
+        if sysd[1]:
+            out[i, 2 * N + 1] = (r_E[k, 1] + integrate_rates(r_rates[k, 1], s, Vinv, h)[0]
+                                 + _boundary_work(tt[i], ZD[0], sysd) - _boundary_work(r_t[k], Psi @ r_v[k], sysd))
+        else:
+            out[i, 2 * N + 1] = r_E[k, 1] + sysd[2][4] * (Z[0, 0] - Psi[0] @ r_eta[k])
+    return out

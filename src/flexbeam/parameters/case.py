@@ -280,13 +280,16 @@ class Initial(_Section):
 class Solver(_Section):
     """Integration settings.
 
-    ``integrator = "exponential"``: exact modal propagation with Gauss collocation of the
-    coupling and contact terms (fast; tolerances ``fast_rtol``/``fast_atol``).
-    ``"reference"``: scipy's DOP853, event-driven (``rtol``/``atol``).
+    ``integrator = "exponential"`` (default): exact modal propagation with Gauss
+    collocation of the coupling and contact terms, compiled (fast; tolerances
+    ``fast_rtol``/``fast_atol``); it serves CCFM on a rigidly held obstacle, every other
+    run takes the reference path.  ``"reference"``: scipy's DOP853, event-driven
+    (``rtol``/``atol``).
     """
 
     integrator: Literal["exponential", "reference"] = Field(
-        "reference", description="time integrator (exponential: CCFM only, opt-in)"
+        "exponential", description="time integrator (exponential: CCFM with a rigid obstacle, "
+        "else the reference is used)"
     )
     fast_rtol: Annotated[float, Field(gt=0, lt=1)] = Field(
         1e-6, description="relative tolerance of the exponential integrator"
