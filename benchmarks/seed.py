@@ -398,7 +398,6 @@ def exudyn_seed(t_end: float, elements: int = 32, step: float = 1e-5) -> dict[st
     settings.solutionSettings.writeSolutionToFile = False
     settings.solutionSettings.sensorsWritePeriod = step
     settings.displayComputationTime = False
-    settings.displayStatistics = False
     t0 = time.perf_counter()
     mbs.SolveDynamic(settings)
     wall = time.perf_counter() - t0
