@@ -28,14 +28,11 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import Any, Protocol
 
 import numpy as np
 
 from ..errors import SolverError
-
-if TYPE_CHECKING:
-    from scipy.integrate import OdeSolution
 
 CHECK_POINTS = 4
 MAX_STALLED = 100  # consecutive zero-length phases before the run is declared stalled
@@ -108,12 +105,22 @@ class Segment:
     dense_ts: list[float] = field(default_factory=list)
     dense: list[Any] = field(default_factory=list)
 
-    def interpolant(self) -> OdeSolution | None:
+    def interpolant(self) -> PiecewiseDense | None:
         if not self.dense:
             return None
-        from scipy.integrate import OdeSolution
+        return PiecewiseDense(np.array(self.dense_ts), self.dense)
 
-        return OdeSolution(np.array(self.dense_ts), self.dense)
+
+class PiecewiseDense:
+    """y(t) on [ts[0], ts[-1]] from one dense output per step (what scipy's OdeSolution does
+    for a scalar t, without importing scipy.integrate on the fast path's start-up)."""
+
+    def __init__(self, ts: np.ndarray, pieces: list[Any]) -> None:
+        self.ts, self.pieces = ts, pieces
+
+    def __call__(self, t: float) -> np.ndarray:
+        i = int(np.searchsorted(self.ts, t, side="left")) - 1
+        return self.pieces[min(max(i, 0), len(self.pieces) - 1)](t)
 
 
 @dataclass

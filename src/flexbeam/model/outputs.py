@@ -13,7 +13,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..contact.laws import law_potential
+from ..contact.laws import law_force, law_potential
 from .kernels import energies, point_kinematics
 from .system import BeamSystem, _state_split, contact_gap, rhs_kernel
 
@@ -54,10 +54,14 @@ def sample_outputs(
         delta, vn, gamma, nx, ny, Js = contact_gap(
             r, v, a0, dr, okind, ocentre, oradius, onormal, osup, s_ob, sd_ob, J
         )
-        dy, F, torque = rhs_kernel(
-            y, n, prescribed, TH[k], THD[k], THDD[k], TAU[k], g, Jc, m1, Mc, Mff, mtf, Kff, sf, G,
-            pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal, osup, mode, p,
-        )  # fmt: skip
+        if prescribed or mode == 2:  # the force (CCM) or the joint torque needs the equations solved
+            dy, F, torque = rhs_kernel(
+                y, n, prescribed, TH[k], THD[k], THDD[k], TAU[k], g, Jc, m1, Mc, Mff, mtf, Kff, sf, G,
+                pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal, osup, mode, p,
+            )  # fmt: skip
+        else:  # free joint: the torque is the applied one; the CCFM force is the law's (as in rhs_kernel)
+            F = law_force(p, -delta, -vn)[0] if mode == 1 else 0.0
+            torque = TAU[k]
         T, Ve, Vg = energies(theta, omega, q, qd, Jc, Mc, Mff, mtf, Kff, m1, sf, G, g)
         T += 0.5 * osup[0] * sd_ob * sd_ob
         Ve += 0.5 * osup[1] * s_ob * s_ob
