@@ -5,7 +5,8 @@ contact normal.  With the obstacle of mass m_2 on a spring k_s the impact proble
 linear and solved here independently of flexbeam's equations:
 
 * CCFM with a linear contact spring k_c (Hertz law with exponent 1): the two-mass chain
-  m_1 -- k_c -- m_2 -- k_s -- ground, solved by its normal modes (scipy.linalg.eigh);
+  m_1 -- k_c -- m_2 -- k_s -- ground, solved by its normal modes
+  (:func:`flexbeam.validation.two_mass_chain`, also in the validation report);
 * CCM: perfectly plastic impact (momentum: v_c = m_1 v_0 / (m_1 + m_2)), then the two
   bodies move together on k_s for half a period, the contact force on the rod being
   m_1 |x''| (peak m_1 v_c w, w^2 = k_s / (m_1 + m_2));
@@ -20,14 +21,13 @@ import math
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
-from scipy.linalg import eigh
-from scipy.optimize import brentq
 
 import flexbeam as fb
 from flexbeam.contact.impulse import impulse_jump
 from flexbeam.errors import ParameterError
 from flexbeam.model.system import BeamSystem
 from flexbeam.simulation import initial_state
+from flexbeam.validation import two_mass_chain
 from tests.conftest import rigid_rod_mass_inertia, seed
 
 M2, KS, KC, V0 = 0.05, 2.0e6, 5.0e6, -0.4
@@ -44,62 +44,10 @@ def _m1(case) -> float:
     return rigid_rod_mass_inertia(case)[1] / case.contact.position**2
 
 
-def _linear_chain(m1, m2, kc, ks, v0):
-    """Peak contact force and duration of m1 (speed v0) hitting m2 on ks through kc."""
-    M = np.diag([m1, m2])
-    K = np.array([[kc, -kc], [-kc, kc + ks]])
-    w2, Phi = eigh(K, M)  # mass-normalised modes
-    w = np.sqrt(w2)
-    eta_rate0 = Phi.T @ M @ np.array([v0, 0.0])
-
-    def x(t):
-        return Phi @ (eta_rate0 / w * np.sin(w * t))
-
-    def force(t):  # compression of the contact spring: x2 - x1 > 0 when pressed (v0 < 0)
-        xt = x(t)
-        return kc * (xt[1] - xt[0])
-
-    grid = np.linspace(1e-9, 2 * math.pi / w.min(), 20001)
-    f = np.array([force(t) for t in grid])
-    k_end = int(np.argmax(f < 0))
-    t_end = brentq(force, grid[k_end - 1], grid[k_end], xtol=1e-15)
-    fine = np.linspace(0, t_end, 20001)
-    return max(force(t) for t in fine), t_end
-
-
-def _sensor_pulse(m1, m2, kc, ks, v0):
-    """Peak and duration of the sensor force -k_s x_2 of the same chain.
-
-    During the contact x_2 follows the modal solution; afterwards the obstacle rings
-    freely at sqrt(k_s/m_2) from its state at separation.  The pulse ends at the
-    first zero of x_2.
-    """
-    M = np.diag([m1, m2])
-    K = np.array([[kc, -kc], [-kc, kc + ks]])
-    w2, Phi = eigh(K, M)
-    w = np.sqrt(w2)
-    a = Phi.T @ M @ np.array([v0, 0.0]) / w
-    t_c = _linear_chain(m1, m2, kc, ks, v0)[1]
-    x2c = Phi[1] @ (a * np.sin(w * t_c))
-    v2c = Phi[1] @ (a * w * np.cos(w * t_c))
-    ws = math.sqrt(ks / m2)
-
-    def x2(t):
-        if t <= t_c:
-            return float(Phi[1] @ (a * np.sin(w * t)))
-        return x2c * math.cos(ws * (t - t_c)) + v2c / ws * math.sin(ws * (t - t_c))
-
-    grid = np.linspace(1e-9, t_c + 2 * math.pi / ws, 40001)
-    vals = np.array([x2(t) for t in grid])
-    k = int(np.argmax(vals > 0))
-    t_end = brentq(x2, grid[k - 1], grid[k], xtol=1e-15)
-    return -ks * vals[:k].min(), t_end
-
-
 def test_ccfm_linear_contact_matches_two_mass_chain():
     case = _rod_case(contact__law="hertz", contact__stiffness=KC, contact__exponent=1.0)
     m = fb.simulate(case, "ccfm").metrics()
-    F, t_c = _linear_chain(_m1(case), M2, KC, KS, V0)
+    F, t_c, _, _ = two_mass_chain(_m1(case), M2, KC, KS, V0)
     # geometric nonlinearity of the rotating rod (angle ~ 1e-3 rad) is far below 1e-4
     assert_allclose(m["peak_force"], F, rtol=2e-4)
     assert_allclose(m["contact_duration"], t_c, rtol=2e-4)
@@ -110,7 +58,7 @@ def test_sensor_pulse_of_the_two_mass_chain():
     case = _rod_case(contact__law="hertz", contact__stiffness=KC, contact__exponent=1.0,
                      solver__sample_step=2e-8)
     m = fb.simulate(case, "ccfm").metrics()
-    F_s, t_s = _sensor_pulse(_m1(case), M2, KC, KS, V0)
+    _, _, F_s, t_s = two_mass_chain(_m1(case), M2, KC, KS, V0)
     assert t_s > m["contact_duration"]
     assert_allclose(m["sensor_peak_force"], F_s, rtol=1e-3)  # sampled maximum
     assert_allclose(m["sensor_duration"], t_s, rtol=1e-3)
