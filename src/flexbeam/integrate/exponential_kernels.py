@@ -150,57 +150,330 @@ def drive_motion(profile, W, Ts, theta0, t):
     return theta0 + W * (t - 0.5 * Ts), W, 0.0
 
 
-@njit(cache=True)
-def node_forcing(t, z, zd, sysd, row0, inv00, sref, want_gap, J):
-    """Remainder R (physical; modal f = Psi^T R), contact direction g and the gap at one state.
+# ------------------------------------------------- the model in modal coordinates
+#
+# The hot loop works on the modal state (eta, v) alone: with Psi_q the rows of Psi that
+# map eta to q (all of them for a prescribed theta, else rows 1..n) every quadratic form
+# and projection it needs is precomputed once per phase (:func:`_modal_model`), so a
+# node costs three N x N products (M_c, G and H in modal form) and no allocation.
 
-    Returns (rest, gdir, theta, omega, thdd, delta, vn); ``J`` (n + 1) is filled with the
-    contact Jacobian when ``want_gap`` (else zeroed).  With M_ref = M0 + s_ref e0 e0^T the
-    linearisation's mass matrix, rest = M_ref M^-1 Q + K0 z and gdir = M_ref M^-1 J^T
-    (Sherman-Morrison: M(q) = M_ref + (s - s_ref) e0 e0^T, s = q^T M_c q).
+
+@njit(cache=True)
+def _mv(AT, x, out):
+    """out = A x from AT = A^T (column sweeps, contiguous and vectorisable, no temporaries)."""
+    m = out.size
+    for i in range(m):
+        out[i] = 0.0
+    for j in range(x.size):
+        xj = x[j]
+        for i in range(m):
+            out[i] += xj * AT[j, i]
+
+
+@njit(cache=True)
+def _dot(a, b):
+    acc = 0.0
+    for i in range(a.size):
+        acc += a[i] * b[i]
+    return acc
+
+
+@njit(cache=True)
+def _congruence_T(A, Psi, off):
+    """Psi_q^T A^T Psi_q (N x N), Psi_q = Psi[off:off + A.shape[0]]."""
+    n = A.shape[0]
+    N = Psi.shape[1]
+    T1 = np.zeros((n, N))  # A^T Psi_q
+    for i in range(n):
+        for j in range(n):
+            a = A[j, i]
+            for j2 in range(N):
+                T1[i, j2] += a * Psi[j + off, j2]
+    out = np.zeros((N, N))
+    for k in range(N):
+        for i in range(n):
+            pk = Psi[i + off, k]
+            for j2 in range(N):
+                out[k, j2] += pk * T1[i, j2]
+    return out
+
+
+@njit(cache=True)
+def _project(vec, Psi, off):
+    """Psi_q^T vec."""
+    N = Psi.shape[1]
+    out = np.zeros(N)
+    for i in range(vec.size):
+        for k in range(N):
+            out[k] += Psi[i + off, k] * vec[i]
+    return out
+
+
+@njit(cache=True)
+def _t_times(A, x):
+    """A^T x."""
+    n = A.shape[0]
+    out = np.zeros(A.shape[1])
+    for i in range(n):
+        for j in range(A.shape[1]):
+            out[j] += A[i, j] * x[i]
+    return out
+
+
+@njit(cache=True)
+def _modal_model(lin, sysd):
+    """Per-phase modal data: (psi0, Mcm^T, Gm^T, Hm^T, sf, m_tf, Phi, Phi', the row-0 vectors
+    mr, gr, kr, hr, scalars) with Xm = Psi_q^T X Psi_q and psi0 the theta row of Psi (zero
+    for a prescribed theta)."""
+    omega, Psi, PsiT, toM, row0, inv00, sref = lin
+    model, prescribed, drive, point, obstacle = sysd
+    (n, Jc, m1, Mc, Mff, mtf, Kff, sf, G, g) = model
+    phi, dphi, H = point[1], point[2], point[3]
+    N = omega.size
+    off = 0 if prescribed else 1
+    psi0 = np.zeros(N)
+    mr = np.zeros(N)
+    gr = np.zeros(N)
+    kr = np.zeros(N)
+    hr = np.zeros(N)
+    sc = np.zeros(4)
+    if not prescribed:
+        for k in range(N):
+            psi0[k] = Psi[0, k]
+        r0f = row0[1:].copy()
+        mr = _project(_t_times(Mc, r0f), Psi, off)
+        gr = _project(_t_times(G, r0f), Psi, off)
+        kr = _project(_t_times(Kff, r0f), Psi, off)
+        hr = _project(_t_times(H, r0f), Psi, off)
+        sc[0] = row0[0]
+        sc[1] = _dot(r0f, sf)
+        sc[2] = _dot(r0f, phi)
+        sc[3] = _dot(r0f, dphi)
+    return (psi0, _congruence_T(Mc, Psi, off), _congruence_T(G, Psi, off), _congruence_T(H, Psi, off),
+            _project(sf, Psi, off), _project(mtf, Psi, off), _project(phi, Psi, off), _project(dphi, Psi, off),
+            mr, gr, kr, hr, sc)
+
+
+@njit(cache=True)
+def _gap_kin(th, om, e, v, He, point, obstacle, mm, want_pj, prescribed, PJ):
+    """Gap delta and rate at the modal state (e, v) with He = Hm e; with ``want_pj`` the modal
+    contact Jacobian PJ = Psi^T J (J[1:] for a prescribed theta).  Returns (delta, delta', J_0,
+    row0 . J) -- the point kinematics of :func:`~flexbeam.model.kernels.point_kinematics` and
+    :func:`~flexbeam.model.kernels.gap_state` in modal form."""
+    psi0, McmT, GmT, HmT, sfm, mtfm, phim, dphim, mr, gr, kr, hr, sc = mm
+    base, c_off = point[0], point[4]
+    N = e.size
+    qHq = 0.0
+    ang = 0.0
+    angd = 0.0
+    phq = 0.0
+    hqd = 0.0
+    phqd = 0.0
+    for k in range(N):
+        qHq += e[k] * He[k]
+        ang += dphim[k] * e[k]
+        angd += dphim[k] * v[k]
+        phq += phim[k] * e[k]
+        hqd += He[k] * v[k]
+        phqd += phim[k] * v[k]
+    sa, ca = math.sin(ang), math.cos(ang)
+    rx = base - 0.5 * qHq + c_off * sa
+    ry = phq - c_off * ca
+    rhod_x = -hqd + c_off * ca * angd
+    rhod_y = phqd + c_off * sa * angd
+    ct, st = math.cos(th), math.sin(th)
+    r0 = ct * rx - st * ry
+    r1 = st * rx + ct * ry
+    vlx = rhod_x - om * ry
+    vly = rhod_y + om * rx
+    w0 = ct * vlx - st * vly
+    w1 = st * vlx + ct * vly
+    kind, centre, radius, normal = obstacle
+    if kind == 0:
+        dx = r0 - centre[0]
+        dy = r1 - centre[1]
+        dist = math.sqrt(dx * dx + dy * dy)
+        nx, ny = dx / dist, dy / dist
+        delta = dist - radius
+    else:
+        nx, ny = normal[0], normal[1]
+        delta = nx * (r0 - centre[0]) + ny * (r1 - centre[1])
+    vn = nx * w0 + ny * w1
+    J0 = 0.0
+    r0J = 0.0
+    if want_pj:
+        J0 = nx * (ct * (-ry) - st * rx) + ny * (st * (-ry) + ct * rx)
+        a = nx * ct + ny * st
+        bb = -nx * st + ny * ct
+        for k in range(N):
+            PJ[k] = a * (-He[k] + c_off * ca * dphim[k]) + bb * (phim[k] + c_off * sa * dphim[k])
+        if not prescribed:
+            for k in range(N):
+                PJ[k] += psi0[k] * J0
+            r0J = sc[0] * J0 + a * (-_dot(hr, e) + c_off * ca * sc[3]) + bb * (sc[2] + c_off * sa * sc[3])
+    return delta, vn, J0, r0J
+
+
+@njit(cache=True)
+def _rigid(t, e, v, sysd, psi0):
+    """theta, theta', theta'' at the modal state (the drive's for a prescribed theta)."""
+    if sysd[1]:
+        profile, W, Ts, theta0, tau = sysd[2]
+        return drive_motion(profile, W, Ts, theta0, t)
+    return _dot(psi0, e), _dot(psi0, v), 0.0
+
+
+@njit(cache=True)
+def _gap_at(t, e, v, sysd, mm, He, want_pj, PJ):
+    """Gap and rate (and the modal Jacobian) at the modal state (e, v) at time t."""
+    th, om, thdd = _rigid(t, e, v, sysd, mm[0])
+    _mv(mm[3], e, He)
+    return _gap_kin(th, om, e, v, He, sysd[3], sysd[4], mm, want_pj, sysd[1], PJ)
+
+
+@njit(cache=True)
+def _node_modal(t, e, v, sysd, mm, inv00, sref, want_gap, Ae, Be, He, rest, PJ):
+    """Modal remainder rest = Psi^T R at (e, v) and, with ``want_gap``, the gap and PJ = Psi^T J.
+
+    R = M_ref M^-1 Q + K0 z as in the module docstring, with the elastic force K q (which
+    K0 z cancels) left out of both.  Returns (theta, theta', theta'', delta, delta', gcorr):
+    the modal contact direction Psi^T M_ref M^-1 J^T is PJ - gcorr psi0.
     """
     model, prescribed, drive, point, obstacle = sysd
     (n, Jc, m1, Mc, Mff, mtf, Kff, sf, G, g) = model
-    (profile, W, Ts, theta0, tau) = drive
-    N1 = n + 1
-    if prescribed:
-        theta, omega, thdd = drive_motion(profile, W, Ts, theta0, t)
-        q = z
-        qd = zd
+    tau = drive[4]
+    psi0, McmT, GmT, HmT, sfm, mtfm, phim, dphim, mr, gr, kr, hr, sc = mm
+    N = e.size
+    th, om, thdd = _rigid(t, e, v, sysd, psi0)
+    _mv(McmT, e, Ae)
+    qMq = _dot(e, Ae)
+    om2 = om * om
+    cth, sth = math.cos(th), math.sin(th)
+    qGq = 0.0
+    sfq = 0.0
+    if g != 0.0:
+        _mv(GmT, e, Be)
+        qGq = _dot(e, Be)
+        sfq = _dot(sfm, e)
+        for k in range(N):
+            rest[k] = om2 * Ae[k] - g * (cth * sfm[k] - sth * Be[k])
     else:
-        theta = z[0]
-        omega = zd[0]
-        thdd = 0.0
-        q = z[1:]
-        qd = zd[1:]
-    Q = np.empty(N1)
-    generalized_forces(theta, omega, q, qd, 0.0 if prescribed else tau, g, m1, Mc, Kff, sf, G, Q)
+        for k in range(N):
+            rest[k] = om2 * Ae[k]
+    ds = 0.0
+    den = 1.0
+    if prescribed:
+        for k in range(N):
+            rest[k] -= thdd * mtfm[k]
+    else:
+        Q0 = tau - 2.0 * om * _dot(v, Ae) - g * (cth * (m1 - 0.5 * qGq) - sth * sfq)
+        ds = qMq - sref
+        den = 1.0 + ds * inv00
+        row0Q = sc[0] * Q0 + om2 * _dot(mr, e) - g * (cth * sc[1] - sth * _dot(gr, e)) - _dot(kr, e)
+        rest0 = Q0 - ds * row0Q / den
+        for k in range(N):
+            rest[k] += psi0[k] * rest0
     delta = 0.0
     vn = 0.0
+    gcorr = 0.0
     if want_gap:
-        dr = np.empty((2, N1))
-        r, v, a0 = point_kinematics(theta, omega, q, qd, point[0], point[1], point[2], point[3], point[4], dr)
-        delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, obstacle[0], obstacle[1], obstacle[2], obstacle[3], J)
-    else:
-        J[:] = 0.0
-    Kq = Kff @ q
-    if prescribed:
-        rest = np.empty(n)
-        gdir = np.empty(n)
-        for i in range(n):
-            rest[i] = Q[i + 1] - mtf[i] * thdd + Kq[i]
-            gdir[i] = J[i + 1]
-        return rest, gdir, theta, omega, thdd, delta, vn
-    ds = q @ (Mc @ q) - sref
-    den = 1.0 + ds * inv00
-    rest = Q.copy()
-    gdir = J.copy()
-    rest[0] -= ds * (row0 @ Q) / den
-    if want_gap:
-        gdir[0] -= ds * (row0 @ J) / den
-    for i in range(n):
-        rest[i + 1] += Kq[i]
-    return rest, gdir, theta, omega, thdd, delta, vn
+        _mv(HmT, e, He)
+        delta, vn, J0, r0J = _gap_kin(th, om, e, v, He, point, obstacle, mm, True, prescribed, PJ)
+        if not prescribed:
+            gcorr = ds * r0J / den
+    return th, om, thdd, delta, vn, gcorr
+
+
+@njit(cache=True)
+def _modal_at(eta0, v0, f, C, SW, WS, RE, RV, i, e, v):
+    """Modal state at point i of the step weights (into e, v)."""
+    N = eta0.size
+    p = f.shape[0]
+    for k in range(N):
+        e[k] = C[k, i] * eta0[k] + SW[k, i] * v0[k]
+        v[k] = -WS[k, i] * eta0[k] + C[k, i] * v0[k]
+    for j in range(p):
+        for k in range(N):
+            e[k] += RE[k, i, j] * f[j, k]
+            v[k] += RV[k, i, j] * f[j, k]
+
+
+@njit(cache=True)
+def _hop_weights(omega, T, ph, Wt):
+    """Weights of one hop of length T for monomial forcing u^m (u = tau / T in [0, 1]).
+
+    Rows of ``Wt`` (N x (3 + 2p)): cos(w T), sin(w T)/w, w sin(w T), then the position and
+    velocity responses re_m, rv_m (as :func:`step_weights` for the single point s = 1).
+    """
+    N = omega.size
+    p = (Wt.shape[1] - 3) // 2
+    for k in range(N):
+        w = omega[k]
+        if w == 0.0:
+            Wt[k, 0] = 1.0
+            Wt[k, 1] = T
+            Wt[k, 2] = 0.0
+            for m in range(p):
+                Wt[k, 3 + m] = T * T / ((m + 1) * (m + 2))
+                Wt[k, 3 + p + m] = T / (m + 1)
+        else:
+            c = math.cos(w * T)
+            sn = math.sin(w * T)
+            Wt[k, 0] = c
+            Wt[k, 1] = sn / w
+            Wt[k, 2] = w * sn
+            _phis(1j * w * T, p, ph)
+            fact = 1.0
+            for m in range(p):
+                if m > 0:
+                    fact *= m
+                pw = fact * T * ph[m + 1]
+                Wt[k, 3 + m] = pw.imag / w
+                Wt[k, 3 + p + m] = pw.real
+
+
+@njit(cache=True)
+def _hop(A, sa, L, Wt, e, v, b):
+    """Advance the modal state (e, v) from the fraction sa of the step to sa + L (in place).
+
+    ``A`` (p x N): monomial coefficients in s of the step's forcing; ``Wt``: the hop
+    weights (:func:`_hop_weights`) of the length L h.  The forcing on the hop, a polynomial
+    in u = (s - sa) / L, is obtained by a Taylor shift: the propagation stays exact.
+    """
+    p = A.shape[0]
+    N = A.shape[1]
+    for k in range(N):
+        for m in range(p):
+            b[m] = A[m, k]
+        if sa != 0.0:
+            for i in range(p - 1):
+                for j in range(p - 2, i - 1, -1):
+                    b[j] += sa * b[j + 1]
+        sc = 1.0
+        fe = 0.0
+        fv = 0.0
+        for m in range(p):
+            bm = b[m] * sc
+            fe += Wt[k, 3 + m] * bm
+            fv += Wt[k, 3 + p + m] * bm
+            sc *= L
+        e0 = e[k]
+        v0 = v[k]
+        e[k] = Wt[k, 0] * e0 + Wt[k, 1] * v0 + fe
+        v[k] = -Wt[k, 2] * e0 + Wt[k, 0] * v0 + fv
+
+
+@njit(cache=True)
+def _monomial(Vinv, f, A):
+    """A = Vinv f: monomial coefficients (in s) of the interpolant through the nodal rows f."""
+    p = Vinv.shape[0]
+    N = f.shape[1]
+    for m in range(p):
+        for k in range(N):
+            acc = 0.0
+            for j in range(p):
+                acc += Vinv[m, j] * f[j, k]
+            A[m, k] = acc
 
 
 @njit(cache=True)
@@ -225,33 +498,6 @@ def _lagrange_end(c, j):
             lj *= (1.0 - c[m]) / (c[j] - c[m])
     return lj
 
-
-@njit(cache=True)
-def _solve_small(A, rhs):
-    """x = A^-1 rhs for a small dense A (Gaussian elimination, partial pivoting; no LAPACK call)."""
-    n = rhs.size
-    M = A.copy()
-    x = rhs.copy()
-    for k in range(n):
-        piv = k
-        for i in range(k + 1, n):
-            if abs(M[i, k]) > abs(M[piv, k]):
-                piv = i
-        if piv != k:
-            for j in range(n):
-                M[k, j], M[piv, j] = M[piv, j], M[k, j]
-            x[k], x[piv] = x[piv], x[k]
-        for i in range(k + 1, n):
-            m = M[i, k] / M[k, k]
-            for j in range(k, n):
-                M[i, j] -= m * M[k, j]
-            x[i] -= m * x[k]
-    for k in range(n - 1, -1, -1):
-        acc = x[k]
-        for j in range(k + 1, n):
-            acc -= M[k, j] * x[j]
-        x[k] = acc / M[k, k]
-    return x
 
 
 ENERGY_NORM = True
@@ -302,63 +548,103 @@ def _error_norm(deta, dv, eta0, v0, eta1, v1, omega, Psi, atol, rtol):
 
 
 @njit(cache=True)
-def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, tab, sysd, atol, rtol, work, fresh):
+def _solve_into(A, rhs, M, x):
+    """x = A^-1 rhs for a small dense A (Gaussian elimination, partial pivoting, work array M)."""
+    n = rhs.size
+    for i in range(n):
+        x[i] = rhs[i]
+        for j in range(n):
+            M[i, j] = A[i, j]
+    for k in range(n):
+        piv = k
+        for i in range(k + 1, n):
+            if abs(M[i, k]) > abs(M[piv, k]):
+                piv = i
+        if piv != k:
+            for j in range(n):
+                M[k, j], M[piv, j] = M[piv, j], M[k, j]
+            x[k], x[piv] = x[piv], x[k]
+        for i in range(k + 1, n):
+            m = M[i, k] / M[k, k]
+            for j in range(k, n):
+                M[i, j] -= m * M[k, j]
+            x[i] -= m * x[k]
+    for k in range(n - 1, -1, -1):
+        acc = x[k]
+        for j in range(k + 1, n):
+            acc -= M[k, j] * x[j]
+        x[k] = acc / M[k, k]
+
+
+@njit(cache=True)
+def _colloc_buffers(N, p):
+    """Work arrays of :func:`collocation_step` (allocated once per phase)."""
+    return (np.empty((p, N)), np.empty((p, N)), np.empty(p), np.empty(p), np.empty(p), np.empty(p), np.empty(p),
+            np.empty((p, N)), np.empty((p, p)), np.empty((p, p)), np.empty(p), np.empty(p), np.empty(p),
+            np.empty((p, p)), np.empty(p), np.empty((p, p)), np.empty(p + 1), np.empty(N), np.empty(N),
+            np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(N),
+            np.empty(N))
+
+
+@njit(cache=True)
+def _step_out(N, p):
+    """Outputs of :func:`collocation_step`: (eta1, v1, f, F, diss, power)."""
+    return (np.empty(N), np.empty(N), np.empty((p, N)), np.empty(p), np.empty(p), np.empty(p))
+
+
+@njit(cache=True)
+def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, tab, sysd, atol, rtol, work, fresh,
+                     mm, cb, out):
     """One exponential Gauss-collocation step.
 
     ``mode``: 0 free, 1 CCFM (law parameters ``lawp``), 2 CCM (multiplier with
     delta' + lawp[0] delta = 0 at the nodes).  ``lin[0]`` are the step's frequencies w~ with
     w~^2 = w^2 - ``shift`` (the collocated forcing is f - shift eta, so that the frozen
     part of the coupling is propagated exactly).  ``fresh``: recompute the propagation weights
-    in ``work`` (else they are those of the same h).  Returns (ok, eta1, v1, f (p x N),
-    F (p), err, diss_rates (p), power (p), iterations); ``ok`` is False when the
-    iteration did not converge.
+    in ``work`` (else they are those of the same h).  ``mm``: :func:`_modal_model`; ``cb``:
+    :func:`_colloc_buffers`.  Fills ``out`` = (eta1, v1, f (p x N), F (p), diss_rates (p),
+    power (p)) and returns (ok, err, iterations); ``ok`` is False when the iteration did not
+    converge.  ``f_guess``, ``F_guess`` must not be arrays of ``out``.
     """
     omega, Psi, PsiT, toM, row0, inv00, sref = lin
     c, b, Vinv = tab
     C, SW, WS, RE, RV = work
+    eta1, v1, f, F, diss, power = out
+    (gvec, PJ, delta, vn, omega_n, thdd_n, theta_n, f_new, D, Dv, base_d, base_v, res, Jac, dF, Msol, s_all,
+     ei, vi, Ae, Be, He, rest, defect, deta, dvv, PJe) = cb
+    psi0 = mm[0]
     model = sysd[0]
     prescribed = sysd[1]
     p = c.size
     N = eta0.size
     n = model[0]
     if fresh:
-        s_all = np.empty(p + 1)
-        s_all[:p] = c
+        for i in range(p):
+            s_all[i] = c[i]
         s_all[p] = 1.0
         step_weights(omega, h, s_all, Vinv, C, SW, WS, RE, RV)
-    f = f_guess.copy()
-    F = F_guess.copy()
-    gvec = np.empty((p, N))
-    PJ = np.empty((p, N))
-    delta = np.empty(p)
-    vn = np.empty(p)
-    omega_n = np.empty(p)
-    thdd_n = np.empty(p)
-    theta_n = np.empty(p)
-    f_new = np.empty((p, N))
-    J = np.empty(n + 1)
+    for j in range(p):
+        F[j] = F_guess[j]
+        for k in range(N):
+            f[j, k] = f_guess[j, k]
     ok = False
     want_gap = mode != 0
     iters = 0
     for _it in range(40):
         iters += 1
         for i in range(p):
-            eta, v, z, zd = _states(eta0, v0, f, C, SW, WS, RE, RV, i, Psi)
-            r_i, g_i, th, om, thdd, d_i, vn_i = node_forcing(
-                t0 + c[i] * h, z, zd, sysd, row0, inv00, sref, want_gap, J)
-            f_new[i] = PsiT @ r_i - shift * eta
+            _modal_at(eta0, v0, f, C, SW, WS, RE, RV, i, ei, vi)
+            th, om, thdd, d_i, vn_i, gcorr = _node_modal(
+                t0 + c[i] * h, ei, vi, sysd, mm, inv00, sref, want_gap, Ae, Be, He, rest, PJ[i])
+            for k in range(N):
+                f_new[i, k] = rest[k] - shift[k] * ei[k]
             theta_n[i], omega_n[i], thdd_n[i] = th, om, thdd
             if want_gap:
-                gvec[i] = PsiT @ g_i
+                for k in range(N):
+                    gvec[i, k] = PJ[i, k] - gcorr * psi0[k]
                 delta[i], vn[i] = d_i, vn_i
-                if prescribed:
-                    PJ[i] = PsiT @ J[1:]
-                else:
-                    PJ[i] = PsiT @ J
         if mode != 0:
             # linear response of delta, delta' at node i to the force at node j (J frozen)
-            D = np.zeros((p, p))
-            Dv = np.zeros((p, p))
             for i in range(p):
                 for j in range(p):
                     acc = 0.0
@@ -368,8 +654,6 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, 
                         accv += PJ[i, k] * RV[k, i, j] * gvec[j, k]
                     D[i, j] = acc
                     Dv[i, j] = accv
-            base_d = np.empty(p)
-            base_v = np.empty(p)
             for i in range(p):
                 cd = 0.0
                 cv = 0.0
@@ -383,33 +667,37 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, 
                 # (lawp[0]): a drift correction on a fixed time scale (1/h would demand
                 # ever larger forces from a gap offset as the step shrinks)
                 kappa = lawp[0]
-                F = _solve_small(Dv + kappa * D, -base_v - kappa * base_d)
+                for i in range(p):
+                    res[i] = -base_v[i] - kappa * base_d[i]
+                    for j in range(p):
+                        Jac[i, j] = Dv[i, j] + kappa * D[i, j]
+                _solve_into(Jac, res, Msol, F)
             else:
-                res = np.empty(p)
-                Jac = np.zeros((p, p))
                 for _newton in range(30):
-                    Jac[:] = 0.0
+                    for i in range(p):
+                        for j in range(p):
+                            Jac[i, j] = 0.0
                     for i in range(p):
                         di = base_d[i]
-                        vi = base_v[i]
+                        vi_ = base_v[i]
                         for j in range(p):
                             di += D[i, j] * F[j]
-                            vi += Dv[i, j] * F[j]
+                            vi_ += Dv[i, j] * F[j]
                         dpen = -di
-                        dd = -vi
+                        dd = -vi_
                         fi, fk = law_force(lawp, dpen, dd)
-                        res[i] = F[i] - fi
+                        res[i] = fi - F[i]  # -(F - fi)
                         Jac[i, i] = 1.0
                         if fi > 0.0:
                             dF_dd = lawp[1] * lawp[0] * dpen ** (lawp[1] - 1.0) * (1.0 + lawp[2] * dd)
                             dF_dv = lawp[0] * dpen ** lawp[1] * lawp[2] + lawp[3]
                             for j in range(p):
                                 Jac[i, j] += dF_dd * D[i, j] + dF_dv * Dv[i, j]
-                    dF = _solve_small(Jac, -res)
-                    F = F + dF
+                    _solve_into(Jac, res, Msol, dF)
                     scale = 1e-300
                     big = 0.0
                     for i in range(p):
+                        F[i] += dF[i]
                         scale = max(scale, abs(F[i]))
                         big = max(big, abs(dF[i]))
                     if big <= 1e-13 * scale:
@@ -423,73 +711,74 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, 
             for k in range(N):
                 diff = max(diff, abs(f_new[j, k] - f[j, k]))
                 scale = max(scale, abs(f_new[j, k]))
-        f[:] = f_new
+                f[j, k] = f_new[j, k]
         if not (diff < math.inf):
             break
         if diff <= ITERATION_TOL * rtol * scale:
             ok = True
             break
-    eta1, v1, z1, zd1 = _states(eta0, v0, f, C, SW, WS, RE, RV, p, Psi)
+    _modal_at(eta0, v0, f, C, SW, WS, RE, RV, p, eta1, v1)
     # error estimate: defect of the forcing interpolant at the step end (one extra
     # evaluation), f(t0 + h) - sum_j l_j(1) f_j ~ f^(p) h^p / p!, propagated as a forcing
     # error: velocity ~ h d / (p + 1), displacement ~ d min(h^2 / ((p+1)(p+2)), 2 / w^2).
     # The collocation end state itself is superconvergent, so this order-p estimate is
     # conservative.
-    r_e, g_e, th_e, om_e, thdd_e, d_e, vn_e = node_forcing(t0 + h, z1, zd1, sysd, row0, inv00, sref, want_gap, J)
-    defect = PsiT @ r_e - shift * eta1
-    if mode == 1:
-        fe, fke = law_force(lawp, -d_e, -vn_e)
-        defect += (PsiT @ g_e) * fe
-    elif mode == 2:
-        lam_end = 0.0
-        for j in range(p):
-            lam_end += _lagrange_end(c, j) * F[j]
-        defect += (PsiT @ g_e) * lam_end
+    th_e, om_e, thdd_e, d_e, vn_e, gcorr_e = _node_modal(
+        t0 + h, eta1, v1, sysd, mm, inv00, sref, want_gap, Ae, Be, He, rest, PJe)
+    for k in range(N):
+        defect[k] = rest[k] - shift[k] * eta1[k]
+    if mode != 0:
+        if mode == 1:
+            fe, fke = law_force(lawp, -d_e, -vn_e)
+        else:
+            fe = 0.0
+            for j in range(p):
+                fe += _lagrange_end(c, j) * F[j]
+        for k in range(N):
+            defect[k] += (PJe[k] - gcorr_e * psi0[k]) * fe
     for j in range(p):
-        defect -= _lagrange_end(c, j) * f[j]
-    deta = np.empty(N)
-    dv = np.empty(N)
+        lj = _lagrange_end(c, j)
+        for k in range(N):
+            defect[k] -= lj * f[j, k]
     lim0 = h * h / ((p + 1) * (p + 2))
     for k in range(N):
         dk = abs(defect[k])
-        dv[k] = h * dk / (p + 1)
+        dvv[k] = h * dk / (p + 1)
         lim = lim0
         if omega[k] > 0.0:
             lim = min(lim, 2.0 / (omega[k] * omega[k]))
         deta[k] = dk * lim
-    err = _error_norm(deta, dv, eta0, v0, eta1, v1, omega, Psi, atol, rtol)
+    err = _error_norm(deta, dvv, eta0, v0, eta1, v1, omega, Psi, atol, rtol)
     if not ok:
         err = math.inf
     # bookkeeping rates at the nodes: contact dissipation and drive power
-    diss = np.zeros(p)
-    power = np.zeros(p)
     tau = sysd[2][4]
     for i in range(p):
+        diss[i] = 0.0
         if mode == 1:
             fi, fk = law_force(lawp, -delta[i], -vn[i])
             diss[i] = (fi - fk) * (-vn[i])
         if prescribed:
             # joint torque = M[0,:] z'' - Q[0] - J[0] F, z'' = [theta'', Psi (f - w^2 eta)]
             eta, v, z, zd = _states(eta0, v0, f, C, SW, WS, RE, RV, i, Psi)
-            qdd = Psi @ (f[i] - omega * omega * eta)
             th, om = theta_n[i], omega_n[i]
             Qf = np.empty(n + 1)
             (nn, Jc, m1, Mc, Mff, mtf, Kff, sf, G, g) = model
             generalized_forces(th, om, z, zd, 0.0, g, m1, Mc, Kff, sf, G, Qf)
-            torque = (Jc + z @ (Mc @ z)) * thdd_n[i] + mtf @ qdd - Qf[0]
             # the modal-acceleration part th' m_tf q'' (fast oscillation) is booked exactly by
             # parts, [th' m_tf q'] - int th'' m_tf q' dt: the rate here omits it
-            torque -= mtf @ qdd
+            torque = (Jc + z @ (Mc @ z)) * thdd_n[i] - Qf[0]
             if mode != 0:
                 point, obstacle = sysd[3], sysd[4]
                 dr = np.empty((2, n + 1))
+                Jb = np.empty(n + 1)
                 r, vv, a0 = point_kinematics(th, om, z, zd, point[0], point[1], point[2], point[3], point[4], dr)
-                gap_state(r, vv, a0, dr, obstacle[0], obstacle[1], obstacle[2], obstacle[3], J)
-                torque -= J[0] * F[i]
+                gap_state(r, vv, a0, dr, obstacle[0], obstacle[1], obstacle[2], obstacle[3], Jb)
+                torque -= Jb[0] * F[i]
             power[i] = torque * om - thdd_n[i] * (mtf @ zd)
         else:
             power[i] = tau * omega_n[i]
-    return ok, eta1, v1, f, F, err, diss, power, iters
+    return ok, err, iters
 
 
 @njit(cache=True)
@@ -527,34 +816,6 @@ def integrate_rates(rates, s, Vinv, h):
     return out
 
 
-@njit(cache=True)
-def gaps_at(times, Z, ZD, sysd):
-    """Gap delta and rate delta' at dense states (rows of Z, ZD)."""
-    model, prescribed, drive, point, obstacle = sysd
-    n = model[0]
-    m = times.size
-    d = np.empty(m)
-    dv = np.empty(m)
-    N1 = n + 1
-    dr = np.empty((2, N1))
-    J = np.empty(N1)
-    (profile, W, Ts, theta0, tau) = drive
-    for i in range(m):
-        if prescribed:
-            th, om, thdd = drive_motion(profile, W, Ts, theta0, times[i])
-            q = np.ascontiguousarray(Z[i])
-            qd = np.ascontiguousarray(ZD[i])
-        else:
-            th = Z[i, 0]
-            om = ZD[i, 0]
-            q = np.ascontiguousarray(Z[i, 1:])
-            qd = np.ascontiguousarray(ZD[i, 1:])
-        r, v, a0 = point_kinematics(th, om, q, qd, point[0], point[1], point[2], point[3], point[4], dr)
-        delta, vn, gamma, nx, ny = gap_state(r, v, a0, dr, obstacle[0], obstacle[1], obstacle[2], obstacle[3], J)
-        d[i] = delta
-        dv[i] = vn
-    return d, dv
-
 
 # ------------------------------------------------------------------ events
 
@@ -563,20 +824,25 @@ UNDECIDED = -1.0  # find_event: too long a step to decide, shorten it
 
 
 @njit(cache=True)
-def _gaps(t0, h, eta0, v0, f, s, lin, tab, sysd):
-    omega, Psi = lin[0], lin[1]
-    Z, ZD = dense_states(h, eta0, v0, f, s, Psi, omega, tab[2])
-    return gaps_at(t0 + s * h, Z, ZD, sysd)
+def _event_buffers(N, p):
+    """Work arrays of :func:`find_event` (allocated once per phase)."""
+    ns = 4 * SAMPLES + 1
+    return (np.empty(ns), np.empty(ns), np.empty(ns), np.empty(ns), np.empty((p, N)), np.empty((N, 3 + 2 * p)),
+            np.empty((N, 3 + 2 * p)), np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(p),
+            np.empty(p + 1, dtype=np.complex128))
 
 
 @njit(cache=True)
 def _gap1(x, ctx):
-    t0, h, eta0, v0, f, lin, tab, sysd = ctx
-    s = np.empty(1)
-    s[0] = x
-    return _gaps(t0, h, eta0, v0, f, s, lin, tab, sysd)[0][0]
-
-
+    """Gap at the fraction x of the step (exact modal propagation from its start)."""
+    t0, h, eta0, v0, omega, sysd, mm, eb = ctx
+    s, d, dv, rate, A, Wu, W1, ec, vc, He, PJ, bb, ph = eb
+    _hop_weights(omega, x * h, ph, W1)
+    for k in range(eta0.size):
+        ec[k] = eta0[k]
+        vc[k] = v0[k]
+    _hop(A, 0.0, x, W1, ec, vc, bb)
+    return _gap_at(t0 + x * h, ec, vc, sysd, mm, He, False, PJ)[0]
 @njit(cache=True)
 def _brent(a, b, fa, fb, ctx):
     """Root of the gap on [a, b] (fa fb <= 0), Brent's method (xtol 1e-15, rtol 1e-14)."""
@@ -699,23 +965,13 @@ def _scan(s, d, rate, direction, ctx):
 
 
 @njit(cache=True)
-def _fast_bound(t0, h, eta0, v0, f, m, lin, sysd):
+def _fast_bound(h, eta0, v0, f, m, omega, PJ):
     """Bound on the gap contribution of modes too fast for m samples per step.
 
-    B = sum over modes with w h / m > pi/4 of |(Psi^T J)_k| (free amplitude_k + 2 max|f_k| / w_k^2).
+    B = sum over modes with w h / m > pi/4 of |(Psi^T J)_k| (free amplitude_k + 2 max|f_k| / w_k^2),
+    ``PJ`` = Psi^T J at the step start.
     """
-    omega, Psi, PsiT, toM, row0, inv00, sref = lin
     N = omega.size
-    any_fast = False
-    for k in range(N):
-        if omega[k] * h / m > 0.25 * math.pi:
-            any_fast = True
-    if not any_fast:
-        return 0.0
-    n = sysd[0][0]
-    J = np.empty(n + 1)
-    node_forcing(t0, Psi @ eta0, Psi @ v0, sysd, lin[4], lin[5], lin[6], True, J)
-    PJ = PsiT @ (J[1:] if sysd[1] else J)
     B = 0.0
     for k in range(N):
         w = omega[k]
@@ -729,22 +985,18 @@ def _fast_bound(t0, h, eta0, v0, f, m, lin, sysd):
 
 
 @njit(cache=True)
-def _far(t0, h, eta0, v0, f, lin, sysd):
+def _far(t0, h, f, eta0, v0, d0, PJ, J0, omega, sysd):
     """Is the obstacle provably out of reach within the step (no sampling needed)?
 
     Each mode's velocity stays below its free amplitude sqrt(v_k^2 + w_k^2 eta_k^2) plus
     h LEBESGUE max_j |f_jk| (the interpolated forcing's bound), so the gap's rate stays
     below R = sum_k |(Psi^T J)_k| (that bound) (+ |J_theta| max|theta'| for a prescribed
     theta(t), whose profiles have monotone rates); the step is declared far if the gap at its
-    start exceeds 2 R h (a factor 2 for the variation of J over the step).
+    start (``d0``; ``PJ``, ``J0`` its Jacobian) exceeds 2 R h (a factor 2 for the variation of
+    J over the step).
     """
-    omega, Psi, PsiT, toM, row0, inv00, sref = lin
-    n = sysd[0][0]
-    J = np.empty(n + 1)
-    d0 = node_forcing(t0, Psi @ eta0, Psi @ v0, sysd, row0, inv00, sref, True, J)[5]
     if d0 <= 0.0:
         return False
-    PJ = PsiT @ (J[1:] if sysd[1] else J)
     R = 0.0
     for k in range(omega.size):
         fmax = 0.0
@@ -755,7 +1007,7 @@ def _far(t0, h, eta0, v0, f, lin, sysd):
         profile, W, Ts, theta0, tau = sysd[2]
         rate = max(abs(drive_motion(profile, W, Ts, theta0, t0)[1]),
                    abs(drive_motion(profile, W, Ts, theta0, t0 + h)[1]))
-        R += abs(J[0]) * rate
+        R += abs(J0) * rate
     return d0 > 2.0 * R * h
 
 
@@ -764,7 +1016,7 @@ LEBESGUE = 3.0  # > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.0 f
 
 
 @njit(cache=True)
-def find_event(t0, h, eta0, v0, f, direction, lin, tab, sysd):
+def find_event(t0, h, eta0, v0, f, direction, lin, tab, sysd, mm, eb):
     """First crossing of the gap in ``direction`` inside the step, as a fraction s.
 
     NO_EVENT when the step is provably free of it, a fraction in (0, 1] at a located
@@ -772,21 +1024,40 @@ def find_event(t0, h, eta0, v0, f, direction, lin, tab, sysd):
     reach the obstacle are not resolved by 4 SAMPLES samples): the caller shortens the step.
     A step is declared free of an impact only if min(samples) - 2B > 0 with B the
     bound of :func:`_fast_bound` on the unresolved modes, or, all modes resolved, if
-    no sign change, excursion or Hermite-predicted dip is found.
+    no sign change, excursion or Hermite-predicted dip is found.  The samples are exact
+    modal propagations hop by hop (:func:`_hop`), the gap evaluated in modal form.
     """
-    ctx = (t0, h, eta0, v0, f, lin, tab, sysd)
-    if direction < 0 and _far(t0, h, eta0, v0, f, lin, sysd):
+    omega = lin[0]
+    s, d, dv, rate, A, Wu, W1, ec, vc, He, PJ, bb, ph = eb
+    N = omega.size
+    d0, vn0, J0, r0J = _gap_at(t0, eta0, v0, sysd, mm, He, True, PJ)
+    if direction < 0 and _far(t0, h, f, eta0, v0, d0, PJ, J0, omega, sysd):
         return NO_EVENT
+    _monomial(tab[2], f, A)
+    ctx = (t0, h, eta0, v0, omega, sysd, mm, eb)
     m = SAMPLES
     while True:
-        s = np.linspace(0.0, 1.0, m + 1)
-        d, dv = _gaps(t0, h, eta0, v0, f, s, lin, tab, sysd)
-        B = _fast_bound(t0, h, eta0, v0, f, m, lin, sysd)
+        _hop_weights(omega, h / m, ph, Wu)
+        for k in range(N):
+            ec[k] = eta0[k]
+            vc[k] = v0[k]
+        s[0] = 0.0
+        d[0] = d0
+        dv[0] = vn0
+        for i in range(1, m + 1):
+            _hop(A, (i - 1) / m, 1.0 / m, Wu, ec, vc, bb)
+            s[i] = i / m
+            gi = _gap_at(t0 + s[i] * h, ec, vc, sysd, mm, He, False, PJ)
+            d[i] = gi[0]
+            dv[i] = gi[1]
+        B = _fast_bound(h, eta0, v0, f, m, omega, PJ)
         leaving = d[0] > 0.0 or dv[0] > 0.0
-        if direction < 0 and leaving and np.min(d[1:]) - 2.0 * B > 0.0:
+        if direction < 0 and leaving and np.min(d[1 : m + 1]) - 2.0 * B > 0.0:
             return NO_EVENT
         if B == 0.0:
-            return _scan(s, d, dv * h, direction, ctx)
+            for i in range(m + 1):
+                rate[i] = dv[i] * h
+            return _scan(s[: m + 1], d[: m + 1], rate[: m + 1], direction, ctx)
         if m >= 4 * SAMPLES:
             return UNDECIDED
         m *= 4
@@ -856,27 +1127,27 @@ def _grow3(a, need):
 
 
 @njit(cache=True)
-def _extrapolate(c, f, ratio):
+def _extrapolate_into(c, f, ratio, out):
     """Values at the next step's nodes (1 + ratio c_i) of the interpolant through f (rows)."""
     p = c.size
-    out = np.zeros_like(f)
+    N = f.shape[1]
     for i in range(p):
+        for k in range(N):
+            out[i, k] = 0.0
         x = 1.0 + ratio * c[i]
         for j in range(p):
             lj = 1.0
             for m in range(p):
                 if m != j:
                     lj *= (x - c[m]) / (c[j] - c[m])
-            out[i] += lj * f[j]
-    return out
+            for k in range(N):
+                out[i, k] += lj * f[j, k]
 
 
 @njit(cache=True)
-def _extrapolate1(c, F, ratio):
-    out = np.empty(c.size)
+def _extrapolate1_into(c, F, ratio, out):
     for i in range(c.size):
         out[i] = _lagrange_at(c, F, 1.0 + ratio * c[i])
-    return out
 
 
 @njit(cache=True)
@@ -890,8 +1161,8 @@ FREEZE = True  # move the frozen mass-matrix variation of each step into its fre
 
 
 @njit(cache=True)
-def _frozen_shift(z, lin, sysd):
-    """The step's frequencies w~ and shift = w^2 - w~^2 from the mass matrix frozen at z.
+def _frozen_shift(eta, lin, sysd, mm, Ae, wt, shift):
+    """The step's frequencies w~ (into ``wt``) and shift = w^2 - w~^2 from the mass matrix frozen at eta.
 
     With M(q) = M_ref + ds e0 e0^T the coupling contains c u u^T W^2 eta (c = ds / (1 +
     ds (M_ref^-1)_00), u = Psi^T e0); its diagonal, -c u_k^2 w_k^2 eta_k, is the frequency
@@ -900,14 +1171,14 @@ def _frozen_shift(z, lin, sysd):
     """
     omega, Psi, PsiT, toM, row0, inv00, sref = lin
     N = omega.size
-    shift = np.zeros(N)
     if sysd[1] or not FREEZE:
-        return omega, shift
-    Mc = sysd[0][3]
-    q = z[1:]
-    ds = q @ (Mc @ q) - sref
+        for k in range(N):
+            wt[k] = omega[k]
+            shift[k] = 0.0
+        return
+    _mv(mm[1], eta, Ae)
+    ds = _dot(eta, Ae) - sref
     cbar = ds / (1.0 + ds * inv00)
-    wt = np.empty(N)
     for k in range(N):
         w2 = omega[k] * omega[k]
         sh = cbar * Psi[0, k] * Psi[0, k] * w2
@@ -915,7 +1186,6 @@ def _frozen_shift(z, lin, sysd):
             sh = w2
         shift[k] = sh
         wt[k] = math.sqrt(w2 - sh)
-    return wt, shift
 
 
 ADVANCE_END, ADVANCE_EVENT, ADVANCE_UNDERFLOW, ADVANCE_NONFINITE = 0, 1, 2, 3
@@ -931,30 +1201,45 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
     ``sample_step`` grid), and when ``keep_dense`` the accepted steps' records (t0, h,
     eta0, v0, f, E_d0, W0, dissipation and power rates at the nodes) for dense output.
     ``code``: ADVANCE_END, ADVANCE_EVENT, ADVANCE_UNDERFLOW (step size underflow) or
-    ADVANCE_NONFINITE.
+    ADVANCE_NONFINITE.  All work arrays are allocated here, once per phase; the output grid
+    inside a step is sampled hop by hop (:func:`_hop`, one set of weights per step).
     """
     omega, Psi, PsiT, toM, row0, inv00, sref = lin
     c, b, Vinv = tab
     N = omega.size
     p = c.size
-    n = sysd[0][0]
     size = 2 * N + 2
+    mm = _modal_model(lin, sysd)
+    cb = _colloc_buffers(N, p)
+    eb = _event_buffers(N, p)
+    out1 = _step_out(N, p)
+    out2 = _step_out(N, p)
+    Ae, Be, He, rest, PJb = cb[19], cb[20], cb[21], cb[22], cb[26]
     eta = toM @ z
     v = toM @ zd
-    J = np.empty(n + 1)
-    rest, gdir, th, om, thdd, d0, vn0 = node_forcing(t, z, zd, sysd, row0, inv00, sref, mode != 0, J)
-    f0 = PsiT @ rest
+    _node_modal(t, eta, v, sysd, mm, inv00, sref, mode != 0, Ae, Be, He, rest, PJb)
     f_guess = np.empty((p, N))
     for j in range(p):
-        f_guess[j] = f0
+        f_guess[j] = rest
     F_guess = np.zeros(p)
     work = (np.empty((N, p + 1)), np.empty((N, p + 1)), np.empty((N, p + 1)),
             np.empty((N, p + 1, p)), np.empty((N, p + 1, p)))
     h_w = -1.0
     new_lin = True
-    wt = omega
+    wt = omega.copy()
     shift = np.zeros(N)
-    lin_s = lin
+    lin_s = (wt, Psi, PsiT, toM, row0, inv00, sref)
+    # sampling work arrays
+    A = np.empty((p, N))
+    W1 = np.empty((N, 3 + 2 * p))
+    Wu = np.empty((N, 3 + 2 * p))
+    ec = np.empty(N)
+    vc = np.empty(N)
+    bb = np.empty(p)
+    ph = np.empty(p + 1, dtype=np.complex128)
+    cd = np.empty(p)
+    cw = np.empty(p)
+    zb = np.empty(N)
     ts = np.empty(256)
     ys = np.empty((256, size))
     ns = 0
@@ -977,12 +1262,12 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
     while t < t_end:
         h = min(h, t_end - t, hcap)
         if new_lin:
-            wt, shift = _frozen_shift(Psi @ eta, lin, sysd)
-            lin_s = (wt, Psi, PsiT, toM, row0, inv00, sref)
+            _frozen_shift(eta, lin, sysd, mm, Ae, wt, shift)
             new_lin = False
             h_w = -1.0
-        ok, eta1, v1, f, F, err, diss, power, iters = collocation_step(
-            t, h, eta, v, f_guess, F_guess, mode, lawp, lin_s, shift, tab, sysd, atol, rtol, work, h != h_w)
+        ok, err, iters = collocation_step(
+            t, h, eta, v, f_guess, F_guess, mode, lawp, lin_s, shift, tab, sysd, atol, rtol, work, h != h_w,
+            mm, cb, out1)
         h_w = h
         steps += 1
         nfev += iters * p + 1
@@ -995,10 +1280,11 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
                 code = ADVANCE_UNDERFLOW
                 break
             continue
+        eta1, v1, f, F, diss, power = out1
         if mode == 2:
             s_ev = multiplier_release(c, F)
         else:
-            s_ev = find_event(t, h, eta, v, f, direction, lin_s, tab, sysd)
+            s_ev = find_event(t, h, eta, v, f, direction, lin_s, tab, sysd, mm, eb)
         if s_ev < 0.0:  # undecided: too long a step near the obstacle
             h *= 0.25
             continue
@@ -1009,14 +1295,15 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             if h_ev <= 0.0:
                 code = ADVANCE_EVENT
                 break
-            ok2, eta1, v1, f2, F2, err2, diss2, power2, iters2 = collocation_step(
-                t, h_ev, eta, v, f, F, mode, lawp, lin_s, shift, tab, sysd, atol, rtol, work, True)
+            ok2, err2, iters2 = collocation_step(
+                t, h_ev, eta, v, f, F, mode, lawp, lin_s, shift, tab, sysd, atol, rtol, work, True, mm, cb, out2)
             h_w = h_ev
             nfev += iters2 * p + 1
             if not ok2:
                 h *= 0.5
                 continue
-            h_taken, f, F, diss, power = h_ev, f2, F2, diss2, power2
+            h_taken = h_ev
+            eta1, v1, f, F, diss, power = out2
         if keep_dense:
             if nr == r_t.shape[0]:
                 r_t = _grow1(r_t, nr + 1)
@@ -1039,66 +1326,111 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             r_rates[nr, 1] = power
             nr += 1
         # output samples on the grid strictly inside the step, then the step end
-        theta_start = Psi[0] @ eta
-        b_start = _boundary_work(t, Psi @ v, sysd) if prescribed else 0.0
+        theta_start = 0.0
+        for k in range(N):
+            theta_start += Psi[0, k] * eta[k]
+        b_start = 0.0
+        if prescribed:
+            _mv(PsiT, v, zb)
+            b_start = _boundary_work(t, zb, sysd)
         t1 = t + h_taken
         k0 = math.floor(t / sample_step) + 1
         k1 = math.floor(t1 / sample_step)
         cnt = 0
+        kf = k1 + 1
         for k in range(k0, k1 + 1):
             tk = k * sample_step
             if t < tk < t1:
                 cnt += 1
+                kf = min(kf, k)
         ts = _grow1(ts, ns + cnt + 1)
         ys = _grow2(ys, ns + cnt + 1)
         if cnt:
-            sg = np.empty(cnt)
-            tk_list = np.empty(cnt)
-            i = 0
-            for k in range(k0, k1 + 1):
-                tk = k * sample_step
-                if t < tk < t1:
-                    sg[i] = (tk - t) / h_taken
-                    tk_list[i] = tk
-                    ts[ns + i] = tk
-                    i += 1
-            Z, ZD = dense_states(h_taken, eta, v, f, sg, Psi, wt, Vinv)
-            Eds = integrate_rates(diss, sg, Vinv, h_taken)
-            Ws = integrate_rates(power, sg, Vinv, h_taken)
+            _monomial(Vinv, f, A)
+            for m in range(p):
+                acc_d = 0.0
+                acc_w = 0.0
+                for j in range(p):
+                    acc_d += Vinv[m, j] * diss[j]
+                    acc_w += Vinv[m, j] * power[j]
+                cd[m] = acc_d
+                cw[m] = acc_w
+            s0 = (kf * sample_step - t) / h_taken
+            ds_ = sample_step / h_taken
+            _hop_weights(wt, s0 * h_taken, ph, W1)
+            if cnt > 1:
+                _hop_weights(wt, ds_ * h_taken, ph, Wu)
+            for k in range(N):
+                ec[k] = eta[k]
+                vc[k] = v[k]
             for i in range(cnt):
+                tk = (kf + i) * sample_step
+                if i == 0:
+                    _hop(A, 0.0, s0, W1, ec, vc, bb)
+                else:
+                    _hop(A, s0 + (i - 1) * ds_, ds_, Wu, ec, vc, bb)
+                row = ys[ns + i]
+                _mv(PsiT, ec, row[:N])
+                _mv(PsiT, vc, row[N : 2 * N])
+                sg = (tk - t) / h_taken
+                eds = 0.0
+                wsm = 0.0
+                spm = sg
+                for m in range(p):
+                    eds += cd[m] * spm / (m + 1)
+                    wsm += cw[m] * spm / (m + 1)
+                    spm *= sg
+                ts[ns + i] = tk
+                row[2 * N] = Ed + eds * h_taken
                 if prescribed:
-                    Ws[i] += _boundary_work(tk_list[i], ZD[i], sysd) - b_start
+                    row[2 * N + 1] = W + (wsm * h_taken + _boundary_work(tk, row[N : 2 * N], sysd) - b_start)
                 else:  # constant torque: W = tau (theta - theta_0), exactly
-                    Ws[i] = tau * (Z[i, 0] - theta_start)
-            for i in range(cnt):
-                ys[ns + i, :N] = Z[i]
-                ys[ns + i, N : 2 * N] = ZD[i]
-                ys[ns + i, 2 * N] = Ed + Eds[i]
-                ys[ns + i, 2 * N + 1] = W + Ws[i]
+                    row[2 * N + 1] = W + tau * (row[0] - theta_start)
             ns += cnt
-        Ed += h_taken * (b @ diss)
+        ed_inc = 0.0
+        for j in range(p):
+            ed_inc += b[j] * diss[j]
+        Ed += h_taken * ed_inc
         if prescribed:
-            W += h_taken * (b @ power) + _boundary_work(t1, Psi @ v1, sysd) - b_start
+            pw_inc = 0.0
+            for j in range(p):
+                pw_inc += b[j] * power[j]
+            _mv(PsiT, v1, zb)
+            W += h_taken * pw_inc + _boundary_work(t1, zb, sysd) - b_start
         else:
             # tau theta' holds the fast modes' oscillation, which Gauss quadrature over a
             # long step would miss; for a constant torque the work is tau (theta1 - theta0)
-            W += tau * ((Psi[0] @ eta1) - theta_start)
+            th1 = 0.0
+            for k in range(N):
+                th1 += Psi[0, k] * eta1[k]
+            W += tau * (th1 - theta_start)
         t = t1
-        eta, v = eta1, v1
+        for k in range(N):
+            eta[k] = eta1[k]
+            v[k] = v1[k]
         new_lin = True
+        h_next = h
         if event:
-            f_guess, F_guess = f, F
+            for j in range(p):
+                F_guess[j] = F[j]
+                for k in range(N):
+                    f_guess[j, k] = f[j, k]
         else:
             h_next = h_taken * min(4.0, max(0.2, 0.9 * max(err, 1e-10) ** (-1.0 / (p + 1))))
-            f_guess = _extrapolate(c, f, h_next / h_taken)
-            F_guess = _extrapolate1(c, F, h_next / h_taken)
+            _extrapolate_into(c, f, h_next / h_taken, f_guess)
+            _extrapolate1_into(c, F, h_next / h_taken, F_guess)
         ts[ns] = t
-        ys[ns, :N] = Psi @ eta
-        ys[ns, N : 2 * N] = Psi @ v
-        ys[ns, 2 * N] = Ed
-        ys[ns, 2 * N + 1] = W
+        row = ys[ns]
+        _mv(PsiT, eta, row[:N])
+        _mv(PsiT, v, row[N : 2 * N])
+        row[2 * N] = Ed
+        row[2 * N + 1] = W
         ns += 1
-        if not np.all(np.isfinite(ys[ns - 1])):
+        finite = True
+        for k in range(size):
+            if not np.isfinite(row[k]):
+                finite = False
+        if not finite:
             code = ADVANCE_NONFINITE
             break
         if event:
@@ -1131,3 +1463,4 @@ def dense_eval(tt, r_t, r_h, r_w, r_eta, r_v, r_f, r_E, r_rates, Psi, Vinv, sysd
         else:
             out[i, 2 * N + 1] = r_E[k, 1] + sysd[2][4] * (Z[0, 0] - Psi[0] @ r_eta[k])
     return out
+
