@@ -44,6 +44,11 @@ VARIABLES: dict[str, tuple[str, str]] = {
 }
 
 
+def _interior_maxima(f: np.ndarray) -> list[int]:
+    """Indices of the sampled local maxima of f (a plateau counts once, at its start)."""
+    return [i for i in range(1, f.size - 1) if f[i] > f[i - 1] and f[i] >= f[i + 1]]
+
+
 def _golden_max(f, a: float, b: float, xtol: float) -> tuple[float, float]:
     """Maximum of a unimodal f on [a, b] by golden-section search (Kiefer 1953).
 
@@ -145,7 +150,7 @@ class Solution:
             return []
         f, tt = F[sel], t[sel]
         h = float(np.median(np.diff(tt))) if tt.size > 1 else 0.0
-        idx = [i for i in range(1, f.size - 1) if f[i] > f[i - 1] and f[i] >= f[i + 1]]
+        idx = _interior_maxima(f)
         if f[0] > f[1]:
             idx.insert(0, 0)
         peaks = [self._refine_max(float(tt[i]), h, ev.onset, end) for i in idx]
@@ -178,8 +183,7 @@ class Solution:
         else:
             k, end = t.size, math.nan
         ff, tt = f[i0:k], t[i0:k]
-        idx = [i for i in range(1, ff.size - 1) if ff[i] > ff[i - 1] and ff[i] >= ff[i + 1]]
-        peaks = [(float(tt[i]), float(ff[i])) for i in idx]
+        peaks = [(float(tt[i]), float(ff[i])) for i in _interior_maxima(ff)]
         if not peaks:
             return [], end - self.contacts[0].onset
         top = max(p[1] for p in peaks)

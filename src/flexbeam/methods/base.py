@@ -101,8 +101,8 @@ class ImpactMethod:
             zdd = np.concatenate(([thdd], yd[self.system.n : 2 * self.system.n]))
         else:
             zdd = yd[n1 : 2 * n1]
-        if self.system.compliant:  # [.., s, s', E_d, W]: s'' is third from the end
-            zdd = np.append(zdd, yd[-3])
+        if self.system.compliant:  # s'' of the support coordinate
+            zdd = np.append(zdd, yd[self.system.support_index + 1])
         return float(J @ zdd + gamma)
 
     def approaching(self, t: float, y: np.ndarray, located: bool = False) -> bool:

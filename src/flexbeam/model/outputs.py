@@ -15,7 +15,7 @@ from numba import njit
 
 from ..contact.laws import law_force, law_potential
 from .kernels import energies, point_kinematics
-from .system import BeamSystem, _state_split, contact_gap, rhs_kernel
+from .system import BeamSystem, _state_split, contact_gap, rhs_kernel, support_slot
 
 #: column order of :func:`sample_outputs`
 COLUMNS = (
@@ -50,7 +50,8 @@ def sample_outputs(
         r, v, a0 = point_kinematics(theta, omega, q, qd, pbase, pphi, pdphi, pH, pc, dr)
         s_ob, sd_ob = 0.0, 0.0
         if osup[0] > 0.0:
-            s_ob, sd_ob = y[y.size - 4], y[y.size - 3]
+            k_ob = support_slot(n, prescribed)
+            s_ob, sd_ob = y[k_ob], y[k_ob + 1]
         delta, vn, gamma, nx, ny, Js = contact_gap(
             r, v, a0, dr, okind, ocentre, oradius, onormal, osup, s_ob, sd_ob, J
         )

@@ -42,6 +42,12 @@ CONTACT_NONE, CONTACT_FORCE, CONTACT_CONSTRAINT = 0, 1, 2
 
 
 @njit(cache=True)
+def support_slot(n, prescribed):
+    """Index of a compliant support's s in the state (s' follows): right after the beam's part."""
+    return 2 * n if prescribed else 2 * n + 2
+
+
+@njit(cache=True)
 def contact_gap(r, v, a0, dr, okind, ocentre, oradius, onormal, osup, s, sd, J):
     """:func:`gap_state` for an obstacle displaced by s along its support axis u.
 
@@ -97,7 +103,7 @@ def rhs_kernel(
     if not np.all(np.isfinite(y)):  # a trial stage that blew up: let the solver reject it
         return np.full(y.size, np.nan), np.nan, np.nan
     theta, omega, q, qd = _state_split(y, n, prescribed, th_p, thd_p)
-    nb = 2 * n if prescribed else 2 * N  # beam part of the state
+    nb = support_slot(n, prescribed)  # the beam's part of the state ends here
     ms = osup[0]
     s_ob = y[nb] if ms > 0.0 else 0.0
     sd_ob = y[nb + 1] if ms > 0.0 else 0.0
@@ -252,8 +258,9 @@ class BeamSystem:
         return (2 * self.n + 2 if self.prescribed else 2 * self.n + 4) + (2 if self.compliant else 0)
 
     @property
-    def _support_index(self) -> int:
-        return 2 * self.n if self.prescribed else 2 * self.n + 2
+    def support_index(self) -> int:
+        """Index of s in the state vector (compliant support; s' follows)."""
+        return support_slot(self.n, self.prescribed)
 
     @property
     def g(self) -> float:
@@ -272,7 +279,7 @@ class BeamSystem:
         """(s, s') of a compliant obstacle support; (0, 0) for a rigid obstacle."""
         if not self.compliant:
             return 0.0, 0.0
-        k = self._support_index
+        k = self.support_index
         return float(y[k]), float(y[k + 1])
 
     def velocities(self, t: float, y: np.ndarray) -> np.ndarray:
@@ -290,7 +297,7 @@ class BeamSystem:
         else:
             y[n + 1 : 2 * n + 2] = zd[: n + 1]
         if self.compliant:
-            y[self._support_index + 1] = zd[n + 1]
+            y[self.support_index + 1] = zd[n + 1]
         return y
 
     # ----------------------------------------------------------- equations
