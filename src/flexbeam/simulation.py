@@ -162,13 +162,12 @@ def simulate(
 def uses_exponential(case: Case, method: str, system: BeamSystem) -> bool:
     """Does ``solver.integrator = "exponential"`` apply to this run?
 
-    Only CCFM on a rigidly held obstacle: the exponential integrator's constrained
-    (CCM / IMM resting) phase is not validated yet (its kernel branch misses the
-    reference's CCM peak by ~0.15 %) and its state has no compliant-support
-    coordinates, so those runs take the reference path (the Solution's provenance
-    names the integrator that ran).
+    Every impact method (CCFM, CCM, IMM) on a rigidly held obstacle; a compliant
+    support's coordinates (s, s') are not in the exponential integrator's modal state, so
+    those runs take the reference path (the Solution's provenance names the integrator
+    that ran).
     """
-    return case.solver.integrator == "exponential" and method == "ccfm" and not system.compliant
+    return case.solver.integrator == "exponential" and not system.compliant
 
 
 def collect(run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case,

@@ -43,6 +43,13 @@ Events (:func:`~flexbeam.integrate.exponential_kernels.find_event`):
   the event.
 * *separation* (CCFM): the gap's upward crossing, likewise.
 * *release* (CCM / resting contact): the collocated multiplier turning tensile.
+
+Constrained phases (CCM, IMM's resting contact): the multiplier lambda is collocated at
+the nodes so that g = delta' + kappa delta decays as g(t0) exp(-kappa (t - t0)) over the
+step -- the reference path's Baumgarte-stabilised delta'' + 2 alpha delta' + alpha^2 delta
+= 0 with kappa = alpha -- and, lambda being an algebraic variable the state's error
+estimate does not see, its interpolant's top term is held to MULTIPLIER_RTOL rtol of the
+phase's largest lambda (:func:`~flexbeam.integrate.exponential_kernels._multiplier_error`).
 """
 
 from __future__ import annotations

@@ -282,13 +282,13 @@ class Solver(_Section):
 
     ``integrator = "exponential"`` (default): exact modal propagation with Gauss
     collocation of the coupling and contact terms, compiled (fast; tolerances
-    ``fast_rtol``/``fast_atol``); it serves CCFM on a rigidly held obstacle, every other
-    run takes the reference path.  ``"reference"``: scipy's DOP853, event-driven
-    (``rtol``/``atol``).
+    ``fast_rtol``/``fast_atol``); it serves every impact method on a rigidly held
+    obstacle, a compliant ``obstacle.support`` takes the reference path.
+    ``"reference"``: scipy's DOP853, event-driven (``rtol``/``atol``).
     """
 
     integrator: Literal["exponential", "reference"] = Field(
-        "exponential", description="time integrator (exponential: CCFM with a rigid obstacle, "
+        "exponential", description="time integrator (exponential: with a rigid obstacle, "
         "else the reference is used)"
     )
     fast_rtol: Annotated[float, Field(gt=0, lt=1)] = Field(
