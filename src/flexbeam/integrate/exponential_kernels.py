@@ -34,6 +34,7 @@ import numpy as np
 from numba import njit
 
 from ..contact.laws import law_force
+from ..model.kernels import dot as _dot
 from ..model.kernels import gap_state, generalized_forces, point_kinematics
 
 P_NODES = 4
@@ -168,14 +169,6 @@ def _mv(AT, x, out):
         xj = x[j]
         for i in range(m):
             out[i] += xj * AT[j, i]
-
-
-@njit(cache=True)
-def _dot(a, b):
-    acc = 0.0
-    for i in range(a.size):
-        acc += a[i] * b[i]
-    return acc
 
 
 @njit(cache=True)

@@ -26,13 +26,42 @@ import math
 import numpy as np
 from numba import njit
 
+# Small dense products as plain loops: at n <= 64 a BLAS call (and the temporary it
+# allocates) costs more than the arithmetic, and these kernels run per sample and per stage.
+
+
+@njit(cache=True)
+def dot(a, b):
+    """a . b of two vectors."""
+    acc = 0.0
+    for i in range(a.size):
+        acc += a[i] * b[i]
+    return acc
+
+
+@njit(cache=True)
+def row_dot(A, i, x):
+    """(A x)_i."""
+    acc = 0.0
+    for j in range(x.size):
+        acc += A[i, j] * x[j]
+    return acc
+
+
+@njit(cache=True)
+def quad(A, x):
+    """x^T A x."""
+    acc = 0.0
+    for i in range(x.size):
+        acc += x[i] * row_dot(A, i, x)
+    return acc
+
 
 @njit(cache=True)
 def mass_matrix(q, Jc, Mc, Mff, mtf, out):
     """Fill ``out`` (N x N, N = n + 1) with M(q); ``Jc = J_h + J0``."""
     n = q.size
-    Mcq = Mc @ q
-    out[0, 0] = Jc + q @ Mcq
+    out[0, 0] = Jc + quad(Mc, q)
     for i in range(n):
         out[0, i + 1] = mtf[i]
         out[i + 1, 0] = mtf[i]
@@ -44,21 +73,24 @@ def mass_matrix(q, Jc, Mc, Mff, mtf, out):
 def generalized_forces(theta, omega, q, qd, tau, g, m1, Mc, Kff, sf, G, out):
     """Fill ``out`` (N) with Q(z, z', t) of the unimpact equations (no contact)."""
     n = q.size
-    Mcq = Mc @ q
-    Gq = G @ q
     c, s = math.cos(theta), math.sin(theta)
-    out[0] = tau - 2.0 * omega * (Mcq @ qd) - g * (c * (m1 - 0.5 * (q @ Gq)) - s * (sf @ q))
-    Kq = Kff @ q
+    qMcqd = 0.0
+    qGq = 0.0
     for i in range(n):
-        out[i + 1] = -Kq[i] + omega * omega * Mcq[i] - g * (c * sf[i] - s * Gq[i])
+        mcq = row_dot(Mc, i, q)
+        gq = row_dot(G, i, q)
+        qMcqd += mcq * qd[i]
+        qGq += q[i] * gq
+        out[i + 1] = -row_dot(Kff, i, q) + omega * omega * mcq - g * (c * sf[i] - s * gq)
+    out[0] = tau - 2.0 * omega * qMcqd - g * (c * (m1 - 0.5 * qGq) - s * dot(sf, q))
 
 
 @njit(cache=True)
 def energies(theta, omega, q, qd, Jc, Mc, Mff, mtf, Kff, m1, sf, G, g):
     """Return (kinetic, elastic, gravitational) energy [J]."""
-    T = 0.5 * omega * omega * (Jc + q @ (Mc @ q)) + omega * (mtf @ qd) + 0.5 * (qd @ (Mff @ qd))
-    Ve = 0.5 * (q @ (Kff @ q))
-    Vg = g * (math.sin(theta) * (m1 - 0.5 * (q @ (G @ q))) + math.cos(theta) * (sf @ q))
+    T = 0.5 * omega * omega * (Jc + quad(Mc, q)) + omega * dot(mtf, qd) + 0.5 * quad(Mff, qd)
+    Ve = 0.5 * quad(Kff, q)
+    Vg = g * (math.sin(theta) * (m1 - 0.5 * quad(G, q)) + math.cos(theta) * dot(sf, q))
     return T, Ve, Vg
 
 
@@ -84,28 +116,32 @@ def point_kinematics(theta, omega, q, qd, base, phi, dphi, H, c, dr):
         velocity-product terms, needed for J' z' in the contact constraint).
     """
     n = q.size
-    Hq = H @ q
-    ang = dphi @ q
-    angd = dphi @ qd
+    ang = dot(dphi, q)
+    angd = dot(dphi, qd)
     sa, ca = math.sin(ang), math.cos(ang)
-    rx = base - 0.5 * (q @ Hq) + c * sa
-    ry = phi @ q - c * ca
-    # d rho / d q (2 x n)
-    drho_x = -Hq + c * ca * dphi
-    drho_y = phi + c * sa * dphi
-    rhod_x = drho_x @ qd
-    rhod_y = drho_y @ qd
-    # velocity-product part of rho''
-    acc_x = -(qd @ (H @ qd)) - c * sa * angd * angd
-    acc_y = c * ca * angd * angd
     ct, st = math.cos(theta), math.sin(theta)
+    # d rho / d q (2 x n): (-H q + c ca Phi', Phi + c sa Phi'), and its products with q, q'
+    qHq = 0.0
+    rhod_x = 0.0
+    rhod_y = 0.0
+    for i in range(n):
+        hq = row_dot(H, i, q)
+        qHq += q[i] * hq
+        dx = -hq + c * ca * dphi[i]
+        dy = phi[i] + c * sa * dphi[i]
+        rhod_x += dx * qd[i]
+        rhod_y += dy * qd[i]
+        dr[0, i + 1] = ct * dx - st * dy
+        dr[1, i + 1] = st * dx + ct * dy
+    rx = base - 0.5 * qHq + c * sa
+    ry = dot(phi, q) - c * ca
+    # velocity-product part of rho''
+    acc_x = -quad(H, qd) - c * sa * angd * angd
+    acc_y = c * ca * angd * angd
     # floating-frame quantities -> global via A(theta) = [[ct, -st], [st, ct]]
     # dr/dtheta = A S rho, S rho = (-ry, rx)
     dr[0, 0] = ct * (-ry) - st * rx
     dr[1, 0] = st * (-ry) + ct * rx
-    for i in range(n):
-        dr[0, i + 1] = ct * drho_x[i] - st * drho_y[i]
-        dr[1, i + 1] = st * drho_x[i] + ct * drho_y[i]
     r = np.empty(2)
     r[0] = ct * rx - st * ry
     r[1] = st * rx + ct * ry
