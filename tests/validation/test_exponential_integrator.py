@@ -119,6 +119,44 @@ def test_imm_events_of_a_multi_contact_run_agree():
     assert abs(fast.metrics()["energy_drift_max"]) < 1e-5
 
 
+def _calibrated(**overrides):
+    return fb.load_case("seed-experiment-calibrated", {k.replace("__", "."): v for k, v in overrides.items()})
+
+
+def test_compliant_support_first_contact_and_sensor_agree():
+    """CCFM on the sensor (mass-spring-damper obstacle): the support's sqrt(m_s) s is one more
+    exactly propagated mode, its dashpot collocated; contact and sensor pulses agree."""
+    ref, fast = _both(_calibrated(model__modes=4, solver__t_end=2e-3))
+    _agree(ref, fast)
+    a, b = ref.metrics(), fast.metrics()
+    assert "exponential" in fast.provenance["integrator"]
+    assert_allclose(b["second_peak_force"], a["second_peak_force"], rtol=5e-4)
+    assert_allclose(b["sensor_peak_force"], a["sensor_peak_force"], rtol=5e-4)
+    assert_allclose(b["sensor_duration"], a["sensor_duration"], rtol=1e-3)
+    assert_allclose(fast["dissipated_energy"][-1], ref["dissipated_energy"][-1], rtol=1e-4)
+
+
+def test_compliant_support_multi_contact_onsets_agree_and_converge():
+    """Three contacts in 30 ms on the sensor.  At the default tolerances the third onset,
+    after 24 ms of flight, is within 1e-7 s (the atol-limited phase error of the vibration);
+    with fast_rtol 1e-8 and fast_atol 1e-13 every onset is within 2e-9 s of the reference."""
+    ref, fast = _both(_calibrated(model__modes=4, solver__t_end=0.03))
+    tight = fb.simulate(_with(_calibrated(model__modes=4, solver__t_end=0.03, solver__fast_rtol=1e-8,
+                                          solver__fast_atol=1e-13), "exponential"))
+    assert len(fast.contacts) == len(tight.contacts) == len(ref.contacts) >= 3
+    for a, b, c in zip(ref.contacts, fast.contacts, tight.contacts, strict=True):
+        assert_allclose(b.onset, a.onset, rtol=0, atol=1e-7)
+        assert_allclose(c.onset, a.onset, rtol=0, atol=2e-9)
+        assert_allclose(b.peak_force, a.peak_force, rtol=5e-4)
+    assert abs(fast.metrics()["energy_drift_max"]) < 1e-6
+
+
+@pytest.mark.parametrize("method", ["ccm", "imm"])
+def test_constrained_phases_on_a_compliant_support_take_the_reference_path(method):
+    sol = fb.simulate(_calibrated(model__modes=2, solver__t_end=1e-3), method)
+    assert "DOP853" in sol.provenance["integrator"]
+
+
 def test_torque_drive_books_the_work():
     """Constant joint torque: W = tau (theta - theta_0) booked exactly, energy conserved."""
     case = seed(model__modes=6, drive__kind="torque", drive__torque=-2.0, initial__kind="state",

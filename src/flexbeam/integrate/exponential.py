@@ -44,6 +44,12 @@ Events (:func:`~flexbeam.integrate.exponential_kernels.find_event`):
 * *separation* (CCFM): the gap's upward crossing, likewise.
 * *release* (CCM / resting contact): the collocated multiplier turning tensile.
 
+Compliant obstacle support (CCFM): the support's coordinate sqrt(m_s) s is one more mode
+of frequency sqrt(k_s / m_s), propagated exactly; its dashpot -c_s s' / m_s is collocated
+like the coupling terms (and booked in E_d), and the gap sees the obstacle moved by s.
+The kernel works on [z, s, z', s', E_d, W]; :class:`ModalIntegrator` maps to and from the
+reference layout [z, z', s, s', E_d, W].
+
 Constrained phases (CCM, IMM's resting contact): the multiplier lambda is collocated at
 the nodes so that g = delta' + kappa delta decays as g(t0) exp(-kappa (t - t0)) over the
 step -- the reference path's Baumgarte-stabilised delta'' + 2 alpha delta' + alpha^2 delta
@@ -89,7 +95,7 @@ class ModalIntegrator:
             M0 = np.ascontiguousarray(b.Mff)
             K0 = np.ascontiguousarray(b.Kff)
         else:
-            M0 = system.mass_matrix(0.0, system.state(0.0, 0.0))
+            M0 = system.mass_matrix(0.0, system.state(0.0, 0.0))[: n + 1, : n + 1]  # the beam block
             K0 = np.zeros((n + 1, n + 1))
             K0[1:, 1:] = b.Kff
         # (K0, M0) eigenproblem through the Cholesky factor M0 = L L^T (no scipy at start-up)
@@ -98,12 +104,28 @@ class ModalIntegrator:
         Psi = Linv.T @ Y
         w2 = np.where(w2 < 1e-10 * max(float(np.max(w2, initial=0.0)), 1.0), 0.0, w2)
         omega = np.sqrt(w2)
-        Psi = np.ascontiguousarray(Psi)
-        self.N = omega.size
+        toM = Psi.T @ M0
         M0inv = np.linalg.inv(M0)
-        row0 = np.ascontiguousarray(M0inv[0]) if not system.prescribed else np.zeros(self.N)
+        row0 = M0inv[0] if not system.prescribed else np.zeros(omega.size)
         inv00 = float(M0inv[0, 0]) if not system.prescribed else 0.0
-        self.lin = (omega, Psi, np.ascontiguousarray(Psi.T), np.ascontiguousarray(Psi.T @ M0), row0, inv00, 0.0)
+        self.nb = omega.size  # the beam's coordinates (theta and q, or q alone)
+        if system.compliant:  # the support's sqrt(m_s) s as one more mode, frequency sqrt(k_s / m_s)
+            ms, ks = float(system.contact.support[0]), float(system.contact.support[1])
+            nb = self.nb
+            omega = np.append(omega, math.sqrt(ks / ms))
+            Psi = np.block([[Psi, np.zeros((nb, 1))], [np.zeros((1, nb)), np.full((1, 1), 1.0 / math.sqrt(ms))]])
+            toM = np.block([[toM, np.zeros((nb, 1))], [np.zeros((1, nb)), np.full((1, 1), math.sqrt(ms))]])
+            row0 = np.append(row0, 0.0)
+        self.N = omega.size
+        Psi = np.ascontiguousarray(Psi)
+        self.lin = (omega, Psi, np.ascontiguousarray(Psi.T), np.ascontiguousarray(toM), np.ascontiguousarray(row0),
+                    inv00, 0.0)
+        # kernel state layout [z, s, z', s', E_d, W] -> reference layout [z, z', s, s', E_d, W]
+        nb, N = self.nb, self.N
+        self.to_reference = np.arange(2 * N + 2)
+        if system.compliant:
+            self.to_reference = np.concatenate([np.arange(nb), N + np.arange(nb), [nb, 2 * N - 1],
+                                                [2 * N, 2 * N + 1]])
         model = (n, b.hub_inertia + b.J0, b.m1, Mc, b.Mff, b.mtf, b.Kff, b.sf, b.G, float(system.g))
         spec = system.drive.spec
         drive = (
@@ -112,21 +134,28 @@ class ModalIntegrator:
         )  # fmt: skip
         P, o = system.contact.point, system.contact
         point = (P.base, P.phi, P.dphi, P.H, P.offset)
-        obstacle = (o.kind, o.centre, o.radius, o.normal)
+        obstacle = (o.kind, o.centre, o.radius, o.normal, np.ascontiguousarray(o.support, dtype=float))
         self.sysd = (model, bool(system.prescribed), drive, point, obstacle)
         c, bw, Vinv, _, _ = gauss_tables(P_NODES)
         self.tab = (c, bw, Vinv)
 
     def split(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, float]:
-        """(z, z', E_d, W) of a reference-layout state."""
+        """(z, z', E_d, W) of a reference-layout state (z and z' end with s and s' for a compliant support)."""
+        k = np.empty_like(y)
+        k[self.to_reference] = y
         N = self.N
-        return (np.ascontiguousarray(y[:N]), np.ascontiguousarray(y[N : 2 * N]), float(y[2 * N]),
-                float(y[2 * N + 1]))
+        return (np.ascontiguousarray(k[:N]), np.ascontiguousarray(k[N : 2 * N]), float(k[2 * N]),
+                float(k[2 * N + 1]))
+
+    def reference_layout(self, Y: np.ndarray) -> np.ndarray:
+        """Rows of kernel-layout states in the reference layout."""
+        return Y if Y.shape[-1] == 0 else np.ascontiguousarray(Y[..., self.to_reference])
 
     def advance(self, t, t_end, y, mode, lawp, h, hcap, sample_step, keep_dense):
         z, zd, Ed, W = self.split(y)
-        return advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense, self.lin,
-                       self.tab, self.sysd, self.atol, self.rtol)
+        out = advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense, self.lin,
+                      self.tab, self.sysd, self.atol, self.rtol)
+        return (*out[:6], self.reference_layout(out[6]), *out[7:])
 
 
 class _SegmentDense:
@@ -140,10 +169,11 @@ class _SegmentDense:
         self.t_min, self.t_max = float(r_t[0]), float(r_t[-1] + r_h[-1])
         self.t_old, self.t = self.t_min, self.t_max
         self.args = (*records, integ.lin[1], integ.tab[2], integ.sysd)
+        self.integ = integ
 
     def __call__(self, t):
         tt = np.atleast_1d(np.asarray(t, float))
-        Y = dense_eval(tt, *self.args)
+        Y = self.integ.reference_layout(dense_eval(tt, *self.args))
         return Y[0] if np.ndim(t) == 0 else Y.T
 
 

@@ -281,16 +281,26 @@ def _gap_kin(th, om, e, v, He, point, obstacle, mm, want_pj, prescribed, PJ):
     vly = rhod_y + om * rx
     w0 = ct * vlx - st * vly
     w1 = st * vlx + ct * vly
-    kind, centre, radius, normal = obstacle
+    kind, centre, radius, normal, sup = obstacle
+    cx, cy = centre[0], centre[1]
+    rs = 0.0
+    if sup[0] > 0.0:  # compliant support: the obstacle moved by s along u, P's velocity relative to it
+        rs = 1.0 / math.sqrt(sup[0])  # the last modal coordinate is sqrt(m_s) s
+        s_ob = e[N - 1] * rs
+        sd_ob = v[N - 1] * rs
+        cx += s_ob * sup[3]
+        cy += s_ob * sup[4]
+        w0 -= sd_ob * sup[3]
+        w1 -= sd_ob * sup[4]
     if kind == 0:
-        dx = r0 - centre[0]
-        dy = r1 - centre[1]
+        dx = r0 - cx
+        dy = r1 - cy
         dist = math.sqrt(dx * dx + dy * dy)
         nx, ny = dx / dist, dy / dist
         delta = dist - radius
     else:
         nx, ny = normal[0], normal[1]
-        delta = nx * (r0 - centre[0]) + ny * (r1 - centre[1])
+        delta = nx * (r0 - cx) + ny * (r1 - cy)
     vn = nx * w0 + ny * w1
     J0 = 0.0
     r0J = 0.0
@@ -304,6 +314,8 @@ def _gap_kin(th, om, e, v, He, point, obstacle, mm, want_pj, prescribed, PJ):
             for k in range(N):
                 PJ[k] += psi0[k] * J0
             r0J = sc[0] * J0 + a * (-_dot(hr, e) + c_off * ca * sc[3]) + bb * (sc[2] + c_off * sa * sc[3])
+        if rs > 0.0:  # d delta / d(sqrt(m_s) s) = -(n . u) / sqrt(m_s)
+            PJ[N - 1] = -(nx * sup[3] + ny * sup[4]) * rs
     return delta, vn, J0, r0J
 
 
@@ -366,6 +378,9 @@ def _node_modal(t, e, v, sysd, mm, inv00, sref, want_gap, Ae, Be, He, rest, PJ):
         rest0 = Q0 - ds * row0Q / den
         for k in range(N):
             rest[k] += psi0[k] * rest0
+    sup = obstacle[4]
+    if sup[0] > 0.0:  # the support's dashpot, -c_s s' / m_s in the coordinate sqrt(m_s) s
+        rest[N - 1] -= sup[2] / sup[0] * v[N - 1]
     delta = 0.0
     vn = 0.0
     gcorr = 0.0
@@ -773,6 +788,10 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, 
         if mode == 1:
             fi, fk = law_force(lawp, -delta[i], -vn[i])
             diss[i] = (fi - fk) * (-vn[i])
+        sup = sysd[4][4]
+        if sup[0] > 0.0:  # the support's dashpot, c_s s'^2
+            _modal_at(eta0, v0, f, C, SW, WS, RE, RV, i, ei, vi)
+            diss[i] += sup[2] / sup[0] * vi[N - 1] * vi[N - 1]
         if prescribed:
             # joint torque = M[0,:] z'' - Q[0] - J[0] F, z'' = [theta'', Psi (f - w^2 eta)]
             eta, v, z, zd = _states(eta0, v0, f, C, SW, WS, RE, RV, i, Psi)
@@ -850,6 +869,12 @@ def _event_buffers(N, p):
 @njit(cache=True)
 def _gap1(x, ctx):
     """Gap at the fraction x of the step (exact modal propagation from its start)."""
+    return _gap_rate1(x, ctx)[0]
+
+
+@njit(cache=True)
+def _gap_rate1(x, ctx):
+    """Gap and its rate at the fraction x of the step."""
     t0, h, eta0, v0, omega, sysd, mm, eb = ctx
     s, d, dv, rate, A, Wu, W1, ec, vc, He, PJ, bb, ph = eb
     _hop_weights(omega, x * h, ph, W1)
@@ -857,7 +882,36 @@ def _gap1(x, ctx):
         ec[k] = eta0[k]
         vc[k] = v0[k]
     _hop(A, 0.0, x, W1, ec, vc, bb)
-    return _gap_at(t0 + x * h, ec, vc, sysd, mm, He, False, PJ)[0]
+    g = _gap_at(t0 + x * h, ec, vc, sysd, mm, He, False, PJ)
+    return g[0], g[1]
+
+
+@njit(cache=True)
+def _leaves_surface(a, b, sign, ctx):
+    """Event fraction in [a, b] when the gap starts on its surface at rest and ends beyond it.
+
+    As the reference path's ``_leaves_surface``: a phase that starts on the event surface
+    with (almost) zero rate -- P left on the obstacle by a CCM release at lambda = 0 just
+    after the e = 0 jump -- can cross inside an excursion far below round-off.  The first
+    point of a geometric grid from a where the gap is beyond the surface by more than
+    1e-6 |g(b)| and still moving that way is reported (Brent-refined if the gap is seen on
+    the near side just before), so the method decides there and the contact is not lost.
+    NO_EVENT if none: the gap is beyond the surface only by the constraint's drift and P is
+    on its way back (a CCM release from a gap of round-off size).
+    """
+    gb = _gap1(b, ctx)
+    noise = 1e-6 * abs(gb)
+    prev_x = a
+    prev_g = _gap1(a, ctx)
+    for k in range(48, -1, -1):
+        x = a + (b - a) * 2.0 ** (-k)
+        gx, rx = _gap_rate1(x, ctx)
+        if sign * gx > noise and sign * rx > 0.0:
+            if -sign * prev_g > 0.0:
+                return _brent(prev_x, x, prev_g, gx, ctx)
+            return x
+        prev_x, prev_g = x, gx
+    return NO_EVENT
 @njit(cache=True)
 def _brent(a, b, fa, fb, ctx):
     """Root of the gap on [a, b] (fa fb <= 0), Brent's method (xtol 1e-15, rtol 1e-14)."""
@@ -949,11 +1003,16 @@ def _scan(s, d, rate, direction, ctx):
             if b == 0.0:
                 return s[i + 1]
             return _brent(s[i], s[i + 1], a, b, ctx)
-        if -sign * a <= 0.0 and -sign * ra > 0.0 and -sign * b < 0.0:  # hump
-            x = _golden_min(ctx, s[i], s[i + 1], sign)
-            gx = _gap1(x, ctx)
-            if -sign * gx > 0.0:
-                return _brent(x, s[i + 1], gx, b, ctx)
+        if -sign * a <= 0.0 and -sign * b < 0.0:  # starts on (or just behind) zero, ends beyond it
+            if -sign * ra > 0.0:  # leaving at first: a hump
+                x = _golden_min(ctx, s[i], s[i + 1], sign)
+                gx = _gap1(x, ctx)
+                if -sign * gx > 0.0:
+                    return _brent(x, s[i + 1], gx, b, ctx)
+                if i == 0:  # the phase starts on the surface (an excursion below round-off)
+                    x = _leaves_surface(s[i], s[i + 1], sign, ctx)
+                    if x <= 1.0:
+                        return x
             continue
         same = (a > 0.0 and b > 0.0) if sign < 0 else (a < 0.0 and b < 0.0)
         if not same:

@@ -283,13 +283,14 @@ class Solver(_Section):
     ``integrator = "exponential"`` (default): exact modal propagation with Gauss
     collocation of the coupling and contact terms, compiled (fast; tolerances
     ``fast_rtol``/``fast_atol``); it serves every impact method on a rigidly held
-    obstacle, a compliant ``obstacle.support`` takes the reference path.
+    obstacle and CCFM on a compliant ``obstacle.support``; constrained phases against a
+    compliant support (CCM, IMM's resting contact) take the reference path.
     ``"reference"``: scipy's DOP853, event-driven (``rtol``/``atol``).
     """
 
     integrator: Literal["exponential", "reference"] = Field(
-        "exponential", description="time integrator (exponential: with a rigid obstacle, "
-        "else the reference is used)"
+        "exponential", description="time integrator (exponential: with a rigid obstacle, or CCFM "
+        "on a compliant support; else the reference is used)"
     )
     fast_rtol: Annotated[float, Field(gt=0, lt=1)] = Field(
         1e-6, description="relative tolerance of the exponential integrator"
