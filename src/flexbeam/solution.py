@@ -44,15 +44,19 @@ VARIABLES: dict[str, tuple[str, str]] = {
 }
 
 
-def _interior_maxima(f: np.ndarray, rtol: float = 1e-9) -> list[int]:
+def _interior_maxima(f: np.ndarray, rtol: float = 1e-9, start: bool = False) -> list[int]:
     """Indices of the sampled local maxima of f (a plateau counts once, at its start).
 
     A maximum must stand above its lower neighbour by more than ``rtol`` max|f|: the
     round-off ripple of a constant force (a contact resting under a static load) is no peak.
+    ``start``: the first sample counts too when it stands above the second by that much.
     """
     tol = rtol * float(np.max(np.abs(f), initial=0.0))
-    return [i for i in range(1, f.size - 1)
-            if f[i] > f[i - 1] and f[i] >= f[i + 1] and f[i] - min(f[i - 1], f[i + 1]) > tol]
+    idx = [i for i in range(1, f.size - 1)
+           if f[i] > f[i - 1] and f[i] >= f[i + 1] and f[i] - min(f[i - 1], f[i + 1]) > tol]
+    if start and f.size > 1 and f[0] - f[1] > tol:
+        idx.insert(0, 0)
+    return idx
 
 
 def _golden_max(f, a: float, b: float, xtol: float) -> tuple[float, float]:
@@ -156,9 +160,7 @@ class Solution:
             return []
         f, tt = F[sel], t[sel]
         h = float(np.median(np.diff(tt))) if tt.size > 1 else 0.0
-        idx = _interior_maxima(f)
-        if f[0] - f[1] > 1e-9 * float(np.max(np.abs(f))):
-            idx.insert(0, 0)
+        idx = _interior_maxima(f, start=True)
         peaks = [self._refine_max(float(tt[i]), h, ev.onset, end) for i in idx]
         if not peaks:
             return []

@@ -121,8 +121,9 @@ class ModalIntegrator:
         self.lin = (omega, Psi, np.ascontiguousarray(Psi.T), np.ascontiguousarray(toM), np.ascontiguousarray(row0),
                     inv00, 0.0)
         # kernel state layout [z, s, z', s', E_d, W] -> reference layout [z, z', s, s', E_d, W]
+        # (the same without a compliant support)
         nb, N = self.nb, self.N
-        self.to_reference = np.arange(2 * N + 2)
+        self.to_reference = None
         if system.compliant:
             self.to_reference = np.concatenate([np.arange(nb), N + np.arange(nb), [nb, 2 * N - 1],
                                                 [2 * N, 2 * N + 1]])
@@ -141,15 +142,17 @@ class ModalIntegrator:
 
     def split(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, float]:
         """(z, z', E_d, W) of a reference-layout state (z and z' end with s and s' for a compliant support)."""
-        k = np.empty_like(y)
-        k[self.to_reference] = y
+        k = y
+        if self.to_reference is not None:
+            k = np.empty_like(y)
+            k[self.to_reference] = y
         N = self.N
         return (np.ascontiguousarray(k[:N]), np.ascontiguousarray(k[N : 2 * N]), float(k[2 * N]),
                 float(k[2 * N + 1]))
 
     def reference_layout(self, Y: np.ndarray) -> np.ndarray:
         """Rows of kernel-layout states in the reference layout."""
-        return Y if Y.shape[-1] == 0 else np.ascontiguousarray(Y[..., self.to_reference])
+        return Y if self.to_reference is None else np.ascontiguousarray(Y[..., self.to_reference])
 
     def advance(self, t, t_end, y, mode, lawp, h, hcap, sample_step, keep_dense):
         z, zd, Ed, W = self.split(y)

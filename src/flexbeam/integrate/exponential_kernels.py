@@ -887,7 +887,7 @@ def _gap_rate1(x, ctx):
 
 
 @njit(cache=True)
-def _leaves_surface(a, b, sign, ctx):
+def _leaves_surface(a, b, ga, gb, sign, ctx):
     """Event fraction in [a, b] when the gap starts on its surface at rest and ends beyond it.
 
     As the reference path's ``_leaves_surface``: a phase that starts on the event surface
@@ -895,14 +895,14 @@ def _leaves_surface(a, b, sign, ctx):
     after the e = 0 jump -- can cross inside an excursion far below round-off.  The first
     point of a geometric grid from a where the gap is beyond the surface by more than
     1e-6 |g(b)| and still moving that way is reported (Brent-refined if the gap is seen on
-    the near side just before), so the method decides there and the contact is not lost.
+    the near side just before), so the method decides there and the contact is not lost;
+    ``ga``, ``gb`` are the gap at a and b, known to the caller.
     NO_EVENT if none: the gap is beyond the surface only by the constraint's drift and P is
     on its way back (a CCM release from a gap of round-off size).
     """
-    gb = _gap1(b, ctx)
     noise = 1e-6 * abs(gb)
     prev_x = a
-    prev_g = _gap1(a, ctx)
+    prev_g = ga
     for k in range(48, -1, -1):
         x = a + (b - a) * 2.0 ** (-k)
         gx, rx = _gap_rate1(x, ctx)
@@ -1010,7 +1010,7 @@ def _scan(s, d, rate, direction, ctx):
                 if -sign * gx > 0.0:
                     return _brent(x, s[i + 1], gx, b, ctx)
                 if i == 0:  # the phase starts on the surface (an excursion below round-off)
-                    x = _leaves_surface(s[i], s[i + 1], sign, ctx)
+                    x = _leaves_surface(s[i], s[i + 1], a, b, sign, ctx)
                     if x <= 1.0:
                         return x
             continue
@@ -1174,28 +1174,11 @@ def multiplier_release(c, lam):
 # ---------------------------------------------------------------- the loop
 
 @njit(cache=True)
-def _grow1(a, need):
+def _grow(a, need):
+    """``a`` with room for ``need`` rows along its first axis (doubling), contents kept."""
     if need <= a.shape[0]:
         return a
-    out = np.empty(max(need, 2 * a.shape[0]))
-    out[: a.shape[0]] = a
-    return out
-
-
-@njit(cache=True)
-def _grow2(a, need):
-    if need <= a.shape[0]:
-        return a
-    out = np.empty((max(need, 2 * a.shape[0]), a.shape[1]))
-    out[: a.shape[0]] = a
-    return out
-
-
-@njit(cache=True)
-def _grow3(a, need):
-    if need <= a.shape[0]:
-        return a
-    out = np.empty((max(need, 2 * a.shape[0]), a.shape[1], a.shape[2]))
+    out = np.empty((max(need, 2 * a.shape[0]),) + a.shape[1:])
     out[: a.shape[0]] = a
     return out
 
@@ -1407,14 +1390,14 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             eta1, v1, f, F, diss, power = out2
         if keep_dense:
             if nr == r_t.shape[0]:
-                r_t = _grow1(r_t, nr + 1)
-                r_w = _grow2(r_w, nr + 1)
-                r_h = _grow1(r_h, nr + 1)
-                r_eta = _grow2(r_eta, nr + 1)
-                r_v = _grow2(r_v, nr + 1)
-                r_f = _grow3(r_f, nr + 1)
-                r_E = _grow2(r_E, nr + 1)
-                r_rates = _grow3(r_rates, nr + 1)
+                r_t = _grow(r_t, nr + 1)
+                r_w = _grow(r_w, nr + 1)
+                r_h = _grow(r_h, nr + 1)
+                r_eta = _grow(r_eta, nr + 1)
+                r_v = _grow(r_v, nr + 1)
+                r_f = _grow(r_f, nr + 1)
+                r_E = _grow(r_E, nr + 1)
+                r_rates = _grow(r_rates, nr + 1)
             r_t[nr] = t
             r_w[nr] = wt
             r_h[nr] = h_taken
@@ -1444,8 +1427,8 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             if t < tk < t1:
                 cnt += 1
                 kf = min(kf, k)
-        ts = _grow1(ts, ns + cnt + 1)
-        ys = _grow2(ys, ns + cnt + 1)
+        ts = _grow(ts, ns + cnt + 1)
+        ys = _grow(ys, ns + cnt + 1)
         if cnt:
             _monomial(Vinv, f, A)
             for m in range(p):
