@@ -44,6 +44,11 @@ VARIABLES: dict[str, tuple[str, str]] = {
 }
 
 
+#: peak refinement stops at this bracket [s]: near a peak F ~ F_max (1 - ((t - t_p) / tau)^2) with
+#: tau >~ 1e-5 s for any contact pulse resolved at all, so the force is then exact to ~1e-10 relative
+PEAK_XTOL = 1e-10
+
+
 def _interior_maxima(f: np.ndarray, rtol: float = 1e-9, start: bool = False) -> list[int]:
     """Indices of the sampled local maxima of f (a plateau counts once, at its start).
 
@@ -141,7 +146,7 @@ class Solution:
         a, b = max(lo, t_guess - h), min(hi, t_guess + h)
         if b <= a:
             return t_guess, float(self._force_at(t_guess))
-        t_max, f_max = _golden_max(self._force_at, a, b, xtol=1e-12)
+        t_max, f_max = _golden_max(self._force_at, a, b, xtol=PEAK_XTOL)
         f_guess = float(self._force_at(t_guess))
         if f_max >= f_guess:
             return t_max, f_max

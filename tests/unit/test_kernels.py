@@ -87,3 +87,26 @@ def test_mass_matrix_is_symmetric_positive_definite():
     M = system.mass_matrix(0.0, y)
     assert_allclose(M, M.T)
     assert np.all(np.linalg.eigvalsh(M) > 0)
+
+
+def test_measuring_point_velocity_is_the_rate_of_its_position():
+    """transverse_velocity = (d/dt of the point's global position) . (beam normal), central differences."""
+    from flexbeam.model.kernels import point_kinematics, transverse_velocity
+
+    system = BeamSystem.from_case(seed(model__modes=5))
+    beam = system.beam
+    rng = np.random.default_rng(7)
+    dr = np.empty((2, beam.n + 1))
+    for x in (0.1, 0.585, beam.length):
+        pt = beam.point(x)
+        for _ in range(3):
+            theta, omega = rng.uniform(-1, 1), rng.uniform(-30, 30)
+            q = rng.normal(size=beam.n) * 1e-3 / np.arange(1, beam.n + 1) ** 2
+            qd = rng.normal(size=beam.n) * 0.3 / np.arange(1, beam.n + 1)
+            h = 1e-7
+            ends = [point_kinematics(theta + s * omega, omega, q + s * qd, qd, pt.base, pt.phi, pt.dphi, pt.H, 0.0,
+                                     dr)[0] for s in (h, -h)]
+            v = (ends[0] - ends[1]) / (2 * h)
+            normal = np.array([-np.sin(theta), np.cos(theta)])
+            got = transverse_velocity(omega, q, qd, pt.base, pt.phi, pt.H)
+            assert_allclose(got, v @ normal, rtol=1e-7, atol=1e-10)

@@ -161,6 +161,17 @@ def point_kinematics(theta, omega, q, qd, base, phi, dphi, H, c, dr):
 
 
 @njit(cache=True)
+def transverse_velocity(omega, q, qd, base, phi, H):
+    """Velocity of a beam-axis point (offset c = 0) normal to the rotated beam axis [m/s].
+
+    The y-component in the rotating frame of :func:`point_kinematics`'s velocity,
+    rho_y' + theta' rho_x = Phi q' + theta' (r_h + x - q^T H q / 2), without its Jacobian and
+    acceleration terms (what the measuring points record).
+    """
+    return dot(phi, qd) + omega * (base - 0.5 * quad(H, q))
+
+
+@njit(cache=True)
 def gap_state(r, v, a0, dr, kind, centre, radius, normal, J):
     """Gap delta, its rate, its velocity-product acceleration and Jacobian J.
 

@@ -8,13 +8,11 @@ cannot disagree.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
 from ..contact.laws import law_force, law_potential
-from .kernels import energies, point_kinematics
+from .kernels import energies, point_kinematics, transverse_velocity
 from .system import BeamSystem, _state_split, contact_gap, rhs_kernel, support_slot
 
 #: column order of :func:`sample_outputs`
@@ -33,7 +31,7 @@ def sample_outputs(
     Y, n, prescribed, TH, THD, THDD, TAU, g,
     Jc, m1, Mc, Mff, mtf, Kff, sf, G,
     pbase, pphi, pdphi, pH, pc, okind, ocentre, oradius, onormal, osup,
-    mode, p, tip_phi, mbase, mphi, mdphi, mH,
+    mode, p, tip_phi, mbase, mphi, mH,
 ):  # fmt: skip
     """Rows of :data:`COLUMNS` and measuring-point normal velocities for states ``Y``."""
     m = Y.shape[0]
@@ -81,10 +79,8 @@ def sample_outputs(
         out[k, 12] = tip_phi @ q if n > 0 else 0.0
         out[k, 13] = s_ob
         out[k, 14] = -(osup[1] * s_ob + osup[2] * sd_ob)
-        ct, st = math.cos(theta), math.sin(theta)
         for j in range(mbase.size):
-            rj, vj, aj = point_kinematics(theta, omega, q, qd, mbase[j], mphi[j], mdphi[j], mH[j], 0.0, dr)
-            mv[k, j] = -st * vj[0] + ct * vj[1]
+            mv[k, j] = transverse_velocity(omega, q, qd, mbase[j], mphi[j], mH[j])
     return out, mv
 
 
@@ -104,12 +100,11 @@ def evaluate(system: BeamSystem, times: np.ndarray, states: np.ndarray, mode: in
     n = b.n
     mbase = np.array([pt.base for pt in pts], float)
     mphi = np.array([pt.phi for pt in pts], float).reshape(len(pts), n)
-    mdphi = np.array([pt.dphi for pt in pts], float).reshape(len(pts), n)
     mH = np.array([pt.H for pt in pts], float).reshape(len(pts), n, n)
     out, mv = sample_outputs(
         np.ascontiguousarray(states), n, system.prescribed, TH, THD, THDD, TAU, system.g,
         b.hub_inertia + b.J0, b.m1, np.ascontiguousarray(b.Mff - b.D), b.Mff, b.mtf, b.Kff, b.sf, b.G,
         P.base, P.phi, P.dphi, P.H, P.offset, o.kind, o.centre, o.radius, o.normal, o.support,
-        mode, p, tip.phi if tip is not None else np.zeros(0), mbase, mphi, mdphi, mH,
+        mode, p, tip.phi if tip is not None else np.zeros(0), mbase, mphi, mH,
     )  # fmt: skip
     return {name: out[:, i] for i, name in enumerate(COLUMNS)}, mv
