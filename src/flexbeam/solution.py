@@ -13,6 +13,7 @@ import math
 import os
 import tempfile
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
@@ -57,8 +58,8 @@ def _interior_maxima(f: np.ndarray, rtol: float = 1e-9, start: bool = False) -> 
     ``start``: the first sample counts too when it stands above the second by that much.
     """
     tol = rtol * float(np.max(np.abs(f), initial=0.0))
-    idx = [i for i in range(1, f.size - 1)
-           if f[i] > f[i - 1] and f[i] >= f[i + 1] and f[i] - min(f[i - 1], f[i + 1]) > tol]
+    mid, left, right = f[1:-1], f[:-2], f[2:]
+    idx = (np.nonzero((mid > left) & (mid >= right) & (mid - np.minimum(left, right) > tol))[0] + 1).tolist()
     if start and f.size > 1 and f[0] - f[1] > tol:
         idx.insert(0, 0)
     return idx
@@ -119,6 +120,11 @@ class Solution:
     measuring_points: np.ndarray = field(default_factory=lambda: np.empty(0))
     _force_at: Any = None  # callable t -> F on the dense output of the contact phases
 
+    @cached_property
+    def _in_contact(self) -> np.ndarray:
+        """Samples of contact or constrained phases (bool per sample)."""
+        return np.isin(self.phase, ("contact", "constrained"))
+
     def __getitem__(self, name: str) -> np.ndarray:
         return self.arrays[name]
 
@@ -160,7 +166,7 @@ class Solution:
         F = self.arrays["contact_force"]
         t = self.time
         end = ev.end if math.isfinite(ev.end) else t[-1]
-        sel = np.nonzero((t >= ev.onset) & (t <= end) & np.isin(self.phase, ("contact", "constrained")))[0]
+        sel = np.nonzero((t >= ev.onset) & (t <= end) & self._in_contact)[0]
         if sel.size < 3:
             return []
         f, tt = F[sel], t[sel]

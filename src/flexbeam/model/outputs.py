@@ -95,7 +95,7 @@ def evaluate(system: BeamSystem, times: np.ndarray, states: np.ndarray, mode: in
             TH[k], THD[k], THDD[k] = system.drive.motion(float(t))
     TAU = np.array([system.drive.torque(float(t)) for t in times]) if system.drive.spec.kind == "torque" \
         else np.zeros(m)
-    tip = b.point(b.length) if b.n else None
+    tip = system.tip
     pts = system.measuring
     n = b.n
     mbase = np.array([pt.base for pt in pts], float)

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from numba import njit
@@ -242,6 +243,11 @@ class BeamSystem:
     @property
     def n(self) -> int:
         return self.beam.n
+
+    @cached_property
+    def tip(self) -> PointData | None:
+        """Modal data of the beam tip (None without flexible modes)."""
+        return self.beam.point(self.beam.length) if self.beam.n else None
 
     @property
     def prescribed(self) -> bool:
