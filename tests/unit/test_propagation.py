@@ -24,7 +24,7 @@ def test_moments_equal_their_integrals(theta):
     """
     p = 4
     Cm, Sm = np.empty(p), np.empty(p)
-    _osc_moments(theta, p, Cm, Sm)
+    _osc_moments(theta, math.cos(theta), math.sin(theta), p, Cm, Sm)
     for m in range(p):
         if theta < 10.0:
             c = quad(lambda u, m=m: math.cos(theta * (1 - u)) * u**m, 0, 1, epsabs=1e-15, epsrel=1e-13)[0]

@@ -63,8 +63,8 @@ def gauss_tables(p: int = P_NODES):
 MOMENT_SERIES = 1.0  # theta below this: power series and downward recurrence (else upward)
 
 
-@njit(cache=True)
-def _osc_moments(theta, p, Cm, Sm):
+@njit(cache=True, inline="always")
+def _osc_moments(theta, cos_t, sin_t, p, Cm, Sm):
     """Moments of the harmonic kernel over the unit interval, real arithmetic.
 
     Cm[m] = int_0^1 cos(theta (1 - u)) u^m du and Sm[m] = theta^-1 int_0^1 sin(theta (1 - u))
@@ -73,7 +73,8 @@ def _osc_moments(theta, p, Cm, Sm):
     integrators (Hochbruck & Ostermann 2010, Acta Numerica 19, Sec. 2.1) on the imaginary
     axis.  theta < MOMENT_SERIES: the power series of J_(p-1) and the stable downward
     recurrence J_(m-1) = (i theta J_m + 1) / m; otherwise J_0 = (e^(i theta) - 1) / (i theta)
-    and the upward recurrence J_m = (m J_(m-1) - 1) / (i theta).
+    and the upward recurrence J_m = (m J_(m-1) - 1) / (i theta).  ``cos_t``, ``sin_t``: cos and sin
+    of theta, which the callers have already.
     """
     if theta < MOMENT_SERIES:
         m = p - 1
@@ -98,11 +99,9 @@ def _osc_moments(theta, p, Cm, Sm):
             Cm[k - 1] = (1.0 - t2 * Sm[k]) / k
             Sm[k - 1] = Cm[k] / k
     else:
-        c = math.cos(theta)
-        sn = math.sin(theta)
         t2 = theta * theta
-        Cm[0] = sn / theta
-        Sm[0] = (1.0 - c) / t2
+        Cm[0] = sin_t / theta
+        Sm[0] = (1.0 - cos_t) / t2
         for k in range(1, p):
             Cm[k] = k * Sm[k - 1]
             Sm[k] = (1.0 - k * Cm[k - 1]) / t2
@@ -132,7 +131,7 @@ def step_weights(omega, h, s, Vinv, C, SW, WS, RE, RV):
             C[k, i] = c
             SW[k, i] = sn / w if w != 0.0 else T
             WS[k, i] = w * sn
-            _osc_moments(th, p, Cm, Sm)
+            _osc_moments(th, c, sn, p, Cm, Sm)
             spm = 1.0
             for m in range(p):
                 Cm[m] *= T * spm
@@ -435,7 +434,7 @@ def _hop_weights(omega, T, Cm, Sm, Wt):
         Wt[k, 0] = c
         Wt[k, 1] = sn / w if w != 0.0 else T
         Wt[k, 2] = w * sn
-        _osc_moments(th, p, Cm, Sm)
+        _osc_moments(th, c, sn, p, Cm, Sm)
         for m in range(p):
             Wt[k, 3 + m] = T * T * Sm[m]
             Wt[k, 3 + p + m] = T * Cm[m]
