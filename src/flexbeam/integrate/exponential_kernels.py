@@ -21,9 +21,11 @@ by fixed-point iteration (Gauss collocation); the scalar contact force (CCFM) or
 multiplier (CCM) at the nodes is solved by Newton's method inside each iteration,
 with its exact linear modal response, so a stiff contact needs no small step.
 
-Each step moves the diagonal of the mass-matrix change frozen at its start into the
-frequencies (:func:`_frozen_shift`), and :func:`advance` runs a phase's whole step loop
-(steps, step control, event search and location, output sampling) in compiled code.
+Each step propagates the mass-matrix change frozen at its start exactly
+(:func:`_step_basis`): its diagonal as shifted frequencies, or, when the coupling is strong,
+the whole rank-one change in the step's own modal basis from the secular equation.
+:func:`advance` runs a phase's whole step loop (steps, step control, event search and
+location, output sampling) in compiled code.
 
 Performance: a call between compiled functions passes every array of its tuple arguments
 (the model ``sysd``, the modal model ``mm``: ~25 arrays) field by field with reference
@@ -596,7 +598,7 @@ def _colloc_buffers(N, p):
             np.empty((p, N)), np.empty((p, p)), np.empty((p, p)), np.empty(p), np.empty(p), np.empty(p),
             np.empty((p, p)), np.empty(p), np.empty((p, p)), np.empty(p + 1), np.empty(N), np.empty(N),
             np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(N),
-            np.empty(N))
+            np.empty(N), np.empty(N), np.empty(N), np.empty(N))
 
 
 @njit(cache=True)
@@ -606,14 +608,16 @@ def _step_out(N, p):
 
 
 @njit(cache=True)
-def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, tab, sysd, atol, rtol, work, fresh,
+def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, basis, tab, sysd, atol, rtol, work, fresh,
                      mm, cb, out):
     """One exponential Gauss-collocation step.
 
     ``mode``: 0 free, 1 CCFM (law parameters ``lawp``), 2 CCM (multiplier with
-    delta' + lawp[0] delta = 0 at the nodes).  ``lin[0]`` are the step's frequencies w~ with
-    w~^2 = w^2 - ``shift`` (the collocated forcing is f - shift eta, so that the frozen
-    part of the coupling is propagated exactly).  ``fresh``: recompute the propagation weights
+    delta' + lawp[0] delta = 0 at the nodes).  The state ``eta0``, ``v0``, the forcing and
+    the outputs are in the step's coordinates zeta of :func:`_step_basis` (``basis``, whose
+    frequencies w~ are ``lin[0]``): the model is evaluated at eta = X zeta, and the
+    collocated forcing is X^-1 (rest - c0 u u^T W^2 eta), so that the coupling frozen at the
+    step start is propagated exactly.  ``fresh``: recompute the propagation weights
     in ``work`` (else they are those of the same h).  ``mm``: :func:`_modal_model`; ``cb``:
     :func:`_colloc_buffers`.  Fills ``out`` = (eta1, v1, f (p x N), F (p), diss_rates (p),
     power (p)) and returns (ok, err, iterations); ``ok`` is False when the iteration did not
@@ -624,7 +628,9 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, 
     C, SW, WS, RE, RV = work
     eta1, v1, f, F, diss, power = out
     (gvec, PJ, delta, vn, omega_n, thdd_n, theta_n, f_new, D, Dv, base_d, base_v, res, Jac, dF, Msol, s_all,
-     ei, vi, Ae, Be, He, rest, defect, deta, dvv, PJe) = cb
+     ei, vi, Ae, Be, He, rest, defect, deta, dvv, PJe, ez, vz, tz) = cb
+    X = basis[1]
+    full = basis[7][0] != 0.0
     psi0 = mm[0]
     model = sysd[0]
     prescribed = sysd[1]
@@ -644,22 +650,31 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, 
     want_gap = mode != 0
     g0 = 0.0
     if mode == 2:
-        d0, vn0, _, _ = _gap_at(t0, eta0, v0, sysd, mm, He, False, PJe)
+        _to_eta(basis, eta0, ei)
+        _to_eta(basis, v0, vi)
+        d0, vn0, _, _ = _gap_at(t0, ei, vi, sysd, mm, He, False, PJe)
         g0 = vn0 + lawp[0] * d0
     iters = 0
     diff_prev = math.inf
     for _it in range(40):
         iters += 1
         for i in range(p):
-            _modal_at(eta0, v0, f, C, SW, WS, RE, RV, i, ei, vi)
+            _modal_at(eta0, v0, f, C, SW, WS, RE, RV, i, ez, vz)
+            _to_eta(basis, ez, ei)
+            _to_eta(basis, vz, vi)
             th, om, thdd, d_i, vn_i, gcorr = _node_modal(
                 t0 + c[i] * h, ei, vi, sysd, mm, inv00, sref, want_gap, Ae, Be, He, rest, PJ[i])
-            for k in range(N):
-                f_new[i, k] = rest[k] - shift[k] * ei[k]
+            _frozen_out(basis, ei, rest)
+            _to_zeta(basis, rest, f_new[i])
             theta_n[i], omega_n[i], thdd_n[i] = th, om, thdd
             if want_gap:
                 for k in range(N):
-                    gvec[i, k] = PJ[i, k] - gcorr * psi0[k]
+                    tz[k] = PJ[i, k] - gcorr * psi0[k]
+                _to_zeta(basis, tz, gvec[i])
+                if full:  # the gap's modal Jacobian in zeta: X^T PJ
+                    for k in range(N):
+                        tz[k] = PJ[i, k]
+                    _mv(X, tz, PJ[i])
                 delta[i], vn[i] = d_i, vn_i
         if mode != 0:
             # linear response of delta, delta' at node i to the force at node j (J frozen)
@@ -752,15 +767,16 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, 
             break
         diff_prev = diff
     _modal_at(eta0, v0, f, C, SW, WS, RE, RV, p, eta1, v1)
+    _to_eta(basis, eta1, ei)
+    _to_eta(basis, v1, vi)
     # error estimate: defect of the forcing interpolant at the step end (one extra
     # evaluation), f(t0 + h) - sum_j l_j(1) f_j ~ f^(p) h^p / p!, propagated as a forcing
     # error: velocity ~ h d / (p + 1), displacement ~ d min(h^2 / ((p+1)(p+2)), 2 / w^2).
     # The collocation end state itself is superconvergent, so this order-p estimate is
     # conservative.
     th_e, om_e, thdd_e, d_e, vn_e, gcorr_e = _node_modal(
-        t0 + h, eta1, v1, sysd, mm, inv00, sref, want_gap, Ae, Be, He, rest, PJe)
-    for k in range(N):
-        defect[k] = rest[k] - shift[k] * eta1[k]
+        t0 + h, ei, vi, sysd, mm, inv00, sref, want_gap, Ae, Be, He, rest, PJe)
+    _frozen_out(basis, ei, rest)
     if mode != 0:
         if mode == 1:
             fe, fke = law_force(lawp, -d_e, -vn_e)
@@ -769,7 +785,8 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, 
             for j in range(p):
                 fe += _lagrange_end(c, j) * F[j]
         for k in range(N):
-            defect[k] += (PJe[k] - gcorr_e * psi0[k]) * fe
+            rest[k] += (PJe[k] - gcorr_e * psi0[k]) * fe
+    _to_zeta(basis, rest, defect)
     for j in range(p):
         lj = _lagrange_end(c, j)
         for k in range(N):
@@ -794,10 +811,12 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, shift, 
             diss[i] = (fi - fk) * (-vn[i])
         sup = sysd[4][4]
         if sup[0] > 0.0:  # the support's dashpot, c_s s'^2
-            _modal_at(eta0, v0, f, C, SW, WS, RE, RV, i, ei, vi)
+            _modal_at(eta0, v0, f, C, SW, WS, RE, RV, i, ez, vz)
+            _to_eta(basis, vz, vi)
             diss[i] += sup[2] / sup[0] * vi[N - 1] * vi[N - 1]
         if prescribed:
             # joint torque = M[0,:] z'' - Q[0] - J[0] F, z'' = [theta'', Psi (f - w^2 eta)]
+            # (a prescribed theta has the identity basis: zeta = eta)
             eta, v, z, zd = _states(eta0, v0, f, C, SW, WS, RE, RV, i, Psi)
             th, om = theta_n[i], omega_n[i]
             Qf = np.empty(n + 1)
@@ -867,7 +886,7 @@ def _event_buffers(N, p):
     ns = 4 * SAMPLES + 1
     return (np.empty(ns), np.empty(ns), np.empty(ns), np.empty(ns), np.empty((p, N)), np.empty((N, 3 + 2 * p)),
             np.empty((N, 3 + 2 * p)), np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(p),
-            np.empty((2, p)))
+            np.empty((2, p)), np.empty(N), np.empty(N))
 
 
 @njit(cache=True)
@@ -879,14 +898,16 @@ def _gap1(x, ctx):
 @njit(cache=True)
 def _gap_rate1(x, ctx):
     """Gap and its rate at the fraction x of the step."""
-    t0, h, eta0, v0, omega, sysd, mm, eb = ctx
-    s, d, dv, rate, A, Wu, W1, ec, vc, He, PJ, bb, ph = eb
+    t0, h, eta0, v0, omega, sysd, mm, eb, basis = ctx
+    s, d, dv, rate, A, Wu, W1, ec, vc, He, PJ, bb, ph, ee, ve = eb
     _hop_weights(omega, x * h, ph[0], ph[1], W1)
     for k in range(eta0.size):
         ec[k] = eta0[k]
         vc[k] = v0[k]
     _hop(A, 0.0, x, W1, ec, vc, bb)
-    g = _gap_at(t0 + x * h, ec, vc, sysd, mm, He, False, PJ)
+    _to_eta(basis, ec, ee)
+    _to_eta(basis, vc, ve)
+    g = _gap_at(t0 + x * h, ee, ve, sysd, mm, He, False, PJ)
     return g[0], g[1]
 
 
@@ -1094,7 +1115,7 @@ LEBESGUE = 3.0  # > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.0 f
 
 
 @njit(cache=True)
-def find_event(t0, h, eta0, v0, f, direction, lin, tab, sysd, mm, eb):
+def find_event(t0, h, eta0, v0, f, direction, lin, basis, tab, sysd, mm, eb):
     """First crossing of the gap in ``direction`` inside the step, as a fraction s.
 
     NO_EVENT when the step is provably free of it, a fraction in (0, 1] at a located
@@ -1103,16 +1124,23 @@ def find_event(t0, h, eta0, v0, f, direction, lin, tab, sysd, mm, eb):
     A step is declared free of an impact only if min(samples) - 2B > 0 with B the
     bound of :func:`_fast_bound` on the unresolved modes, or, all modes resolved, if
     no sign change, excursion or Hermite-predicted dip is found.  The samples are exact
-    modal propagations hop by hop (:func:`_hop`), the gap evaluated in modal form.
+    modal propagations hop by hop (:func:`_hop`) in the step's coordinates zeta
+    (``basis``, :func:`_step_basis`), the gap evaluated in modal form at eta = X zeta.
     """
     omega = lin[0]
-    s, d, dv, rate, A, Wu, W1, ec, vc, He, PJ, bb, ph = eb
+    s, d, dv, rate, A, Wu, W1, ec, vc, He, PJ, bb, ph, ee, ve = eb
     N = omega.size
-    d0, vn0, J0, r0J = _gap_at(t0, eta0, v0, sysd, mm, He, True, PJ)
+    _to_eta(basis, eta0, ee)
+    _to_eta(basis, v0, ve)
+    d0, vn0, J0, r0J = _gap_at(t0, ee, ve, sysd, mm, He, True, PJ)
+    if basis[7][0] != 0.0:  # X^T Psi^T J: the contact direction in zeta
+        for k in range(N):
+            ee[k] = PJ[k]
+        _mv(basis[1], ee, PJ)
     if direction < 0 and _far(t0, h, f, eta0, v0, d0, PJ, J0, omega, sysd):
         return NO_EVENT
     _monomial(tab[2], f, A)
-    ctx = (t0, h, eta0, v0, omega, sysd, mm, eb)
+    ctx = (t0, h, eta0, v0, omega, sysd, mm, eb, basis)
     m = SAMPLES
     while True:
         _hop_weights(omega, h / m, ph[0], ph[1], Wu)
@@ -1125,7 +1153,9 @@ def find_event(t0, h, eta0, v0, f, direction, lin, tab, sysd, mm, eb):
         for i in range(1, m + 1):
             _hop(A, (i - 1) / m, 1.0 / m, Wu, ec, vc, bb)
             s[i] = i / m
-            gi = _gap_at(t0 + s[i] * h, ec, vc, sysd, mm, He, False, PJ)
+            _to_eta(basis, ec, ee)
+            _to_eta(basis, vc, ve)
+            gi = _gap_at(t0 + s[i] * h, ee, ve, sysd, mm, He, False, PJ)
             d[i] = gi[0]
             dv[i] = gi[1]
         B = _fast_bound(h, eta0, v0, f, m, omega, PJ)
@@ -1218,35 +1248,243 @@ def _boundary_work(t, qd, sysd):
     return drive_motion(profile, W, Ts, theta0, t)[1] * (sysd[0][5] @ qd)
 
 
-FREEZE = True  # move the frozen mass-matrix variation of each step into its frequencies
+FREEZE = True  # propagate the mass-matrix variation frozen at each step's start exactly
+# |ds (M_ref^-1)_00| (the relative change of the top mode's mass) from which a step freezes the
+# whole rank-one coupling in its own basis, below which only its diagonal.  The crossover,
+# measured on the seed case (CCFM, 0.1 s; diagonal / full): n = 12 (|.| median 0.008) 144 / 185 ms,
+# n = 16 (0.017) 243 / 245 ms, n = 24 (0.12) 794 / 428 ms, n = 32 (0.19) 1477 / 848 ms; 0.05 in between
+# gave 144, 228, 410, 610 ms.
+FULL_FREEZE_MIN = 0.05
 
 
 @njit(cache=True)
-def _frozen_shift(eta, lin, sysd, mm, Ae, wt, shift):
-    """The step's frequencies w~ (into ``wt``) and shift = w^2 - w~^2 from the mass matrix frozen at eta.
+def _basis_buffers(N):
+    """(w~, X, X^T, X^-T, c0 u, W^2 u, shift, full) of :func:`_step_basis` (allocated once per phase)."""
+    return (np.empty(N), np.empty((N, N)), np.empty((N, N)), np.empty((N, N)), np.zeros(N), np.zeros(N),
+            np.zeros(N), np.zeros(1))
 
-    With M(q) = M_ref + ds e0 e0^T the coupling contains c u u^T W^2 eta (c = ds / (1 +
-    ds (M_ref^-1)_00), u = Psi^T e0); its diagonal, -c u_k^2 w_k^2 eta_k, is the frequency
-    change of mode k -- for a hub without inertia a large one of the highest mode, whose
-    mass is the small Schur complement of M_00 -- and is propagated exactly.
+
+@njit(cache=True, inline="always")
+def _to_eta(basis, z, out):
+    """out = X z (a copy for the identity basis)."""
+    if basis[7][0] != 0.0:
+        _mv(basis[2], z, out)
+    else:
+        for k in range(z.size):
+            out[k] = z[k]
+
+
+@njit(cache=True, inline="always")
+def _to_zeta(basis, x, out):
+    """out = X^-1 x (a copy for the identity basis)."""
+    if basis[7][0] != 0.0:
+        _mv(basis[3], x, out)
+    else:
+        for k in range(x.size):
+            out[k] = x[k]
+
+
+@njit(cache=True, inline="always")
+def _frozen_out(basis, e, rest):
+    """rest -= the coupling frozen in the step's propagation: c0 u u^T W^2 e (full) or its diagonal."""
+    if basis[7][0] != 0.0:
+        cu, w2u = basis[4], basis[5]
+        fr = _dot(w2u, e)
+        for k in range(e.size):
+            rest[k] -= cu[k] * fr
+    else:
+        sh = basis[6]
+        for k in range(e.size):
+            rest[k] -= sh[k] * e[k]
+
+
+@njit(cache=True)
+def _identity_basis(omega, basis):
+    wt, X, XT, XiT, cu, w2u, sh, full = basis
+    N = omega.size
+    full[0] = 0.0
+    for k in range(N):
+        wt[k] = omega[k]
+        cu[k] = 0.0
+        w2u[k] = 0.0
+        sh[k] = 0.0
+        for j in range(N):
+            X[j, k] = 0.0
+            XT[j, k] = 0.0
+            XiT[j, k] = 0.0
+        X[k, k] = 1.0
+        XT[k, k] = 1.0
+        XiT[k, k] = 1.0
+
+
+SECULAR_MAXIT = 60  # safeguarded Newton iterations per root of the secular equation (2-4 taken)
+
+
+@njit(cache=True)
+def _secular_root(i, dA, v2, c, vsum):
+    """tau = lambda - dA[i] of the eigenvalue of D - c v v^T that continues from the pole dA[i].
+
+    ``dA`` (ascending) and ``v2`` = v^2 over the m active modes (v != 0), ``vsum`` = sum v2.  For
+    c < 0 the root lies in (dA[i], dA[i + 1]) (above the top pole: within -c vsum), for c > 0
+    in (dA[i - 1], dA[i]).  Newton's method on G(tau) = tau (1 - c R(tau)) + c v_i^2, the secular
+    equation f = 1 - c sum_k v_k^2 / (d_k - lambda) times tau, which has no pole at the origin,
+    so tau comes out to full relative accuracy however weak the coupling (Golub 1973; the
+    shifted form as in LAPACK's dlaed4), safeguarded by bisection on the sign of f (monotone
+    between the poles).  Started from the one-pole estimate, 1-3 iterations.
+    """
+    m = dA.size
+    do = dA[i]
+    vo2 = v2[i]
+    if c < 0.0:
+        lo = 0.0
+        hi = dA[i + 1] - do if i < m - 1 else -c * vsum
+    else:
+        hi = 0.0
+        lo = dA[i - 1] - do if i > 0 else -c * vsum
+    tau = 0.0
+    first = True
+    for _ in range(SECULAR_MAXIT):
+        R = 0.0
+        Rp = 0.0
+        for k in range(m):
+            if k != i:
+                inv = 1.0 / ((dA[k] - do) - tau)
+                r = v2[k] * inv
+                R += r
+                Rp += r * inv
+        if first:  # the one-pole start: tau = -c v_o^2 / (1 - c R(0))
+            first = False
+            den = 1.0 - c * R
+            tau = -c * vo2 / den if den != 0.0 else 0.5 * (lo + hi)
+            if not (lo < tau < hi):
+                tau = 0.5 * (lo + hi)
+            continue
+        G = tau * (1.0 - c * R) + c * vo2
+        Gp = 1.0 - c * R - tau * c * Rp
+        step = -G / Gp if Gp != 0.0 else math.inf
+        if abs(step) <= 4.0 * 2.2e-16 * abs(tau):  # converged (the start is often this close already)
+            return tau + step
+        if (G / tau < 0.0) == (c < 0.0):  # f = G / tau is monotone: keep the root bracketed
+            lo = tau
+        else:
+            hi = tau
+        t_new = tau + step
+        if not (lo < t_new < hi):
+            t_new = 0.5 * (lo + hi)
+        if t_new == tau:
+            return tau
+        tau = t_new
+    return tau
+
+
+@njit(cache=True)
+def _step_basis(eta, lin, sysd, mm, Ae, basis):
+    """The step's coordinates zeta (eta = X zeta) and frequencies w~ with the mass matrix frozen at eta.
+
+    M(q) = M_ref + ds e0 e0^T makes the modal equations (I + ds u u^T) eta'' + W^2 eta = ...
+    (u = Psi^T e0, the theta row of Psi), i.e. eta'' + (I - c u u^T) W^2 eta = ... with
+    c = ds / (1 + ds |u|^2), |u|^2 = (M_ref^-1)_00.  With ds frozen at the step start (c0) the
+    pencil (W^2, M_s = I + ds u u^T) is diagonalised, X^T W^2 X = diag(w~^2), X^T M_s X = I, so
+    X^-1 = X^T M_s, and the step propagates zeta'' + w~^2 zeta = X^-1 (rest - c0 u u^T W^2 eta)
+    exactly: what the forcing keeps of the coupling is (c - c0) u u^T W^2 eta, the change of
+    ds over the step.  (For a hub without inertia the coupling is strong -- the spurious top
+    mode's mass is the small Schur complement of M_00, its frequency moves by per cent with
+    q^T M_c q -- and, left in the forcing, oscillates with every mode.)
+
+    The pencil is a rank-one modification: its nonzero eigenvalues are those of
+    D - c0 v v^T with D = W^2, v = W u (Golub 1973, SIAM Rev. 15; Bunch, Nielsen & Sorensen
+    1978, Numer. Math. 31), the roots of the secular equation 1 = c0 sum_k v_k^2 / (w_k^2 -
+    lambda), one between each pair of poles (:func:`_secular_root`), and the eigenvectors
+    x_j = (W^2 - lambda_j)^-1 u, M_s-normalised; the rigid mode stays e0 / sqrt(1 + ds u_0^2)
+    and modes with u_k = 0 stay e_k.  O(N^2) per step.
+
+    Weak coupling (|ds (M_ref^-1)_00| < FULL_FREEZE_MIN): the basis stays the identity and only
+    the diagonal of the frozen coupling, the frequency change c0 u_k^2 w_k^2 of each mode, is
+    propagated (``shift``); the off-diagonal part stays in the forcing.  This spares the
+    transformations (five N x N products per node), which cost more than the steps they save
+    when the coupling is weak (measured: see FULL_FREEZE_MIN).
+
+    Fills ``basis`` = (w~, X, X^T, X^-T, c0 u, W^2 u, shift, full); the identity for a
+    prescribed theta.
     """
     omega, Psi, PsiT, toM, row0, inv00, sref = lin
+    wt, X, XT, XiT, cu, w2u, sh, full = basis
     N = omega.size
+    _identity_basis(omega, basis)
     if sysd[1] or not FREEZE:
-        for k in range(N):
-            wt[k] = omega[k]
-            shift[k] = 0.0
         return
     _mv(mm[1], eta, Ae)
     ds = _dot(eta, Ae) - sref
-    cbar = ds / (1.0 + ds * inv00)
+    den = 1.0 + ds * inv00
+    if ds == 0.0 or not den > 0.0:
+        return
+    u = mm[0]
+    c0 = ds / den
+    if abs(ds * inv00) < FULL_FREEZE_MIN:
+        for k in range(N):
+            w2 = omega[k] * omega[k]
+            sh[k] = min(c0 * u[k] * u[k] * w2, w2)
+            wt[k] = math.sqrt(w2 - sh[k])
+        return
+    full[0] = 1.0
+    order = np.empty(N, dtype=np.int64)
+    m = 0
     for k in range(N):
-        w2 = omega[k] * omega[k]
-        sh = cbar * Psi[0, k] * Psi[0, k] * w2
-        if sh > w2:
-            sh = w2
-        shift[k] = sh
-        wt[k] = math.sqrt(w2 - sh)
+        w2u[k] = omega[k] * omega[k] * u[k]
+        cu[k] = c0 * u[k]
+        if omega[k] * u[k] != 0.0:
+            order[m] = k
+            m += 1
+    # the active poles in ascending order (the modes come sorted; a support mode has u = 0)
+    for a in range(1, m):
+        kk = order[a]
+        b = a - 1
+        while b >= 0 and omega[order[b]] > omega[kk]:
+            order[b + 1] = order[b]
+            b -= 1
+        order[b + 1] = kk
+    dA = np.empty(m)
+    v2 = np.empty(m)
+    vsum = 0.0
+    for a in range(m):
+        k = order[a]
+        dA[a] = omega[k] * omega[k]
+        v2[a] = dA[a] * u[k] * u[k]
+        vsum += v2[a]
+    for j in range(N):
+        for k in range(N):
+            X[j, k] = 0.0
+    for k in range(N):
+        if omega[k] * u[k] == 0.0:
+            X[k, k] = 1.0 / math.sqrt(1.0 + ds * u[k] * u[k])  # e_k, M_s-normalised
+    for a in range(m):
+        o = order[a]
+        tau = _secular_root(a, dA, v2, c0, vsum)
+        lam = dA[a] + tau
+        wt[o] = math.sqrt(lam) if lam > 0.0 else 0.0
+        ux = 0.0
+        nrm = 0.0
+        for k in range(N):
+            w = omega[k]
+            if w * u[k] != 0.0:
+                xk = u[k] / ((w * w - dA[a]) - tau)
+            elif u[k] != 0.0:  # the rigid mode (w = 0)
+                xk = -u[k] / lam
+            else:
+                xk = 0.0
+            X[k, o] = xk
+            ux += u[k] * xk
+            nrm += xk * xk
+        sc = 1.0 / math.sqrt(nrm + ds * ux * ux)
+        for k in range(N):
+            X[k, o] *= sc
+    for k in range(N):
+        ux = 0.0
+        for j in range(N):
+            ux += u[j] * X[j, k]
+        for j in range(N):
+            XT[k, j] = X[j, k]
+            XiT[j, k] = X[j, k] + ds * u[j] * ux
 
 
 ADVANCE_END, ADVANCE_EVENT, ADVANCE_UNDERFLOW, ADVANCE_NONFINITE = 0, 1, 2, 3
@@ -1282,7 +1520,8 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
     multiplier turns tensile).  Returns (code, t, h_next, steps, nfev, sample times,
     sample states (reference layout [z, z', E_d, W]; every step end and the points of the
     ``sample_step`` grid), and when ``keep_dense`` the accepted steps' records (t0, h,
-    eta0, v0, f, E_d0, W0, dissipation and power rates at the nodes) for dense output.
+    eta0, v0, f, E_d0, W0, dissipation and power rates at the nodes, X) for dense output, each
+    in its step's coordinates (:func:`_step_basis`).
     ``code``: ADVANCE_END, ADVANCE_EVENT, ADVANCE_UNDERFLOW (step size underflow) or
     ADVANCE_NONFINITE.  All work arrays are allocated here, once per phase; the output grid
     inside a step is sampled hop by hop (:func:`_hop`, one set of weights per step).
@@ -1309,9 +1548,13 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             np.empty((N, p + 1, p)), np.empty((N, p + 1, p)))
     h_w = -1.0
     new_lin = True
-    wt = omega.copy()
-    shift = np.zeros(N)
+    basis = _basis_buffers(N)
+    wt, X = basis[0], basis[1]
     lin_s = (wt, Psi, PsiT, toM, row0, inv00, sref)
+    zeta = np.empty(N)  # the state in the step's coordinates (eta = X zeta)
+    zetad = np.empty(N)
+    en = np.empty(N)
+    vn_ = np.empty(N)
     # sampling work arrays
     A = np.empty((p, N))
     W1 = np.empty((N, 3 + 2 * p))
@@ -1333,6 +1576,7 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
     r_eta = np.empty((cap_r, N))
     r_v = np.empty((cap_r, N))
     r_f = np.empty((cap_r, p, N))
+    r_X = np.empty((cap_r if keep_dense else 0, N, N))
     r_E = np.empty((cap_r, 2))
     r_rates = np.empty((cap_r, 2, p))
     nr = 0
@@ -1345,12 +1589,19 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
     tau = sysd[2][4]
     while t < t_end:
         h = min(h, t_end - t, hcap)
-        if new_lin:
-            _frozen_shift(eta, lin, sysd, mm, Ae, wt, shift)
+        if new_lin:  # the step's coordinates; the state and the forcing's guess (eta) moved to them
+            _step_basis(eta, lin, sysd, mm, Ae, basis)
+            _to_zeta(basis, eta, zeta)
+            _to_zeta(basis, v, zetad)
+            if basis[7][0] != 0.0:
+                for j in range(p):
+                    _to_zeta(basis, f_guess[j], en)
+                    for k in range(N):
+                        f_guess[j, k] = en[k]
             new_lin = False
             h_w = -1.0
         ok, err, iters = collocation_step(
-            t, h, eta, v, f_guess, F_guess, mode, lawp, lin_s, shift, tab, sysd, atol, rtol, work, h != h_w,
+            t, h, zeta, zetad, f_guess, F_guess, mode, lawp, lin_s, basis, tab, sysd, atol, rtol, work, h != h_w,
             mm, cb, out1)
         h_w = h
         steps += 1
@@ -1372,7 +1623,7 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
         if mode == 2:
             s_ev = multiplier_release(c, F)
         else:
-            s_ev = find_event(t, h, eta, v, f, direction, lin_s, tab, sysd, mm, eb)
+            s_ev = find_event(t, h, zeta, zetad, f, direction, lin_s, basis, tab, sysd, mm, eb)
         if s_ev < 0.0:  # undecided: too long a step near the obstacle
             h *= 0.25
             continue
@@ -1384,7 +1635,7 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
                 code = ADVANCE_EVENT
                 break
             ok2, err2, iters2 = collocation_step(
-                t, h_ev, eta, v, f, F, mode, lawp, lin_s, shift, tab, sysd, atol, rtol, work, True, mm, cb, out2)
+                t, h_ev, zeta, zetad, f, F, mode, lawp, lin_s, basis, tab, sysd, atol, rtol, work, True, mm, cb, out2)
             h_w = h_ev
             nfev += iters2 * p + 1
             if not ok2:
@@ -1400,14 +1651,16 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
                 r_eta = _grow(r_eta, nr + 1)
                 r_v = _grow(r_v, nr + 1)
                 r_f = _grow(r_f, nr + 1)
+                r_X = _grow(r_X, nr + 1)
                 r_E = _grow(r_E, nr + 1)
                 r_rates = _grow(r_rates, nr + 1)
             r_t[nr] = t
             r_w[nr] = wt
             r_h[nr] = h_taken
-            r_eta[nr] = eta
-            r_v[nr] = v
+            r_eta[nr] = zeta
+            r_v[nr] = zetad
             r_f[nr] = f
+            r_X[nr] = X
             r_E[nr, 0] = Ed
             r_E[nr, 1] = W
             r_rates[nr, 0] = diss
@@ -1449,8 +1702,8 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             if cnt > 1:
                 _hop_weights(wt, ds_ * h_taken, ph[0], ph[1], Wu)
             for k in range(N):
-                ec[k] = eta[k]
-                vc[k] = v[k]
+                ec[k] = zeta[k]
+                vc[k] = zetad[k]
             for i in range(cnt):
                 tk = (kf + i) * sample_step
                 if i == 0:
@@ -1458,8 +1711,10 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
                 else:
                     _hop(A, s0 + (i - 1) * ds_, ds_, Wu, ec, vc, bb)
                 row = ys[ns + i]
-                _mv(PsiT, ec, row[:N])
-                _mv(PsiT, vc, row[N : 2 * N])
+                _to_eta(basis, ec, en)
+                _to_eta(basis, vc, vn_)
+                _mv(PsiT, en, row[:N])
+                _mv(PsiT, vn_, row[N : 2 * N])
                 sg = (tk - t) / h_taken
                 eds = 0.0
                 wsm = 0.0
@@ -1475,6 +1730,8 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
                 else:  # constant torque: W = tau (theta - theta_0), exactly
                     row[2 * N + 1] = W + tau * (row[0] - theta_start)
             ns += cnt
+        _to_eta(basis, eta1, en)  # the step end back in eta
+        _to_eta(basis, v1, vn_)
         ed_inc = 0.0
         for j in range(p):
             ed_inc += b[j] * diss[j]
@@ -1483,19 +1740,19 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             pw_inc = 0.0
             for j in range(p):
                 pw_inc += b[j] * power[j]
-            _mv(PsiT, v1, zb)
+            _mv(PsiT, vn_, zb)
             W += h_taken * pw_inc + _boundary_work(t1, zb, sysd) - b_start
         else:
             # tau theta' holds the fast modes' oscillation, which Gauss quadrature over a
             # long step would miss; for a constant torque the work is tau (theta1 - theta0)
             th1 = 0.0
             for k in range(N):
-                th1 += Psi[0, k] * eta1[k]
+                th1 += Psi[0, k] * en[k]
             W += tau * (th1 - theta_start)
         t = t1
         for k in range(N):
-            eta[k] = eta1[k]
-            v[k] = v1[k]
+            eta[k] = en[k]
+            v[k] = vn_[k]
         new_lin = True
         h_next = h
         if event:
@@ -1507,6 +1764,11 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             h_next = h_taken * min(4.0, max(0.2, 0.9 * max(err, 1e-10) ** (-1.0 / (p + 1))))
             _extrapolate_into(c, f, h_next / h_taken, f_guess)
             _extrapolate1_into(c, F, h_next / h_taken, F_guess)
+            if basis[7][0] != 0.0:  # the guess back in eta
+                for j in range(p):
+                    _to_eta(basis, f_guess[j], en)
+                    for k in range(N):
+                        f_guess[j, k] = en[k]
         ts[ns] = t
         row = ys[ns]
         _mv(PsiT, eta, row[:N])
@@ -1527,28 +1789,34 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
         h = h_next
     return (code, t, h, steps, nfev, ts[:ns].copy(), ys[:ns].copy(),
             r_t[:nr].copy(), r_h[:nr].copy(), r_w[:nr].copy(), r_eta[:nr].copy(), r_v[:nr].copy(), r_f[:nr].copy(),
-            r_E[:nr].copy(), r_rates[:nr].copy())
+            r_E[:nr].copy(), r_rates[:nr].copy(), r_X[:nr].copy())
 
 
 @njit(cache=True)
-def dense_eval(tt, r_t, r_h, r_w, r_eta, r_v, r_f, r_E, r_rates, Psi, Vinv, sysd):
-    """States [z, z', E_d, W] at times ``tt`` from the step records (rows)."""
+def dense_eval(tt, r_t, r_h, r_w, r_eta, r_v, r_f, r_E, r_rates, r_X, Psi, Vinv, sysd):
+    """States [z, z', E_d, W] at times ``tt`` from the step records (rows; each step in its own
+    coordinates zeta, eta = X zeta, so z = Psi X zeta)."""
     N = Psi.shape[0]
     out = np.empty((tt.size, 2 * N + 2))
     s = np.empty(1)
+    k_prev = -1
+    PX = np.empty((N, N))
     for i in range(tt.size):
         k = np.searchsorted(r_t, tt[i], side="right") - 1
         k = min(max(k, 0), r_t.size - 1)
         h = r_h[k]
         s[0] = (tt[i] - r_t[k]) / h
-        Z, ZD = dense_states(h, r_eta[k], r_v[k], r_f[k], s, Psi, r_w[k], Vinv)
+        if k != k_prev:
+            PX = Psi @ r_X[k]
+            k_prev = k
+        Z, ZD = dense_states(h, r_eta[k], r_v[k], r_f[k], s, PX, r_w[k], Vinv)
         out[i, :N] = Z[0]
         out[i, N : 2 * N] = ZD[0]
         out[i, 2 * N] = r_E[k, 0] + integrate_rates(r_rates[k, 0], s, Vinv, h)[0]
         if sysd[1]:
             out[i, 2 * N + 1] = (r_E[k, 1] + integrate_rates(r_rates[k, 1], s, Vinv, h)[0]
-                                 + _boundary_work(tt[i], ZD[0], sysd) - _boundary_work(r_t[k], Psi @ r_v[k], sysd))
+                                 + _boundary_work(tt[i], ZD[0], sysd) - _boundary_work(r_t[k], PX @ r_v[k], sysd))
         else:
-            out[i, 2 * N + 1] = r_E[k, 1] + sysd[2][4] * (Z[0, 0] - Psi[0] @ r_eta[k])
+            out[i, 2 * N + 1] = r_E[k, 1] + sysd[2][4] * (Z[0, 0] - PX[0] @ r_eta[k])
     return out
 
