@@ -1250,10 +1250,10 @@ def _boundary_work(t, qd, sysd):
 
 FREEZE = True  # propagate the mass-matrix variation frozen at each step's start exactly
 # |ds (M_ref^-1)_00| (the relative change of the top mode's mass) from which a step freezes the
-# whole rank-one coupling in its own basis, below which only its diagonal.  The crossover,
-# measured on the seed case (CCFM, 0.1 s; diagonal / full): n = 12 (|.| median 0.008) 144 / 185 ms,
-# n = 16 (0.017) 243 / 245 ms, n = 24 (0.12) 794 / 428 ms, n = 32 (0.19) 1477 / 848 ms; 0.05 in between
-# gave 144, 228, 410, 610 ms.
+# whole rank-one coupling in its own basis, below which only its diagonal.  Measured on the seed
+# case (CCFM, 0.1 s; diagonal only / full basis always / this threshold, ms; n = 8-16 medians of
+# three interleaved runs): n = 8 (|.| median 0.002) 67 / 82 / 67, n = 12 (0.008) 139 / 144 / 141,
+# n = 16 (0.017) 215 / 210 / 195, n = 24 (0.12) 794 / 486 / 448, n = 32 (0.19) 1660 / 668 / 719.
 FULL_FREEZE_MIN = 0.05
 
 
