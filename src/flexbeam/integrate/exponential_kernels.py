@@ -629,7 +629,7 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, basis, 
     eta1, v1, f, F, diss, power = out
     (gvec, PJ, delta, vn, omega_n, thdd_n, theta_n, f_new, D, Dv, base_d, base_v, res, Jac, dF, Msol, s_all,
      ei, vi, Ae, Be, He, rest, defect, deta, dvv, PJe, ez, vz, tz) = cb
-    X = basis[1]
+    X, XT, XiT, cu, w2u, shift = basis[1], basis[2], basis[3], basis[4], basis[5], basis[6]
     full = basis[7][0] != 0.0
     psi0 = mm[0]
     model = sysd[0]
@@ -650,8 +650,8 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, basis, 
     want_gap = mode != 0
     g0 = 0.0
     if mode == 2:
-        _to_eta(basis, eta0, ei)
-        _to_eta(basis, v0, vi)
+        _map(full, XT, eta0, ei)
+        _map(full, XT, v0, vi)
         d0, vn0, _, _ = _gap_at(t0, ei, vi, sysd, mm, He, False, PJe)
         g0 = vn0 + lawp[0] * d0
     iters = 0
@@ -660,21 +660,21 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, basis, 
         iters += 1
         for i in range(p):
             _modal_at(eta0, v0, f, C, SW, WS, RE, RV, i, ez, vz)
-            _to_eta(basis, ez, ei)
-            _to_eta(basis, vz, vi)
+            _map(full, XT, ez, ei)
+            _map(full, XT, vz, vi)
             th, om, thdd, d_i, vn_i, gcorr = _node_modal(
                 t0 + c[i] * h, ei, vi, sysd, mm, inv00, sref, want_gap, Ae, Be, He, rest, PJ[i])
-            _frozen_out(basis, ei, rest)
-            _to_zeta(basis, rest, f_new[i])
+            _frozen_out(full, cu, w2u, shift, ei, rest)
+            _map(full, XiT, rest, f_new[i])
             theta_n[i], omega_n[i], thdd_n[i] = th, om, thdd
             if want_gap:
                 for k in range(N):
                     tz[k] = PJ[i, k] - gcorr * psi0[k]
-                _to_zeta(basis, tz, gvec[i])
+                _map(full, XiT, tz, gvec[i])
                 if full:  # the gap's modal Jacobian in zeta: X^T PJ
                     for k in range(N):
                         tz[k] = PJ[i, k]
-                    _mv(X, tz, PJ[i])
+                    _map(full, X, tz, PJ[i])
                 delta[i], vn[i] = d_i, vn_i
         if mode != 0:
             # linear response of delta, delta' at node i to the force at node j (J frozen)
@@ -767,8 +767,8 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, basis, 
             break
         diff_prev = diff
     _modal_at(eta0, v0, f, C, SW, WS, RE, RV, p, eta1, v1)
-    _to_eta(basis, eta1, ei)
-    _to_eta(basis, v1, vi)
+    _map(full, XT, eta1, ei)
+    _map(full, XT, v1, vi)
     # error estimate: defect of the forcing interpolant at the step end (one extra
     # evaluation), f(t0 + h) - sum_j l_j(1) f_j ~ f^(p) h^p / p!, propagated as a forcing
     # error: velocity ~ h d / (p + 1), displacement ~ d min(h^2 / ((p+1)(p+2)), 2 / w^2).
@@ -776,7 +776,7 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, basis, 
     # conservative.
     th_e, om_e, thdd_e, d_e, vn_e, gcorr_e = _node_modal(
         t0 + h, ei, vi, sysd, mm, inv00, sref, want_gap, Ae, Be, He, rest, PJe)
-    _frozen_out(basis, ei, rest)
+    _frozen_out(full, cu, w2u, shift, ei, rest)
     if mode != 0:
         if mode == 1:
             fe, fke = law_force(lawp, -d_e, -vn_e)
@@ -786,7 +786,7 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, basis, 
                 fe += _lagrange_end(c, j) * F[j]
         for k in range(N):
             rest[k] += (PJe[k] - gcorr_e * psi0[k]) * fe
-    _to_zeta(basis, rest, defect)
+    _map(full, XiT, rest, defect)
     for j in range(p):
         lj = _lagrange_end(c, j)
         for k in range(N):
@@ -812,7 +812,7 @@ def collocation_step(t0, h, eta0, v0, f_guess, F_guess, mode, lawp, lin, basis, 
         sup = sysd[4][4]
         if sup[0] > 0.0:  # the support's dashpot, c_s s'^2
             _modal_at(eta0, v0, f, C, SW, WS, RE, RV, i, ez, vz)
-            _to_eta(basis, vz, vi)
+            _map(full, XT, vz, vi)
             diss[i] += sup[2] / sup[0] * vi[N - 1] * vi[N - 1]
         if prescribed:
             # joint torque = M[0,:] z'' - Q[0] - J[0] F, z'' = [theta'', Psi (f - w^2 eta)]
@@ -898,15 +898,15 @@ def _gap1(x, ctx):
 @njit(cache=True)
 def _gap_rate1(x, ctx):
     """Gap and its rate at the fraction x of the step."""
-    t0, h, eta0, v0, omega, sysd, mm, eb, basis = ctx
+    t0, h, eta0, v0, omega, sysd, mm, eb, full, XT = ctx
     s, d, dv, rate, A, Wu, W1, ec, vc, He, PJ, bb, ph, ee, ve = eb
     _hop_weights(omega, x * h, ph[0], ph[1], W1)
     for k in range(eta0.size):
         ec[k] = eta0[k]
         vc[k] = v0[k]
     _hop(A, 0.0, x, W1, ec, vc, bb)
-    _to_eta(basis, ec, ee)
-    _to_eta(basis, vc, ve)
+    _map(full, XT, ec, ee)
+    _map(full, XT, vc, ve)
     g = _gap_at(t0 + x * h, ee, ve, sysd, mm, He, False, PJ)
     return g[0], g[1]
 
@@ -1128,19 +1128,21 @@ def find_event(t0, h, eta0, v0, f, direction, lin, basis, tab, sysd, mm, eb):
     (``basis``, :func:`_step_basis`), the gap evaluated in modal form at eta = X zeta.
     """
     omega = lin[0]
+    X, XT = basis[1], basis[2]
+    full = basis[7][0] != 0.0
     s, d, dv, rate, A, Wu, W1, ec, vc, He, PJ, bb, ph, ee, ve = eb
     N = omega.size
-    _to_eta(basis, eta0, ee)
-    _to_eta(basis, v0, ve)
+    _map(full, XT, eta0, ee)
+    _map(full, XT, v0, ve)
     d0, vn0, J0, r0J = _gap_at(t0, ee, ve, sysd, mm, He, True, PJ)
-    if basis[7][0] != 0.0:  # X^T Psi^T J: the contact direction in zeta
+    if full:  # X^T Psi^T J: the contact direction in zeta
         for k in range(N):
             ee[k] = PJ[k]
-        _mv(basis[1], ee, PJ)
+        _map(full, X, ee, PJ)
     if direction < 0 and _far(t0, h, f, eta0, v0, d0, PJ, J0, omega, sysd):
         return NO_EVENT
     _monomial(tab[2], f, A)
-    ctx = (t0, h, eta0, v0, omega, sysd, mm, eb, basis)
+    ctx = (t0, h, eta0, v0, omega, sysd, mm, eb, full, XT)
     m = SAMPLES
     while True:
         _hop_weights(omega, h / m, ph[0], ph[1], Wu)
@@ -1153,8 +1155,8 @@ def find_event(t0, h, eta0, v0, f, direction, lin, basis, tab, sysd, mm, eb):
         for i in range(1, m + 1):
             _hop(A, (i - 1) / m, 1.0 / m, Wu, ec, vc, bb)
             s[i] = i / m
-            _to_eta(basis, ec, ee)
-            _to_eta(basis, vc, ve)
+            _map(full, XT, ec, ee)
+            _map(full, XT, vc, ve)
             gi = _gap_at(t0 + s[i] * h, ee, ve, sysd, mm, He, False, PJ)
             d[i] = gi[0]
             dv[i] = gi[1]
@@ -1259,65 +1261,82 @@ FULL_FREEZE_MIN = 0.05
 
 @njit(cache=True)
 def _basis_buffers(N):
-    """(w~, X, X^T, X^-T, c0 u, W^2 u, shift, full) of :func:`_step_basis` (allocated once per phase)."""
-    return (np.empty(N), np.empty((N, N)), np.empty((N, N)), np.empty((N, N)), np.zeros(N), np.zeros(N),
-            np.zeros(N), np.zeros(1))
+    """(w~, X, X^T, X^-T, c0 u, W^2 u, shift, full) of :func:`_step_basis` (allocated once per
+    phase, as the identity basis)."""
+    return (np.empty(N), np.eye(N), np.eye(N), np.eye(N), np.zeros(N), np.zeros(N), np.zeros(N), np.zeros(1))
 
 
-@njit(cache=True, inline="always")
-def _to_eta(basis, z, out):
-    """out = X z (a copy for the identity basis)."""
-    if basis[7][0] != 0.0:
-        _mv(basis[2], z, out)
-    else:
-        for k in range(z.size):
-            out[k] = z[k]
+@njit(cache=True)
+def _map(full, AT, x, out):
+    """out = A x from AT = A^T (:func:`_mv`) in the step's full basis, a copy for the identity basis.
 
-
-@njit(cache=True, inline="always")
-def _to_zeta(basis, x, out):
-    """out = X^-1 x (a copy for the identity basis)."""
-    if basis[7][0] != 0.0:
-        _mv(basis[3], x, out)
+    With the basis (X, X^T, X^-T) of :func:`_step_basis`: ``AT`` = X^T maps zeta to eta,
+    X^-T maps eta to zeta, X gives X^T y."""
+    if full:
+        _mv(AT, x, out)
     else:
         for k in range(x.size):
             out[k] = x[k]
 
 
-@njit(cache=True, inline="always")
-def _frozen_out(basis, e, rest):
+@njit(cache=True)
+def _map_rows(AT, F, tmp):
+    """Each row of F replaced by A row (in the full basis; ``tmp`` a work vector)."""
+    for j in range(F.shape[0]):
+        _mv(AT, F[j], tmp)
+        for k in range(tmp.size):
+            F[j, k] = tmp[k]
+
+
+@njit(cache=True)
+def _frozen_out(full, cu, w2u, shift, e, rest):
     """rest -= the coupling frozen in the step's propagation: c0 u u^T W^2 e (full) or its diagonal."""
-    if basis[7][0] != 0.0:
-        cu, w2u = basis[4], basis[5]
+    if full:
         fr = _dot(w2u, e)
         for k in range(e.size):
             rest[k] -= cu[k] * fr
     else:
-        sh = basis[6]
         for k in range(e.size):
-            rest[k] -= sh[k] * e[k]
+            rest[k] -= shift[k] * e[k]
 
 
 @njit(cache=True)
 def _identity_basis(omega, basis):
+    """The identity basis with the frequencies ``omega`` (the matrices are reset only when
+    the previous step's basis was a full one)."""
     wt, X, XT, XiT, cu, w2u, sh, full = basis
     N = omega.size
-    full[0] = 0.0
+    if full[0] != 0.0:
+        for j in range(N):
+            for k in range(N):
+                X[j, k] = 0.0
+                XT[j, k] = 0.0
+                XiT[j, k] = 0.0
+            X[j, j] = 1.0
+            XT[j, j] = 1.0
+            XiT[j, j] = 1.0
+        full[0] = 0.0
     for k in range(N):
         wt[k] = omega[k]
-        cu[k] = 0.0
-        w2u[k] = 0.0
         sh[k] = 0.0
-        for j in range(N):
-            X[j, k] = 0.0
-            XT[j, k] = 0.0
-            XiT[j, k] = 0.0
-        X[k, k] = 1.0
-        XT[k, k] = 1.0
-        XiT[k, k] = 1.0
 
 
 SECULAR_MAXIT = 60  # safeguarded Newton iterations per root of the secular equation (2-4 taken)
+
+
+@njit(cache=True)
+def _secular_sums(i, dA, v2, tau):
+    """R = sum_(k != i) v_k^2 / (d_k - lambda) and dR / dtau at lambda = dA[i] + tau."""
+    R = 0.0
+    Rp = 0.0
+    do = dA[i]
+    for k in range(dA.size):
+        if k != i:
+            inv = 1.0 / ((dA[k] - do) - tau)
+            r = v2[k] * inv
+            R += r
+            Rp += r * inv
+    return R, Rp
 
 
 @njit(cache=True)
@@ -1341,24 +1360,13 @@ def _secular_root(i, dA, v2, c, vsum):
     else:
         hi = 0.0
         lo = dA[i - 1] - do if i > 0 else -c * vsum
-    tau = 0.0
-    first = True
+    R, Rp = _secular_sums(i, dA, v2, 0.0)
+    den = 1.0 - c * R
+    tau = -c * vo2 / den if den != 0.0 else 0.5 * (lo + hi)  # the one-pole estimate
+    if not (lo < tau < hi):
+        tau = 0.5 * (lo + hi)
     for _ in range(SECULAR_MAXIT):
-        R = 0.0
-        Rp = 0.0
-        for k in range(m):
-            if k != i:
-                inv = 1.0 / ((dA[k] - do) - tau)
-                r = v2[k] * inv
-                R += r
-                Rp += r * inv
-        if first:  # the one-pole start: tau = -c v_o^2 / (1 - c R(0))
-            first = False
-            den = 1.0 - c * R
-            tau = -c * vo2 / den if den != 0.0 else 0.5 * (lo + hi)
-            if not (lo < tau < hi):
-                tau = 0.5 * (lo + hi)
-            continue
+        R, Rp = _secular_sums(i, dA, v2, tau)
         G = tau * (1.0 - c * R) + c * vo2
         Gp = 1.0 - c * R - tau * c * Rp
         step = -G / Gp if Gp != 0.0 else math.inf
@@ -1410,23 +1418,26 @@ def _step_basis(eta, lin, sysd, mm, Ae, basis):
     omega, Psi, PsiT, toM, row0, inv00, sref = lin
     wt, X, XT, XiT, cu, w2u, sh, full = basis
     N = omega.size
-    _identity_basis(omega, basis)
-    if sysd[1] or not FREEZE:
-        return
-    _mv(mm[1], eta, Ae)
-    ds = _dot(eta, Ae) - sref
+    ds = 0.0
+    if not sysd[1] and FREEZE:
+        _mv(mm[1], eta, Ae)
+        ds = _dot(eta, Ae) - sref
     den = 1.0 + ds * inv00
-    if ds == 0.0 or not den > 0.0:
+    if ds == 0.0 or not den > 0.0 or abs(ds * inv00) < FULL_FREEZE_MIN:
+        _identity_basis(omega, basis)
+        if ds != 0.0 and den > 0.0:  # weak coupling: the diagonal as shifted frequencies
+            c0 = ds / den
+            u = mm[0]
+            for k in range(N):
+                w2 = omega[k] * omega[k]
+                sh[k] = min(c0 * u[k] * u[k] * w2, w2)
+                wt[k] = math.sqrt(w2 - sh[k])
         return
     u = mm[0]
     c0 = ds / den
-    if abs(ds * inv00) < FULL_FREEZE_MIN:
-        for k in range(N):
-            w2 = omega[k] * omega[k]
-            sh[k] = min(c0 * u[k] * u[k] * w2, w2)
-            wt[k] = math.sqrt(w2 - sh[k])
-        return
     full[0] = 1.0
+    # the active poles (v = w u != 0), ascending as the modes come from eigh; the rigid mode
+    # and a support mode (u = 0) are not coupled
     order = np.empty(N, dtype=np.int64)
     m = 0
     for k in range(N):
@@ -1435,14 +1446,6 @@ def _step_basis(eta, lin, sysd, mm, Ae, basis):
         if omega[k] * u[k] != 0.0:
             order[m] = k
             m += 1
-    # the active poles in ascending order (the modes come sorted; a support mode has u = 0)
-    for a in range(1, m):
-        kk = order[a]
-        b = a - 1
-        while b >= 0 and omega[order[b]] > omega[kk]:
-            order[b + 1] = order[b]
-            b -= 1
-        order[b + 1] = kk
     dA = np.empty(m)
     v2 = np.empty(m)
     vsum = 0.0
@@ -1451,12 +1454,12 @@ def _step_basis(eta, lin, sysd, mm, Ae, basis):
         dA[a] = omega[k] * omega[k]
         v2[a] = dA[a] * u[k] * u[k]
         vsum += v2[a]
-    for j in range(N):
-        for k in range(N):
-            X[j, k] = 0.0
     for k in range(N):
-        if omega[k] * u[k] == 0.0:
-            X[k, k] = 1.0 / math.sqrt(1.0 + ds * u[k] * u[k])  # e_k, M_s-normalised
+        if omega[k] * u[k] == 0.0:  # e_k, M_s-normalised, at its own frequency
+            wt[k] = omega[k]
+            for j in range(N):
+                X[j, k] = 0.0
+            X[k, k] = 1.0 / math.sqrt(1.0 + ds * u[k] * u[k])
     for a in range(m):
         o = order[a]
         tau = _secular_root(a, dA, v2, c0, vsum)
@@ -1548,8 +1551,9 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             np.empty((N, p + 1, p)), np.empty((N, p + 1, p)))
     h_w = -1.0
     new_lin = True
+    full = False
     basis = _basis_buffers(N)
-    wt, X = basis[0], basis[1]
+    wt, X, XT, XiT = basis[0], basis[1], basis[2], basis[3]
     lin_s = (wt, Psi, PsiT, toM, row0, inv00, sref)
     zeta = np.empty(N)  # the state in the step's coordinates (eta = X zeta)
     zetad = np.empty(N)
@@ -1591,13 +1595,11 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
         h = min(h, t_end - t, hcap)
         if new_lin:  # the step's coordinates; the state and the forcing's guess (eta) moved to them
             _step_basis(eta, lin, sysd, mm, Ae, basis)
-            _to_zeta(basis, eta, zeta)
-            _to_zeta(basis, v, zetad)
-            if basis[7][0] != 0.0:
-                for j in range(p):
-                    _to_zeta(basis, f_guess[j], en)
-                    for k in range(N):
-                        f_guess[j, k] = en[k]
+            full = basis[7][0] != 0.0
+            _map(full, XiT, eta, zeta)
+            _map(full, XiT, v, zetad)
+            if full:
+                _map_rows(XiT, f_guess, en)
             new_lin = False
             h_w = -1.0
         ok, err, iters = collocation_step(
@@ -1711,8 +1713,8 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
                 else:
                     _hop(A, s0 + (i - 1) * ds_, ds_, Wu, ec, vc, bb)
                 row = ys[ns + i]
-                _to_eta(basis, ec, en)
-                _to_eta(basis, vc, vn_)
+                _map(full, XT, ec, en)
+                _map(full, XT, vc, vn_)
                 _mv(PsiT, en, row[:N])
                 _mv(PsiT, vn_, row[N : 2 * N])
                 sg = (tk - t) / h_taken
@@ -1730,8 +1732,8 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
                 else:  # constant torque: W = tau (theta - theta_0), exactly
                     row[2 * N + 1] = W + tau * (row[0] - theta_start)
             ns += cnt
-        _to_eta(basis, eta1, en)  # the step end back in eta
-        _to_eta(basis, v1, vn_)
+        _map(full, XT, eta1, en)  # the step end back in eta
+        _map(full, XT, v1, vn_)
         ed_inc = 0.0
         for j in range(p):
             ed_inc += b[j] * diss[j]
@@ -1764,11 +1766,8 @@ def advance(t, t_end, z, zd, Ed, W, mode, lawp, h, hcap, sample_step, keep_dense
             h_next = h_taken * min(4.0, max(0.2, 0.9 * max(err, 1e-10) ** (-1.0 / (p + 1))))
             _extrapolate_into(c, f, h_next / h_taken, f_guess)
             _extrapolate1_into(c, F, h_next / h_taken, F_guess)
-            if basis[7][0] != 0.0:  # the guess back in eta
-                for j in range(p):
-                    _to_eta(basis, f_guess[j], en)
-                    for k in range(N):
-                        f_guess[j, k] = en[k]
+            if full:  # the guess back in eta
+                _map_rows(XT, f_guess, en)
         ts[ns] = t
         row = ys[ns]
         _mv(PsiT, eta, row[:N])
