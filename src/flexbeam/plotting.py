@@ -18,7 +18,8 @@ from .solution import Solution, atomic_path
 _STYLE = {"ccfm": "C0", "ccm": "C3", "imm": "C2", "fem": "C1"}
 
 
-def _pyplot():
+def pyplot():
+    """matplotlib.pyplot with the non-interactive Agg backend (imported on first use)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -56,7 +57,7 @@ def _mark_references(ax, reference: dict[str, Any], method: str, quantity: str) 
 def plot_contact_force(solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None,
                        title: str = "") -> Path:
     """Contact force [N] against time after the first contact [ms], methods overlaid."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     span = max((s.contacts[0].duration for s in solutions if s.contacts and math.isfinite(s.contacts[0].duration)),
                default=1e-3)
@@ -74,13 +75,13 @@ def plot_contact_force(solutions: list[Solution], path: str | Path, reference: d
     ax.set_title(title or "Contact force")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_normal_velocity(solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None,
                          title: str = "") -> Path:
     """Normal velocity of the contact point (measuring point 1) [m/s] against time [ms]."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     for sol in solutions:
         t0, sel = _window(sol, 0.5e-3, 4e-3)
@@ -94,14 +95,15 @@ def plot_normal_velocity(solutions: list[Solution], path: str | Path, reference:
     ax.set_title(title or "Normal velocity of the impact point")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
-def _save(fig, path: str | Path) -> Path:
+def save_figure(fig, path: str | Path) -> Path:
+    """Write ``fig`` as a PNG at ``path`` atomically and close it."""
     path = Path(path)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=120, format="png", bbox_inches="tight")
-    _pyplot().close(fig)
+    pyplot().close(fig)
     return path
 
 
@@ -128,7 +130,7 @@ def plot_tip_deflection(solutions: list[Solution], path: str | Path, labels: lis
     ``labels`` default to the coupling model, number of modes and spin rate of each run;
     ``reference`` = (t [s], deflection [m]) is drawn dashed; ``ylim`` clips divergent runs.
     """
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     for k, sol in enumerate(solutions):
         label = labels[k] if labels is not None else _run_label(sol)
@@ -144,4 +146,4 @@ def plot_tip_deflection(solutions: list[Solution], path: str | Path, labels: lis
     ax.set_title(title or "Tip deflection in the rotating frame")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    return _save(fig, path)
+    return save_figure(fig, path)
