@@ -1,0 +1,83 @@
+"""Parameter sweeps on Dask with a resumable on-disk store.
+
+A sweep runs one case many times with some of its fields changed -- on a grid (the
+product of the given values) or at random samples drawn from distributions -- and
+collects the scalar metrics of every run in an :class:`xarray.Dataset` with one
+dimension per swept field (grid) or a ``case`` dimension (samples)::
+
+    ds = fb.sweep("seed-experiment", grid={"contact.restitution": [0.6, 0.8],
+                                           "contact.stiffness": [1e9, 2e9, 4e9]}, out="sweep")
+    ds["peak_force"].sel({"contact.restitution": 0.8})
+
+The cases run on a :mod:`dask.distributed` cluster: a ``LocalCluster`` with one
+single-threaded worker process per core unless a scheduler address (or a
+``Client``) is given.
+
+The store
+---------
+A directory, not a Zarr array, because each finished case must reach the disk on its
+own and completely or not at all, from whichever process sees it finish::
+
+    STORE/sweep.json       the last sweep's definition (base case, method, swept fields,
+                           the case keys in order)
+    STORE/cases/KEY.json   one finished case: its overrides, full case, status, error,
+                           every metric, worker and timing
+    STORE/cases/KEY.nc     its full history (``histories=True``)
+    STORE/result.nc        the consolidated Dataset, rewritten at the end of every run
+                           (also after an interruption; missing cases have status "missing")
+
+``KEY`` is a hash of the validated case (without its name and description) and the
+impact method, so a case is recognised whatever sweep it came from.  Each file is
+written to a temporary name and renamed (atomic on POSIX): a case is finished if and
+only if its JSON exists, and its history is written before it.  The client writes
+the files as the results arrive, so a remote cluster needs no shared file system,
+and an interrupted client (Ctrl-C) or a killed worker loses only the cases that were
+still running.  Running the same sweep again computes only the cases whose JSON is
+missing.  A case whose simulation raises or ends with ``status == "failed"`` is a
+finished case: it is recorded with its error and is not retried.  A case lost with
+its worker (``KilledWorker`` after Dask's retries) is not recorded and is computed
+by the next run.
+
+Library imports stay light here: Dask and xarray are imported when a sweep runs.  The
+local cluster starts its workers as new processes that import the calling script
+again, so a script that sweeps on it needs the usual ``if __name__ == "__main__":``
+guard (the ``flexbeam sweep`` command has it).
+
+Modules
+-------
+* :mod:`~flexbeam.sweep.spec` -- grids and :class:`Distribution` (parsing the command line);
+* :mod:`~flexbeam.sweep.planning` -- :func:`plan`: the cases and their :func:`case_key`;
+* :mod:`~flexbeam.sweep.store` -- :class:`Store`, the resumable directory;
+* :mod:`~flexbeam.sweep.cluster` -- :func:`run_case` on a Dask worker and the cluster;
+* :mod:`~flexbeam.sweep.dataset` -- the result Dataset, :func:`load`, :func:`summary`,
+  :func:`open_history`;
+* :mod:`~flexbeam.sweep.runner` -- :func:`sweep`.
+"""
+
+from __future__ import annotations
+
+from .cluster import ProgressFn, run_case
+from .dataset import METRICS, load, open_history, summary
+from .planning import Plan, Point, case_key, plan
+from .runner import sweep
+from .spec import Distribution, parse_grid, parse_samples
+from .store import FAILED, Store
+
+__all__ = [
+    "FAILED",
+    "METRICS",
+    "Distribution",
+    "Plan",
+    "Point",
+    "ProgressFn",
+    "Store",
+    "case_key",
+    "load",
+    "open_history",
+    "parse_grid",
+    "parse_samples",
+    "plan",
+    "run_case",
+    "summary",
+    "sweep",
+]
