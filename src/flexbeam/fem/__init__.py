@@ -7,13 +7,24 @@ iterations, with the same obstacle, CCFM contact laws, drives and initial states
 the modal model -- but without modal truncation and without the second-order
 coupling-deformation approximation.
 
-* :mod:`flexbeam.fem.kernels` -- element internal force/tangent (Crisfield 1991),
-  exact inertia of the interpolated field, assembly (Numba);
+* :mod:`flexbeam.fem.element` -- element internal force/tangent (Crisfield 1991) and
+  exact inertia of the interpolated field (Numba);
+* :mod:`flexbeam.fem.assembly`, :mod:`flexbeam.fem.banded` -- assembly of the residual
+  and the banded iteration matrix, Newton iterations, band solver (Numba);
+* :mod:`flexbeam.fem.contact_law`, :mod:`flexbeam.fem.gap` -- the FE's own evaluation
+  of the contact-law force and of the gap to the obstacle (Numba), and
+  :mod:`flexbeam.fem.contact_setup` -- the law and the obstacle read from the case;
 * :mod:`flexbeam.fem.model` -- mesh, properties, statics, frequencies;
-* :mod:`flexbeam.fem.integrator` -- generalized-alpha (Chung & Hulbert 1993) with
-  contact-event location;
+* :mod:`flexbeam.fem.integrator` -- generalized-alpha (Chung & Hulbert 1993) step;
+* :mod:`flexbeam.fem.eventdriven` -- the run with contact-event location and step sizes;
 * :mod:`flexbeam.fem.simulate` -- :func:`simulate_fem`, returning a
   :class:`~flexbeam.solution.Solution`.
+
+It shares no equations with the modal model: the contact force and the gap are
+evaluated by its own kernels; only the case's inputs are interpreted alike (the law and
+its chi(e), the Hertz stiffness, the obstacle placement, the drive profile
+:class:`flexbeam.model.drive.JointDrive`) and the results go into the same
+:class:`~flexbeam.solution.Solution`.
 """
 
 from __future__ import annotations

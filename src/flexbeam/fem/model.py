@@ -1,7 +1,7 @@
 """The finite-element beam on its hub: mesh, properties, obstacle and equations.
 
 The mesh has ``case.fem.elements`` two-node co-rotational elements (see
-:mod:`flexbeam.fem.kernels` for the element and the reasons for it), split so that a
+:mod:`flexbeam.fem.element` for the element and the reasons for it), split so that a
 node lies at the contact point x_P: n_1 = round(N x_P / L) uniform elements on
 [0, x_P] and N - n_1 on [x_P, L] (at least one on each part of non-zero length).
 
@@ -28,9 +28,12 @@ from scipy.linalg import eigh
 from ..contact.laws import ContactLaw
 from ..errors import ParameterError
 from ..model.drive import JointDrive
-from ..model.system import BeamSystem
 from ..parameters.case import Case
-from . import kernels as kn
+from .assembly import assemble, energies, node_states, normal_velocities
+from .banded import BAND, band_to_dense, fix_first_dof
+from .contact_setup import ContactSetup
+from .element import GAUSS_W, GAUSS_XI, point_on_element
+from .gap import gap_at
 
 NO_LAW = np.zeros(4)
 
@@ -68,6 +71,17 @@ def locate(x_nodes: np.ndarray, x: float) -> tuple[int, float]:
     return e, float(min(max(xi, 0.0), 1.0))
 
 
+def initial_angle(case: Case) -> float:
+    """Hub angle theta(0) a prescribed drive starts from: the initial state's angle, the release
+    angle when given, else the impact angle (the case's convention, as in the modal model)."""
+    init = case.initial
+    if init.kind == "state":
+        return init.angle
+    if init.kind == "release" and init.release_angle is not None:
+        return init.release_angle
+    return init.impact_angle
+
+
 @dataclass
 class FemBeam:
     """Everything the time integrator needs about one case, for the FE model.
@@ -97,15 +111,11 @@ class FemBeam:
     # ------------------------------------------------------------------ set-up
     @classmethod
     def from_case(cls, case: Case) -> FemBeam:
-        """Mesh, properties, drive and (shared with the modal model) obstacle and law."""
+        """Mesh, properties, drive, contact law and obstacle (read from the case, as the modal model does)."""
         b = case.beam
         x_nodes = build_mesh(b.length, case.fem.elements, case.contact.position)
         pnode = int(np.argmin(np.abs(x_nodes - case.contact.position)))
-        # obstacle placement and contact law exactly as the modal model does them
-        # (they depend on x_P, c and the impact angle only, not on the modes)
-        rigid = case.model_copy(update={"model": case.model.model_copy(update={"modes": 0})})
-        system = BeamSystem.from_case(rigid)
-        geom = system.contact
+        contact = ContactSetup.from_case(case)
         measuring = [locate(x_nodes, x) for x in case.output.measuring_points]
         return cls(
             case=case,
@@ -119,12 +129,12 @@ class FemBeam:
             hub_radius=case.hub.radius,
             hub_inertia=case.hub.inertia,
             gravity=case.model.gravity,
-            drive=system.drive,
-            law=system.law,
-            obstacle_kind=int(geom.kind),
-            obstacle_centre=np.asarray(geom.centre, float),
-            obstacle_radius=float(geom.radius),
-            obstacle_normal=np.asarray(geom.normal, float),
+            drive=JointDrive(case.drive, theta0=initial_angle(case)),
+            law=contact.law,
+            obstacle_kind=int(contact.kind),
+            obstacle_centre=np.asarray(contact.centre, float),
+            obstacle_radius=float(contact.radius),
+            obstacle_normal=np.asarray(contact.normal, float),
             measuring=measuring,
         )
 
@@ -157,8 +167,8 @@ class FemBeam:
             self.EA,
             self.EI,
             self.gravity,
-            kn.GAUSS_XI,
-            kn.GAUSS_W,
+            GAUSS_XI,
+            GAUSS_W,
         )
 
     def contact_args(self) -> tuple:
@@ -191,12 +201,12 @@ class FemBeam:
         n = self.size
         if out is None:
             R = np.empty(n)
-            ab = np.zeros((3 * kn.BAND + 1, n))
+            ab = np.zeros((3 * BAND + 1, n))
         else:
             R, ab = out
         cM, cC, cK = coefficients
         in_contact = lawp is not None
-        info = kn.assemble(
+        info = assemble(
             z,
             zd,
             zdd,
@@ -217,13 +227,7 @@ class FemBeam:
     @staticmethod
     def band_to_dense(ab: np.ndarray) -> np.ndarray:
         """Dense matrix from LAPACK general-band storage (kl = ku = BAND)."""
-        n = ab.shape[1]
-        A = np.zeros((n, n))
-        off = 2 * kn.BAND
-        for j in range(n):
-            for i in range(max(0, j - kn.BAND), min(n, j + kn.BAND + 1)):
-                A[i, j] = ab[off + i - j, j]
-        return A
+        return band_to_dense(ab)
 
     def matrices(self, z: np.ndarray, zd: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Dense mass matrix M and tangent stiffness K at (z, z') (for small meshes)."""
@@ -238,7 +242,7 @@ class FemBeam:
         """Node arrays (X, V, A), each (N + 1) x 3: X, Y, psi per node."""
         nn = self.elements + 1
         X, V, A = np.empty((nn, 3)), np.empty((nn, 3)), np.empty((nn, 3))
-        kn.node_states(z, zd, np.zeros_like(z) if zdd is None else zdd, self.hub_radius, X, V, A)
+        node_states(z, zd, np.zeros_like(z) if zdd is None else zdd, self.hub_radius, X, V, A)
         return X, V, A
 
     def gap(self, z: np.ndarray, zd: np.ndarray, zdd: np.ndarray | None = None):
@@ -246,7 +250,7 @@ class FemBeam:
         X, V, A = self.nodes(z, zd, zdd)
         J = np.empty(3)
         p = self.pnode
-        d, vn, dd = kn.gap_at(
+        d, vn, dd = gap_at(
             X[p],
             V[p],
             A[p],
@@ -277,7 +281,7 @@ class FemBeam:
         e, xi = where
         xe = np.concatenate((X[e], X[e + 1]))
         ve = np.concatenate((V[e], V[e + 1]))
-        return kn.point_on_element(xe, ve, self.l0[e], xi)
+        return point_on_element(xe, ve, self.l0[e], xi)
 
     def measuring_velocities(self, z: np.ndarray, zd: np.ndarray) -> np.ndarray:
         """Velocities along e2(theta) of all measuring points [m/s]."""
@@ -288,7 +292,7 @@ class FemBeam:
                 np.array([m[0] for m in self.measuring], np.int64),
                 np.array([m[1] for m in self.measuring], float),
             )
-        return kn.normal_velocities(z, zd, self.hub_radius, self.l0, *self._meas)
+        return normal_velocities(z, zd, self.hub_radius, self.l0, *self._meas)
 
     def tip_deflection(self, z: np.ndarray) -> float:
         """Transverse tip displacement in the hub frame, e2(theta) . r_tip [m]."""
@@ -305,7 +309,7 @@ class FemBeam:
 
     def energies(self, z: np.ndarray, zd: np.ndarray) -> tuple[float, float, float]:
         """(kinetic, elastic, gravitational) energy [J]; V_g = g int mu Y dx."""
-        T, Ve, Vg = kn.energies(
+        T, Ve, Vg = energies(
             z,
             zd,
             self.hub_radius,
@@ -315,8 +319,8 @@ class FemBeam:
             self.EA,
             self.EI,
             self.gravity,
-            kn.GAUSS_XI,
-            kn.GAUSS_W,
+            GAUSS_XI,
+            GAUSS_W,
         )
         return float(T), float(Ve), float(Vg)
 
@@ -367,7 +371,7 @@ class FemBeam:
         z[0] = theta
         zero = np.zeros_like(z)
         load = np.zeros_like(z) if load is None else np.asarray(load, float)
-        scale = self._increment_scale()
+        scale = self.increment_scale()
         lam, dlam = 0.0, 1.0 / steps
         while lam < 1.0:
             target = min(1.0, lam + dlam)
@@ -377,8 +381,8 @@ class FemBeam:
                 R, ab, _ = self.residual(0.0, trial, zero, zero, (0.0, 0.0, 1.0))
                 R = R - target * load
                 R[0] = 0.0
-                kn.fix_first_dof(ab)
-                dz = solve_banded((kn.BAND, kn.BAND), ab[kn.BAND :], -R)
+                fix_first_dof(ab)
+                dz = solve_banded((BAND, BAND), ab[BAND :], -R)
                 if not np.all(np.isfinite(dz)):
                     break
                 trial += dz
@@ -394,7 +398,7 @@ class FemBeam:
                     raise SolverError(f"fem: static equilibrium did not converge (load factor {lam:.6g})")
         return z
 
-    def _increment_scale(self) -> np.ndarray:
+    def increment_scale(self) -> np.ndarray:
         """Per-DOF scale of Newton increments: L for positions, 1 rad for rotations."""
         s = np.ones(self.size)
         L = float(self.x_nodes[-1])

@@ -9,11 +9,12 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import brentq
 
-from ..contact.laws import law_force, law_potential
 from ..errors import ParameterError
 from ..parameters.case import Case
 from ..solution import Solution
-from .integrator import FemIntegrator, Record, RunInfo, State, StepResult, run
+from .contact_law import law_force, law_potential
+from .eventdriven import Record, RunInfo, run
+from .integrator import FemIntegrator, State, StepResult
 from .model import FemBeam
 
 SCHEME = "generalized-alpha (Chung & Hulbert 1993; Arnold & Bruls 2007 form), Newton"

@@ -1,0 +1,254 @@
+"""Assembly of the FE equations of motion (Numba): node states, residual, iteration matrix, Newton.
+
+Degrees of freedom
+------------------
+z = [theta, X_1, Y_1, psi_1, ..., X_N, Y_N, psi_N]: node 0 is clamped to the hub at
+r_h e1(theta) with psi_0 = theta, and maps onto theta with the weights
+T0 = dX_0/dtheta = (-r_h sin theta, r_h cos theta, 1).  The tangent is assembled in
+LAPACK general-band storage (kl = ku = 5, :mod:`flexbeam.fem.banded`) for
+:func:`scipy.linalg.lapack.dgbsv`.  The elements are those of :mod:`flexbeam.fem.element`;
+the contact force at P comes from :mod:`flexbeam.fem.contact_law` and its gap from
+:mod:`flexbeam.fem.gap`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .banded import BAND, band_solve, fix_first_dof
+from .contact_law import law_force
+from .element import corotational_element, inertia_element, point_on_element
+from .gap import gap_at
+
+
+@njit(cache=True)
+def node_states(z, zd, zdd, rh, X, V, A):
+    """Fill node arrays (nn x 3) from the DOF vectors; node 0 follows the hub angle."""
+    th, w, al = z[0], zd[0], zdd[0]
+    ct, st = math.cos(th), math.sin(th)
+    X[0, 0] = rh * ct
+    X[0, 1] = rh * st
+    X[0, 2] = th
+    V[0, 0] = -rh * st * w
+    V[0, 1] = rh * ct * w
+    V[0, 2] = w
+    A[0, 0] = rh * (-st * al - ct * w * w)
+    A[0, 1] = rh * (ct * al - st * w * w)
+    A[0, 2] = al
+    nn = X.shape[0]
+    for i in range(1, nn):
+        for k in range(3):
+            X[i, k] = z[3 * i + k - 2]
+            V[i, k] = zd[3 * i + k - 2]
+            A[i, k] = zdd[3 * i + k - 2]
+
+
+
+@njit(cache=True)
+def _dof_map(e, a, T0):
+    node = e + a // 3
+    k = a % 3
+    if node == 0:
+        return 0, T0[k]
+    return 3 * node + k - 2, 1.0
+
+
+@njit(cache=True)
+def assemble(
+    z, zd, zdd, t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
+    cM, cC, cK, want_S,
+    pnode, cP, okind, ocentre, oradius, onormal, in_contact, lawp,
+    R, ab,
+):  # fmt: skip
+    """Residual R(z, z', z'') of the equations of motion and the iteration matrix.
+
+    R = f_in + f_int - f_g - J^T F (+ J_h theta'' - tau on theta), with
+    S = cM M + cC C + cK K in LAPACK band storage ``ab`` (kl = ku = BAND; row
+    offset 2 BAND) if ``want_S``.  ``t_tau`` is the joint torque tau.
+
+    Returns
+    -------
+    F, F_k, delta, delta'
+        Contact force, its elastic part, gap and gap rate at P (F = 0 when not
+        ``in_contact``).
+    """
+    nel = l0.size
+    nn = nel + 1
+    X = np.empty((nn, 3))
+    V = np.empty((nn, 3))
+    A = np.empty((nn, 3))
+    node_states(z, zd, zdd, rh, X, V, A)
+    th = z[0]
+    T0 = np.array([-rh * math.sin(th), rh * math.cos(th), 1.0])
+    d2X0 = np.array([-rh * math.cos(th), -rh * math.sin(th), 0.0])
+    R[:] = 0.0
+    if want_S:
+        ab[:, :] = 0.0
+    off = 2 * BAND
+    xe = np.empty(6)
+    ve = np.empty(6)
+    ae = np.empty(6)
+    fe = np.empty(6)
+    Ke = np.empty((6, 6))
+    fin = np.empty(6)
+    Me = np.empty((6, 6))
+    fg = np.empty(6)
+    G = np.empty((2, 6))
+    idx = np.empty(6, np.int64)
+    wts = np.empty(6)
+    R0node = np.zeros(3)
+    for e in range(nel):
+        for k in range(3):
+            xe[k] = X[e, k]
+            xe[3 + k] = X[e + 1, k]
+            ve[k] = V[e, k]
+            ve[3 + k] = V[e + 1, k]
+            ae[k] = A[e, k]
+            ae[3 + k] = A[e + 1, k]
+        corotational_element(xe, l0[e], EA, EI, fe, Ke, want_S)
+        inertia_element(xe, ve, ae, l0[e], mu, g, gxi, gw, fin, Me, fg, G)
+        for a in range(6):
+            i, w = _dof_map(e, a, T0)
+            idx[a] = i
+            wts[a] = w
+            fa = fin[a] + fe[a] - fg[a]
+            R[i] += w * fa
+            if e == 0 and a < 3:
+                R0node[a] += fa
+        if want_S:
+            for a in range(6):
+                for b in range(6):
+                    i, j = idx[a], idx[b]
+                    ab[off + i - j, j] += wts[a] * wts[b] * (cM * Me[a, b] + cK * Ke[a, b])
+    # contact at node pnode
+    F = 0.0
+    Fk = 0.0
+    Jp = np.empty(3)
+    delta, vn, _ = gap_at(X[pnode], V[pnode], A[pnode], cP, okind, ocentre, oradius, onormal, Jp)
+    if in_contact:
+        d = -delta
+        dd = -vn
+        F, Fk, dFd, dFdd = law_force(lawp, d, dd)
+        # R -= J^T F; dF/dz = -dFd J - dFdd J (dz'/dz) (the gap Hessian is neglected)
+        pidx = np.empty(3, np.int64)
+        pw = np.empty(3)
+        for k in range(3):
+            if pnode == 0:
+                pidx[k] = 0
+                pw[k] = T0[k]
+                R0node[k] -= Jp[k] * F
+            else:
+                pidx[k] = 3 * pnode + k - 2
+                pw[k] = 1.0
+            R[pidx[k]] -= pw[k] * Jp[k] * F
+        if want_S and F > 0.0:
+            coef = cK * dFd + cC * dFdd
+            for a in range(3):
+                for b in range(3):
+                    i, j = pidx[a], pidx[b]
+                    ab[off + i - j, j] += pw[a] * pw[b] * coef * Jp[a] * Jp[b]
+    # hub
+    R[0] += Jh * zdd[0] - t_tau
+    if want_S:
+        ab[off, 0] += cM * Jh + cK * (R0node[0] * d2X0[0] + R0node[1] * d2X0[1])
+    return F, Fk, delta, vn
+
+
+@njit(cache=True)
+def energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
+    """(kinetic, elastic, gravitational) energy [J] of the mesh and hub."""
+    nel = l0.size
+    nn = nel + 1
+    X = np.empty((nn, 3))
+    V = np.empty((nn, 3))
+    A = np.empty((nn, 3))
+    node_states(z, zd, np.zeros(z.size), rh, X, V, A)
+    xe = np.empty(6)
+    ve = np.empty(6)
+    fe = np.empty(6)
+    Ke = np.empty((6, 6))
+    fin = np.empty(6)
+    Me = np.empty((6, 6))
+    fg = np.empty(6)
+    G = np.empty((2, 6))
+    T = 0.5 * Jh * zd[0] * zd[0]
+    Ve = 0.0
+    Vg = 0.0
+    for e in range(nel):
+        for k in range(3):
+            xe[k] = X[e, k]
+            xe[3 + k] = X[e + 1, k]
+            ve[k] = V[e, k]
+            ve[3 + k] = V[e + 1, k]
+        Ve += corotational_element(xe, l0[e], EA, EI, fe, Ke, False)
+        Te, Vge = inertia_element(xe, ve, ve, l0[e], mu, g, gxi, gw, fin, Me, fg, G)
+        T += Te
+        Vg += Vge
+    return T, Ve, Vg
+
+
+@njit(cache=True)
+def newton(
+    z, zd, zdd, a, cM, cC, ca, scale, tol, max_iter, prescribed,
+    t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
+    pnode, cP, okind, ocentre, oradius, onormal, in_contact, lawp,
+    R, ab,
+):  # fmt: skip
+    """Newton iterations of one generalized-alpha step, updating z, z', z'', a in place.
+
+    Returns (iterations, code): code 0 converged, 1 not converged, 2 pivot too
+    small (retry with pivoting), 3 non-finite increment.
+    """
+    for it in range(1, max_iter + 1):
+        assemble(
+            z, zd, zdd, t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw, cM, cC, 1.0, True,
+            pnode, cP, okind, ocentre, oradius, onormal, in_contact, lawp, R, ab,
+        )  # fmt: skip
+        if prescribed:
+            fix_first_dof(ab)
+            R[0] = 0.0
+        for i in range(R.size):
+            R[i] = -R[i]
+        if not band_solve(ab, R):
+            return it, 2
+        err = 0.0
+        for i in range(R.size):
+            d = R[i]
+            if not math.isfinite(d):
+                return it, 3
+            z[i] += d
+            zd[i] += cC * d
+            zdd[i] += cM * d
+            a[i] += ca * d
+            err = max(err, abs(d) / scale[i])
+        if err < tol:
+            return it, 0
+    return max_iter, 1
+
+
+
+@njit(cache=True)
+def normal_velocities(z, zd, rh, l0, elems, xis):
+    """Velocities along e2(theta) of centre-line points (element, xi) [m/s]."""
+    nn = l0.size + 1
+    X = np.empty((nn, 3))
+    V = np.empty((nn, 3))
+    A = np.empty((nn, 3))
+    node_states(z, zd, zd, rh, X, V, A)
+    out = np.empty(elems.size)
+    xe = np.empty(6)
+    ve = np.empty(6)
+    st, ct = math.sin(z[0]), math.cos(z[0])
+    for p in range(elems.size):
+        e = elems[p]
+        for k in range(3):
+            xe[k] = X[e, k]
+            xe[3 + k] = X[e + 1, k]
+            ve[k] = V[e, k]
+            ve[3 + k] = V[e + 1, k]
+        _, v = point_on_element(xe, ve, l0[e], xis[p])
+        out[p] = -st * v[0] + ct * v[1]
+    return out
