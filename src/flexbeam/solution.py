@@ -132,6 +132,12 @@ class Solution:
     def method(self) -> str:
         return str(self.provenance.get("method", ""))
 
+    def _repr_html_(self) -> str:
+        """Notebook display: status, metrics and a small plot (:func:`flexbeam.display.solution_html`)."""
+        from .display import solution_html
+
+        return solution_html(self)
+
     # ----------------------------------------------------------------- metrics
     def energy_drift(self) -> tuple[float, float]:
         """(end, max) relative change of the total energy.
