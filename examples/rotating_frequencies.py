@@ -13,7 +13,7 @@ about steady spin Omega, for the two coupling models
   omega_1^2 = omega_1(0)^2 - Omega^2, which vanishes -- the beam buckles -- when the
   spin reaches the first bending frequency omega_1(0) = 1.8751^2 sqrt(EI / (mu L^4)).
 
-A negative entry is the negative square root of |omega^2|: an unstable mode.
+A negative entry is the negative square root of ``|omega^2|``: an unstable mode.
 """
 
 # %%

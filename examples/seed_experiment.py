@@ -57,8 +57,8 @@ if __name__ == "__main__":
     ax_f.set(xlabel="Time after first contact [ms]", ylabel="Contact force [N]")
     ax_f.legend(fontsize=8)
     for method, sol in solutions.items():
-        window = sol.time <= 0.02
-        ax_v.plot(sol.time[window] * 1e3, sol["normal_velocity"][window], lw=0.8, label=method.upper())
+        window = sol.time <= 3e-3
+        ax_v.plot(sol.time[window] * 1e3, sol["normal_velocity"][window], lw=1.0, label=method.upper())
     ax_v.set(xlabel="Time [ms]", ylabel="Normal velocity of P [m/s]")
     ax_v.legend(fontsize=8)
     plt.show()

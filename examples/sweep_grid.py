@@ -9,7 +9,7 @@ case's rigid limit (no modes, no gravity, the first contact only).
 
 For that rigid rod every law of the Hunt-Crossley family has one dimensionless
 solution, d = d_max f(t/t_c) with d_max ~ (m v^2 / K)^(2/5), so the peak force scales
-as K^(2/5) |v|^(6/5) and the contact duration as K^(-2/5) |v|^(-1/5) -- whatever the
+as ``K^(2/5) |v|^(6/5)`` and the contact duration as ``K^(-2/5) |v|^(-1/5)`` -- whatever the
 law's damping.
 
 The cases run on an in-process Dask cluster (threads), so this script needs no

@@ -142,7 +142,7 @@ class Solution:
     def energy_drift(self) -> tuple[float, float]:
         """(end, max) relative change of the total energy.
 
-        Relative to max(|E(0)|, max_t T(t)) so that a zero gravitational reference
+        Relative to ``max(|E(0)|, max_t T(t))`` so that a zero gravitational reference
         does not divide by zero.
         """
         E = self.arrays["total_energy"]
