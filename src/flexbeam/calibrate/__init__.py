@@ -13,7 +13,7 @@ Two kinds of measurement, which may be combined:
   The model's samples are interpolated linearly onto the data times.  Residuals are
   divided by the channel's largest measured magnitude.
 * **features** -- summary numbers such as ``peak_force=584``; residuals are relative,
-  (model - measured) / |measured|.  A trial whose force has no second peak counts
+  ``(model - measured) / |measured|``.  A trial whose force has no second peak counts
   ``second_peak_force = 0`` (the limit of a vanishing shoulder).
 
 The fit is :func:`scipy.optimize.least_squares` (trust-region reflective) in scaled

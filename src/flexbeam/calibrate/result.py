@@ -58,6 +58,12 @@ class Calibration:
     def fitted(self) -> dict[str, float]:
         return {p.key: float(v) for p, v in zip(self.parameters, self.values)}
 
+    def _repr_html_(self) -> str:
+        """Notebook display (:func:`flexbeam.display.calibration_html`)."""
+        from ..display import calibration_html
+
+        return calibration_html(self)
+
     def to_dict(self) -> dict[str, Any]:
         """The JSON report (``flexbeam calibrate --json``)."""
         from ..solution import _jsonable

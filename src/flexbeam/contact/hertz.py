@@ -42,9 +42,11 @@ def sphere_on_cylinder_stiffness(
 def rigid_hertz_impact(mass: float, speed: float, K: float, n: float = 1.5) -> tuple[float, float, float]:
     """Closed-form impact of a rigid mass on an undamped spring F = K delta^n.
 
-    Energy: 1/2 m v^2 = K delta_max^(n+1)/(n+1); duration
-    t_c = (2 delta_max / v) int_0^1 (1 - s^(n+1))^(-1/2) ds
-        = (2 delta_max / v) sqrt(pi) Gamma(1 + 1/(n+1)) / Gamma(1/2 + 1/(n+1))
+    Energy: 1/2 m v^2 = K delta_max^(n+1)/(n+1); duration::
+
+        t_c = (2 delta_max / v) int_0^1 (1 - s^(n+1))^(-1/2) ds
+            = (2 delta_max / v) sqrt(pi) Gamma(1 + 1/(n+1)) / Gamma(1/2 + 1/(n+1))
+
     (= 2.9432 delta_max / v for Hertz, n = 3/2; Johnson 1985 Sec. 11.4).
 
     Returns

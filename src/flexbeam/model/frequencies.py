@@ -38,7 +38,7 @@ def spin_frequencies(beam: ModalBeam, spin: float, plane: str = "chordwise") -> 
     -------
     ndarray
         Ascending frequencies; an unstable (divergent) mode is returned as the
-        negative square root of |omega^2|, so a negative entry flags instability.
+        negative square root of ``|omega^2|``, so a negative entry flags instability.
     """
     if beam.n == 0:
         return np.empty(0)
