@@ -46,3 +46,15 @@ def closest(name: str, choices: Iterable[str]) -> str:
     """Return ``" (best matches: a, b)"`` for an unknown ``name``, or ``""``."""
     matches = difflib.get_close_matches(name, list(choices), n=3, cutoff=0.5)
     return f" (best matches: {', '.join(matches)})" if matches else ""
+
+
+def did_you_mean(name: str, choices: Iterable[str]) -> str:
+    """Return ``", did you mean x?"`` with the closest of ``choices`` to ``name``, or ``""``.
+
+    Closeness is :func:`difflib.get_close_matches` (Ratcliff-Obershelp similarity
+    ``2 M / T``) with the cutoff 0.6 that difflib itself uses by default; it is compared
+    case-insensitively, so ``Length`` finds ``length``.
+    """
+    by_lower = {c.lower(): c for c in choices}
+    matches = difflib.get_close_matches(name.lower(), list(by_lower), n=1)
+    return f", did you mean {by_lower[matches[0]]}?" if matches else ""

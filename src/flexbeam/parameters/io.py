@@ -2,15 +2,17 @@
 
 from __future__ import annotations
 
+import copy
 import math
 import tomllib
+from collections.abc import Mapping
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from ..errors import ParameterError, closest
+from ..errors import ParameterError, closest, did_you_mean
 from .case import Case
 
 _PRESETS = "flexbeam.parameters.presets"
@@ -60,13 +62,16 @@ def _read_source(source: str | Path) -> dict[str, Any]:
 
 
 def _format_validation_error(exc: ValidationError) -> str:
-    err = exc.errors()[0]
+    errors = exc.errors()
+    # A misspelt key leaves the field it meant missing: name the unknown key first.
+    unknown = [e for e in errors if e["type"] == "extra_forbidden"]
+    err = unknown[0] if unknown else errors[0]
     msg = str(err["msg"])
     if msg.startswith("Value error, "):
         msg = msg[len("Value error, ") :]
     loc = ".".join(str(p) for p in err["loc"])
     if err["type"] == "extra_forbidden":
-        return f"{loc}: unknown key"
+        return unknown_field_message([str(p) for p in err["loc"]], isinstance(err.get("input"), dict))
     if err["type"] == "missing":
         return f"{loc}: required field is missing"
     if loc and not msg.startswith(loc.split(".")[0] + "."):
@@ -74,6 +79,46 @@ def _format_validation_error(exc: ValidationError) -> str:
         got_txt = f" (got {got!r})" if got is not None and not isinstance(got, dict) else ""
         return f"{loc}: {msg}{got_txt}"
     return msg
+
+
+def _section_model(path: list[str]) -> type[BaseModel] | None:
+    """The pydantic model of the case section at ``path`` ([] = Case), or None if it is no section."""
+    model: type[BaseModel] | None = Case
+    for part in path:
+        if model is None or part not in model.model_fields:
+            return None
+        model = _field_model(model, part)
+    return model
+
+
+def unknown_field_message(path: list[str], section: bool, key: str | None = None) -> str:
+    """One-line message for an unknown case field or section, naming it first.
+
+    Parameters
+    ----------
+    path
+        Dotted path of the unknown name, e.g. ``["beam", "lenght"]``.
+    section
+        Whether it was given as a section (a TOML table, or a prefix of a longer key).
+    key
+        The full key as the user wrote it, if longer than ``path`` (``--set bem.length=1``).
+
+    Returns
+    -------
+    str
+        ``"beam.lenght: unknown field, did you mean length?"``; without a close match the
+        known names of the enclosing section are listed instead.
+    """
+    name, parent = path[-1], path[:-1]
+    model = _section_model(parent)
+    choices = list(model.model_fields) if model is not None else []
+    where = ".".join(parent) or "case"
+    what = "unknown section" if section else "unknown field"
+    head = ".".join(path)
+    if key is not None and key != head:
+        head, what = key, f"{what} '{head}'"
+    hint = did_you_mean(name, choices) or (f"; {where} has: {', '.join(choices)}" if choices else "")
+    return f"{head}: {what}{hint}"
 
 
 def validate_case(data: dict[str, Any]) -> Case:
@@ -84,13 +129,14 @@ def validate_case(data: dict[str, Any]) -> Case:
         raise ParameterError(_format_validation_error(exc)) from None
 
 
-def load_case(source: str | Path | Case, overrides: dict[str, Any] | None = None) -> Case:
+def load_case(source: str | Path | Case | Mapping[str, Any], overrides: dict[str, Any] | None = None) -> Case:
     """Load a built-in case by name, or a TOML file, and apply dotted overrides.
 
     Parameters
     ----------
     source
-        Built-in case name (see :func:`builtin_cases`), path to a TOML file, or a Case.
+        Built-in case name (see :func:`builtin_cases`), path to a TOML file, a Case, or
+        the nested dict a TOML file holds (``{"beam": {"length": 0.7, ...}, ...}``; not modified).
     overrides
         ``{"beam.youngs_modulus": 70e9, ...}``; keys are dotted paths of case fields.
 
@@ -102,10 +148,13 @@ def load_case(source: str | Path | Case, overrides: dict[str, Any] | None = None
     Raises
     ------
     ParameterError
-        Unknown case or key, or a value outside its allowed range.
+        Unknown case, key or section (named first, with its closest match, even when
+        the field it was meant for is then missing), or a value outside its allowed range.
     """
     if isinstance(source, Case):
         data = source.model_dump(exclude_none=True)
+    elif isinstance(source, Mapping):
+        data = copy.deepcopy(dict(source))
     else:
         data = _read_source(source)
     for key, value in (overrides or {}).items():
@@ -128,13 +177,9 @@ def set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
     node = data
     for depth, part in enumerate(parts):
         if model is None or part not in model.model_fields:
-            where = ".".join(parts[:depth]) or "case"
-            choices = list(model.model_fields) if model is not None else []
-            prefix = ".".join(parts[:depth])
-            full = [f"{prefix}.{c}" if prefix else c for c in choices]
-            raise ParameterError(
-                f"{key}: unknown key in {where}{closest(key, full) or closest(part, choices)}"
-            )
+            if model is None:  # below a plain field, e.g. beam.length.x
+                raise ParameterError(f"{key}: '{'.'.join(parts[:depth])}' is not a section")
+            raise ParameterError(unknown_field_message(parts[: depth + 1], depth < len(parts) - 1, key))
         if depth == len(parts) - 1:
             node[part] = value
         else:
