@@ -52,8 +52,8 @@ class Beam(_Section):
     length: Positive = Field(description="beam length L [m]")
     density: Positive = Field(description="mass density rho [kg/m^3]")
     youngs_modulus: Positive = Field(description="Young's modulus E [Pa]")
-    poisson_ratio: Annotated[float, Field(ge=-1.0, lt=0.5)] = Field(
-        0.3, description="Poisson ratio nu [-]"
+    poisson_ratio: Annotated[float, Field(gt=-1.0, lt=0.5)] = Field(
+        0.3, description="Poisson ratio nu [-] (isotropic: -1 < nu < 1/2)"
     )
     section: Literal["circle", "general"] = "circle"
     radius: Positive | None = Field(None, description="circular section radius [m]")
@@ -133,8 +133,19 @@ class Model(_Section):
     )
     gravity: NonNegative = Field(9.81, description="gravitational acceleration g [m/s^2] (0 = off)")
     quadrature_points: Annotated[int, Field(ge=0, le=4000)] = Field(
-        0, description="Gauss points for the modal integrals (0 = automatic)"
+        0, description="Gauss points for the modal integrals (0 = automatic, else >= modes + 1)"
     )
+
+    @model_validator(mode="after")
+    def _enough_points(self) -> Model:
+        # The mass matrix of theta and the n modal coordinates is a sum of one rank-one term
+        # per Gauss point: it is singular with fewer than n + 1 points.
+        if 0 < self.quadrature_points < self.modes + 1:
+            raise ValueError(
+                f"model.quadrature_points: must be 0 (automatic) or >= model.modes + 1 = {self.modes + 1} "
+                f"(got {self.quadrature_points})"
+            )
+        return self
 
 
 class Drive(_Section):
@@ -197,9 +208,9 @@ class Support(_Section):
 class Obstacle(_Section):
     """The obstacle in the plane of motion, fixed or on a compliant support.
 
-    ``kind = "sphere"``: a hemisphere (or point, radius 0) with ``centre`` and
-    ``radius``; ``kind = "half-plane"``: the plane through ``centre`` with outward
-    unit ``normal``.  When ``centre`` is omitted the obstacle is placed so that it
+    ``kind = "sphere"``: a hemisphere with ``centre`` and ``radius`` > 0 (the gap
+    |r - c| - r_s of a point would never close); ``kind = "half-plane"``: the plane
+    through ``centre`` with outward unit ``normal``.  When ``centre`` is omitted the obstacle is placed so that it
     touches the contact point P with the beam straight at ``initial.impact_angle``
     (sphere directly beneath P along the beam normal; plane tangent there).
     ``support``: rigid, or a mass-spring-damper (see :class:`Support`).
@@ -207,16 +218,21 @@ class Obstacle(_Section):
 
     kind: Literal["sphere", "half-plane"] = "sphere"
     centre: tuple[Finite, Finite] | None = Field(None, description="obstacle centre [m]")
-    radius: NonNegative = Field(0.01, description="hemisphere radius r_s [m]")
+    radius: NonNegative = Field(0.01, description="hemisphere radius r_s [m] (> 0 for a sphere)")
     normal: tuple[Finite, Finite] | None = Field(
         None, description="outward unit normal of a half-plane (default: beam normal at impact)"
     )
     youngs_modulus: Positive = Field(68.95e9, description="obstacle Young's modulus [Pa]")
-    poisson_ratio: Annotated[float, Field(ge=-1.0, lt=0.5)] = 0.3
+    poisson_ratio: Annotated[float, Field(gt=-1.0, lt=0.5)] = Field(
+        0.3, description="obstacle Poisson ratio [-] (isotropic: -1 < nu < 1/2)"
+    )
     support: Support = Field(default_factory=Support)
 
     @model_validator(mode="after")
     def _normal_is_unit(self) -> Obstacle:
+        if self.kind == "sphere" and self.radius == 0.0:
+            # the gap |r - c| - r_s of a point never closes, and its normal is undefined at contact
+            raise ValueError("obstacle.radius: must be > 0 m for a sphere obstacle (got 0)")
         if self.normal is not None:
             norm = math.hypot(*self.normal)
             if not math.isclose(norm, 1.0, rel_tol=1e-9):
