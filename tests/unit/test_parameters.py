@@ -34,7 +34,7 @@ def test_overrides_change_the_named_fields():
     ("key", "value", "field"),
     [
         ("beam.length", "-1", "beam.length"),
-        ("beam.lenght", "1", "beam.length"),  # unknown key: best match named
+        ("beam.lenght", "1", "beam.lenght"),  # unknown key: named first, best match after
         ("contact.position", "0.9", "contact.position"),
         ("model.modes", "-1", "model.modes"),
         ("contact.restitution", "1.5", "contact.restitution"),
@@ -57,3 +57,66 @@ def test_nan_is_parsed_as_a_number():
 def test_unknown_case_suggests_names():
     with pytest.raises(ParameterError, match="seed-experiment"):
         fb.load_case("seed-experimnt")
+
+
+def _seed_dict() -> dict:
+    return fb.load_case("seed-experiment").model_dump(mode="json", exclude_none=True)
+
+
+def _message(source, overrides=None) -> str:
+    with pytest.raises(ParameterError) as info:
+        fb.load_case(source, overrides)
+    msg = str(info.value)
+    assert "\n" not in msg
+    return msg
+
+
+def test_misspelt_key_is_named_before_the_field_it_leaves_missing():
+    data = _seed_dict()
+    data["beam"]["lenght"] = data["beam"].pop("length")
+    assert _message(data) == "beam.lenght: unknown field, did you mean length?"
+
+
+def test_unknown_key_has_the_same_message_from_a_dict_and_from_an_override():
+    assert _message("seed-experiment", {"solver.tend": 0.01}) == "solver.tend: unknown field, did you mean t_end?"
+    data = _seed_dict()
+    data["solver"]["tend"] = 0.01
+    assert _message(data) == "solver.tend: unknown field, did you mean t_end?"
+
+
+def test_unknown_section_is_named_with_its_closest_match():
+    data = _seed_dict()
+    data["bem"] = data.pop("beam")
+    assert _message(data) == "bem: unknown section, did you mean beam?"
+    assert _message("seed-experiment", {"bem.length": 0.7}) == "bem.length: unknown section 'bem', did you mean beam?"
+    data = _seed_dict()
+    data["obstacle"]["suport"] = {"stiffness": 3e7}
+    assert _message(data) == "obstacle.suport: unknown section, did you mean support?"
+
+
+def test_unknown_key_without_a_close_match_lists_the_section():
+    msg = _message("seed-experiment", {"hub.xyz": 1.0})
+    assert msg == "hub.xyz: unknown field; hub has: radius, inertia"
+
+
+def test_load_case_leaves_a_given_dict_unchanged():
+    data = _seed_dict()
+    before = repr(data)
+    case = fb.load_case(data, {"beam.length": 0.8})
+    assert case.beam.length == 0.8 and repr(data) == before
+    assert fb.load_case(data) == fb.load_case("seed-experiment")
+
+
+def test_too_few_gauss_points_for_the_modes_are_rejected():
+    # n modes and theta: the mass matrix is a sum of one rank-one term per point, so n + 1 are needed
+    assert "model.modes + 1 = 5" in _message("seed-experiment", {"model.modes": 4, "model.quadrature_points": 4})
+    # n + 1 points is the least that builds a regular mass matrix: the run integrates (it raised before)
+    sol = fb.simulate("seed-experiment", model__modes=2, model__quadrature_points=3, solver__t_end=0.002)
+    assert sol.status == "success"
+
+
+def test_point_obstacle_is_rejected_but_a_half_plane_needs_no_radius():
+    assert _message("seed-experiment", {"obstacle.radius": 0.0}).startswith("obstacle.radius: must be > 0")
+    case = fb.load_case("seed-experiment", {"obstacle.kind": "half-plane", "obstacle.radius": 0.0,
+                                            "contact.stiffness": 1e9})
+    assert case.obstacle.radius == 0.0

@@ -1,0 +1,188 @@
+"""Bad input through the real CLI: one line on stderr naming the field, exit code 2, no traceback.
+
+Every case here is rejected while the case is read, before any simulation, so each run
+is a bare interpreter start (< 1 s).
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+import tomli_w
+
+import flexbeam as fb
+
+
+def flexbeam(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True,
+                          timeout=600)
+
+
+def assert_one_line_error(r: subprocess.CompletedProcess, field: str, *fragments: str) -> str:
+    """Exit 2, nothing on stdout, exactly one stderr line that starts with the field."""
+    assert "Traceback" not in r.stderr, r.stderr
+    assert r.returncode == 2, (r.returncode, r.stderr)
+    assert r.stdout == ""
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1, r.stderr
+    line = lines[0]
+    # the field first ("error: FIELD: ..."), so that grep finds it
+    assert line.startswith(f"error: {field}"), line
+    for fragment in fragments:
+        assert fragment in line, line
+    return line
+
+
+def seed_data() -> dict[str, Any]:
+    """The seed case as the plain dict a TOML file holds."""
+    return fb.load_case("seed-experiment").model_dump(mode="json", exclude_none=True)
+
+
+def write_toml(path: Path, data: dict[str, Any]) -> Path:
+    path.write_text(tomli_w.dumps(data), encoding="utf-8")
+    return path
+
+
+# (--set KEY=VALUE, field named first, what the line must also say: the allowed range)
+SET_CASES = [
+    # not finite: inf, -inf (TOML spells them inf / +inf / -inf)
+    ("beam.youngs_modulus=inf", "beam.youngs_modulus", "finite"),
+    ("beam.youngs_modulus=+inf", "beam.youngs_modulus", "finite"),
+    ("beam.youngs_modulus=-inf", "beam.youngs_modulus", "greater than 0"),
+    ("contact.position=inf", "contact.position", "finite"),
+    ("initial.impact_velocity=-inf", "initial.impact_velocity", "finite"),
+    ("drive.torque=-inf", "drive.torque", "finite"),
+    ("solver.t_end=inf", "solver.t_end", "finite"),
+    # t_end <= 0
+    ("solver.t_end=0", "solver.t_end", "greater than 0"),
+    ("solver.t_end=-0.01", "solver.t_end", "greater than 0"),
+    # zero or negative where the field must be positive
+    ("contact.stiffness=0", "contact.stiffness", "greater than 0"),
+    ("contact.stiffness=-1e9", "contact.stiffness", "greater than 0"),
+    ("beam.length=0", "beam.length", "greater than 0"),
+    ("beam.density=0", "beam.density", "greater than 0"),
+    ("beam.radius=0", "beam.radius", "greater than 0"),
+    ("beam.youngs_modulus=0", "beam.youngs_modulus", "greater than 0"),
+    ("obstacle.youngs_modulus=-1", "obstacle.youngs_modulus", "greater than 0"),
+    ("obstacle.radius=0", "obstacle.radius", "> 0"),  # a point obstacle's gap never closes
+    ("solver.sample_step=0", "solver.sample_step", "greater than 0"),
+    ("solver.contact_sample_step=0", "solver.contact_sample_step", "greater than 0"),
+    ("solver.max_step=0", "solver.max_step", "greater than 0"),
+    ("solver.rtol=0", "solver.rtol", "greater than 0"),
+    ("solver.fast_atol=0", "solver.fast_atol", "greater than 0"),
+    ("solver.max_contacts=0", "solver.max_contacts", "greater than or equal to 1"),
+    ("fem.elements=0", "fem.elements", "greater than or equal to 1"),
+    ("fem.time_step=0", "fem.time_step", "greater than 0"),
+    ("drive.spin_up_time=0", "drive.spin_up_time", "greater than 0"),
+    ("hub.inertia=-1", "hub.inertia", "greater than or equal to 0"),
+    ("model.gravity=-9.81", "model.gravity", "greater than or equal to 0"),
+    ("beam.poisson_ratio=-1", "beam.poisson_ratio", "greater than -1"),
+    ("model.quadrature_points=3", "model.quadrature_points", ">= model.modes + 1"),
+]
+
+
+@pytest.mark.parametrize(("assignment", "field", "allowed"), SET_CASES, ids=[c[0] for c in SET_CASES])
+def test_bad_value_on_the_command_line(assignment, field, allowed):
+    r = flexbeam("run", "seed-experiment", "--json", "--set", assignment)
+    assert_one_line_error(r, field, allowed)
+
+
+@pytest.mark.parametrize(("key", "value"), [("obstacle.support.stiffness", 0.0), ("obstacle.support.mass", 0.0),
+                                            ("obstacle.support.damping", -1.0)])
+def test_bad_compliant_support(key, value):
+    support = {"obstacle.support.stiffness": "3e7", "obstacle.support.mass": "0.02", "obstacle.support.damping": "50"}
+    support[key] = repr(value)
+    sets = [a for k, v in support.items() for a in ("--set", f"{k}={v}")]
+    r = flexbeam("run", "seed-experiment", "--json", *sets)
+    assert_one_line_error(r, key, "greater than")
+
+
+@pytest.mark.parametrize("law", ["flores", "gonthier", "carvalho_martins", "kelvin_voigt"])
+def test_zero_restitution_with_a_law_whose_damping_is_infinite_there(law):
+    r = flexbeam("run", "seed-experiment", "--json", "--set", f"contact.law={law}", "--set", "contact.restitution=0")
+    assert_one_line_error(r, "contact.restitution", "(0, 1]", law)
+
+
+@pytest.mark.parametrize("law", ["flores", "kelvin_voigt"])
+def test_zero_restitution_in_a_case_file(tmp_path, law):
+    data = seed_data()
+    data["contact"].update(law=law, restitution=0.0)
+    r = flexbeam("run", str(write_toml(tmp_path / "case.toml", data)), "--json")
+    assert_one_line_error(r, "contact.restitution", "(0, 1]")
+
+
+@pytest.mark.parametrize(
+    ("section", "key", "value", "allowed"),
+    [
+        ("beam", "youngs_modulus", math.inf, "finite"),
+        ("beam", "youngs_modulus", -math.inf, "greater than 0"),
+        ("solver", "t_end", math.inf, "finite"),
+        ("solver", "t_end", 0.0, "greater than 0"),
+        ("solver", "t_end", -1.0, "greater than 0"),
+        ("contact", "stiffness", 0.0, "greater than 0"),
+        ("initial", "impact_velocity", -math.inf, "finite"),
+    ],
+)
+def test_bad_value_in_a_case_file(tmp_path, section, key, value, allowed):
+    data = seed_data()
+    data[section][key] = value
+    path = write_toml(tmp_path / "case.toml", data)
+    if math.isinf(value):  # written as TOML's own spelling
+        assert f"\n{key} = {'-' if value < 0 else ''}inf\n" in path.read_text()
+    assert_one_line_error(flexbeam("run", str(path), "--json"), f"{section}.{key}", allowed)
+
+
+def test_misspelt_key_in_a_case_file_is_named_before_the_field_it_leaves_missing(tmp_path):
+    data = seed_data()
+    data["beam"]["lenght"] = data["beam"].pop("length")  # beam.length is now missing too
+    r = flexbeam("run", str(write_toml(tmp_path / "case.toml", data)), "--json")
+    line = assert_one_line_error(r, "beam.lenght", "did you mean length?")
+    assert "missing" not in line
+
+
+def test_misspelt_key_on_the_command_line_has_the_same_form():
+    r = flexbeam("run", "seed-experiment", "--json", "--set", "beam.lenght=0.7")
+    assert_one_line_error(r, "beam.lenght", "unknown field, did you mean length?")
+
+
+@pytest.mark.parametrize(
+    ("edit", "field", "hint"),
+    [
+        (lambda d: d.__setitem__("bem", d.pop("beam")), "bem", "unknown section, did you mean beam?"),
+        (lambda d: d["obstacle"].__setitem__("suport", d["obstacle"].pop("support")), "obstacle.suport",
+         "unknown section, did you mean support?"),
+        (lambda d: d.__setitem__("solvr", {"t_end": 0.01}), "solvr", "did you mean solver?"),
+        # no close match: the known names of the section are listed instead
+        (lambda d: d["contact"].__setitem__("zzz", 1.0), "contact.zzz", "contact has: law, position"),
+    ],
+    ids=["section", "subsection", "extra-section", "no-close-match"],
+)
+def test_unknown_section_or_key_in_a_case_file(tmp_path, edit, field, hint):
+    data = seed_data()
+    edit(data)
+    r = flexbeam("run", str(write_toml(tmp_path / "case.toml", data)), "--json")
+    assert_one_line_error(r, field, hint)
+
+
+@pytest.mark.parametrize(
+    ("text", "where"),
+    [
+        ('name = "x"\n[beam\nlength = 0.7\n', "line 2"),
+        ('name = "x"\n[beam]\nlength = 0.7\nlength = 0.8\n', "line 4"),
+        ('name = "x"\n[beam]\nlength = \n', "line 3"),
+    ],
+    ids=["unclosed-table", "duplicate-key", "missing-value"],
+)
+def test_malformed_toml(tmp_path, text, where):
+    path = tmp_path / "case.toml"
+    path.write_text(text, encoding="utf-8")
+    assert_one_line_error(flexbeam("run", str(path), "--json"), "case", "not valid TOML", where)
+
+
+def test_missing_case_file(tmp_path):
+    assert_one_line_error(flexbeam("run", str(tmp_path / "absent.toml"), "--json"), "case", "cannot read")
