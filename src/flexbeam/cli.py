@@ -1,7 +1,10 @@
 """Command-line interface (thin: it parses, calls the library and prints).
 
 The command and ``--json`` key names are a contract users script against: add new
-ones, never rename.  Bad input prints one line on stderr and exits with code 2.
+ones, never rename.  Exit codes: 0 for a complete run; 2 for bad input (one line on
+stderr naming the field); 1 when a run ends before ``solver.t_end`` (status "failed" or
+"max-contacts": the metrics are still printed, one line on stderr says why), a
+calibration does not converge, or a sweep leaves cases missing; 130 when interrupted.
 """
 
 from __future__ import annotations
@@ -110,8 +113,22 @@ def run(
         typer.echo(metrics_json(metrics))
     else:
         _print_metrics(metrics, f"{c.name} [{method}]")
-    if sol.status == "failed":
-        raise typer.Exit(1)
+    _exit_unless_complete([sol])
+
+
+def _exit_unless_complete(solutions: list[Any]) -> None:
+    """Exit with code 1 unless every run reached ``solver.t_end`` (status "success").
+
+    A run that stops early -- a numerical failure ("failed") or the Zeno guard
+    ``solver.max_contacts`` ("max-contacts") -- still prints its metrics (computed over
+    what was integrated), but a script must not take them for a complete run: one line
+    per such run on stderr and exit code 1.
+    """
+    stopped = [s for s in solutions if s.status != "success"]
+    for s in stopped:
+        sys.stderr.write(f"{s.method}: run ended early with status '{s.status}': {s.message}\n")
+    if stopped:
+        sys.exit(1)
 
 
 def _print_metrics(metrics: dict[str, Any], title: str) -> None:
@@ -150,13 +167,14 @@ def compare(
     for m in chosen:
         if m not in ("ccfm", "ccm", "imm", "fem"):
             raise ParameterError(f"--methods: unknown method '{m}'; allowed: ccfm, ccm, imm, fem")
-    _, rows = run_compare(c, out, chosen, lambda m: _Progress(c.solver.t_end, f"{c.name} [{m}]"))
+    solutions, rows = run_compare(c, out, chosen, lambda m: _Progress(c.solver.t_end, f"{c.name} [{m}]"))
     if json_:
         from .solution import _jsonable
 
         typer.echo(json.dumps(_jsonable(rows), indent=2))
     else:
         typer.echo(_markdown(rows, reference_data(c.name)), nl=False)
+    _exit_unless_complete(solutions)
 
 
 @cases_app.callback(invoke_without_command=True)

@@ -1,0 +1,174 @@
+"""Output contracts of the CLI: strict ``--json`` equal to the API's metrics, and exit codes.
+
+Exit codes (see the cli module docstring): 0 for a complete run, 1 when a run ends before
+``solver.t_end`` or a sweep leaves cases missing, 2 for bad input (tests/test_cli_errors.py).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+from typing import Any
+
+import pytest
+
+from tests.conftest import seed
+
+SHORT = {"model.modes": 2, "solver.t_end": 0.002}
+COMPLIANT = {"obstacle.support.stiffness": 3e7, "obstacle.support.mass": 0.02, "obstacle.support.damping": 50.0}
+#: the README's "--json prints ..." keys with their documented types
+FLOAT_KEYS = ["peak_force", "peak_time", "contact_duration", "post_impact_velocity", "impulse", "energy_drift",
+              "wall_time"]
+INT_KEYS = ["contacts", "steps"]
+LIST_KEYS = ["force_peaks", "force_peak_times"]
+STR_KEYS = ["method", "status", "message"]
+#: a timing, the only metric that differs between two runs of the same case
+TIMING = {"wall_time"}
+#: the same case run twice is deterministic; 1e-12 leaves room for nothing but the last bits
+REL = 1e-12
+
+
+def flexbeam(*args: str, env: dict[str, str] | None = None, timeout: float = 600) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True,
+                          timeout=timeout, env=env)
+
+
+def sets(overrides: dict[str, Any]) -> list[str]:
+    return [a for k, v in overrides.items() for a in ("--set", f"{k}={v!r}")]
+
+
+def strict_json(text: str) -> Any:
+    """Parse JSON, refusing the NaN / Infinity / -Infinity that Python's json module would accept."""
+
+    def refuse(name: str) -> Any:
+        raise ValueError(f"not strict JSON: {name}")
+
+    return json.loads(text, parse_constant=refuse)
+
+
+def assert_metrics_equal(got: dict[str, Any], expected: dict[str, Any], exclude: set[str] = frozenset()) -> None:
+    """``got`` (parsed JSON) equals ``expected`` (Solution.metrics()): NaN as null, floats to REL."""
+    assert set(got) == set(expected)
+    for key, want in expected.items():
+        if key in exclude:
+            continue
+        have = got[key]
+        if isinstance(want, list):
+            assert isinstance(have, list) and len(have) == len(want), key
+            pairs = list(zip(have, want))
+        else:
+            pairs = [(have, want)]
+        for h, w in pairs:
+            if isinstance(w, float) and math.isnan(w):
+                assert h is None, (key, h)
+            elif isinstance(w, float):
+                assert isinstance(h, float) and math.isclose(h, w, rel_tol=REL, abs_tol=0.0), (key, h, w)
+            else:
+                assert h == w and type(h) is type(w), (key, h, w)
+
+
+def assert_documented_types(data: dict[str, Any]) -> None:
+    for key in FLOAT_KEYS:
+        assert data[key] is None or type(data[key]) is float, (key, data[key])
+    for key in INT_KEYS:
+        assert type(data[key]) is int, (key, data[key])  # not bool, not float
+    for key in LIST_KEYS:
+        assert isinstance(data[key], list) and all(type(v) is float for v in data[key]), (key, data[key])
+    assert len(data["force_peaks"]) == len(data["force_peak_times"])
+    for key in STR_KEYS:
+        assert isinstance(data[key], str), (key, data[key])
+    # every other metric is a number or null too (the contract may grow, by adding keys)
+    for key, value in data.items():
+        if key not in (*INT_KEYS, *LIST_KEYS, *STR_KEYS):
+            assert value is None or type(value) in (float, int), (key, value)
+
+
+@pytest.mark.parametrize(
+    ("method", "overrides"),
+    [
+        ("ccfm", SHORT),  # one peak: second_peak_force is NaN -> null
+        ("imm", SHORT),  # impulsive: no force history, peak_force etc. NaN -> null
+        ("ccfm", {**SHORT, **COMPLIANT}),  # adds the sensor_* metrics
+    ],
+    ids=["ccfm", "imm", "ccfm-compliant"],
+)
+def test_json_is_strict_and_equals_the_api_metrics(method, overrides):
+    r = flexbeam("run", "seed-experiment", "--method", method, "--json", *sets(overrides))
+    assert r.returncode == 0, r.stderr
+    assert r.stderr == ""
+    data = strict_json(r.stdout)
+    assert_documented_types(data)
+    import flexbeam as fb
+
+    expected = fb.simulate(seed(**{k.replace(".", "__"): v for k, v in overrides.items()}), method).metrics()
+    assert any(isinstance(v, float) and math.isnan(v) for v in expected.values())  # null is exercised
+    assert_metrics_equal(data, expected, exclude=TIMING)
+    assert data["status"] == "success" and data["method"] == method
+
+
+def test_run_that_stops_at_max_contacts_exits_1_and_still_prints_its_metrics():
+    # modes = 2: the second contact comes at t ~ 31 ms, past solver.max_contacts = 1
+    r = flexbeam("run", "seed-experiment", "--json", *sets({**SHORT, "solver.t_end": 0.035,
+                                                              "solver.max_contacts": 1}))
+    assert r.returncode == 1, r.stderr
+    data = strict_json(r.stdout)
+    assert data["status"] == "max-contacts" and data["contacts"] == 1
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1 and "max-contacts" in lines[0] and "solver.max_contacts" in lines[0]
+    assert "Traceback" not in r.stderr
+
+
+def test_complete_run_exits_0_without_json_too():
+    r = flexbeam("run", "seed-experiment", *sets(SHORT))
+    assert r.returncode == 0, r.stderr
+    assert "peak_force" in r.stdout
+
+
+@pytest.mark.parametrize("args", [["--help"], ["run", "--help"], ["sweep", "--help"], ["cases"]])
+def test_help_and_listing_exit_0(args):
+    r = flexbeam(*args)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout and r.stderr == ""
+
+
+KILLER = '''
+"""Dask worker preload: the worker dies (as on a crash or OOM kill) on the case with restitution 0.6."""
+import importlib
+import os
+
+sweep_module = importlib.import_module("flexbeam.sweep")  # the attribute flexbeam.sweep is the function
+# dask imports a preload and then reloads it: wrap the original once
+_run_case = getattr(sweep_module.run_case, "__wrapped__", sweep_module.run_case)
+
+
+def run_case(data, *args, **kwargs):
+    if data["contact"]["restitution"] == 0.6:
+        os._exit(1)
+    return _run_case(data, *args, **kwargs)
+
+
+run_case.__wrapped__ = _run_case
+sweep_module.run_case = run_case  # tasks name the function by module and name: this one runs
+'''
+
+
+def test_sweep_with_missing_cases_exits_1(tmp_path):
+    preload = tmp_path / "killer.py"
+    preload.write_text(KILLER)
+    env = {**os.environ,
+           "DASK_DISTRIBUTED__WORKER__PRELOAD": json.dumps([str(preload)]),
+           "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0"}  # lost at the first death, no retry
+    store = tmp_path / "store"
+    # one case only, the one that is lost (a complete sweep exiting 0 is in tests/sweep/test_sweep.py)
+    r = flexbeam("sweep", "seed-experiment", *sets(SHORT), "--grid", "contact.restitution=0.6",
+                 "--workers", "1", "--out", str(store), "--json", env=env, timeout=300)
+    assert r.returncode == 1, r.stderr
+    info = strict_json(r.stdout)
+    assert info["missing"] == 1 and info["cases"] == 1 and info["failed"] == 0
+    import xarray as xr
+
+    with xr.open_dataset(store / "result.nc") as ds:
+        assert str(ds["status"].sel({"contact.restitution": 0.6}).values) == "missing"
