@@ -111,7 +111,8 @@ def test_parameter_scaling_follows_the_field_ranges():
     [
         (lambda: Parameter.of(fb.load_case("seed-experiment"), "model.modes"), "model.modes"),
         (lambda: Parameter.of(fb.load_case("seed-experiment"), "contact.law"), "contact.law"),
-        (lambda: Parameter.of(fb.load_case("seed-experiment"), "contact.stifness"), "contact.stiffness"),
+        (lambda: Parameter.of(fb.load_case("seed-experiment"), "contact.stifness"),
+         "contact.stifness: unknown field, did you mean stiffness"),
         (lambda: parse_columns("tim=t"), "best matches: time"),
         (lambda: parse_features("peak_force=abc"), "--features"),
         (lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"]), "--data"),
