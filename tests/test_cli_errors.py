@@ -186,3 +186,9 @@ def test_malformed_toml(tmp_path, text, where):
 
 def test_missing_case_file(tmp_path):
     assert_one_line_error(flexbeam("run", str(tmp_path / "absent.toml"), "--json"), "case", "cannot read")
+
+
+def test_a_newline_in_a_quoted_key_stays_on_one_line(tmp_path):
+    path = tmp_path / "case.toml"
+    path.write_text('name = "x"\n[beam]\n"len\\ngth" = 0.7\n', encoding="utf-8")  # TOML's own escape
+    assert_one_line_error(flexbeam("run", str(path), "--json"), "beam.len\\ngth", "did you mean length?")

@@ -126,7 +126,7 @@ def _exit_unless_complete(solutions: list[Any]) -> None:
     """
     stopped = [s for s in solutions if s.status != "success"]
     for s in stopped:
-        sys.stderr.write(f"{s.method}: run ended early with status '{s.status}': {s.message}\n")
+        sys.stderr.write(_one_line(f"{s.method}: run ended early with status '{s.status}': {s.message}") + "\n")
     if stopped:
         sys.exit(1)
 
@@ -396,6 +396,11 @@ def _print_calibration(report: dict[str, Any], title: str) -> None:
                   f"{report['message']}")
 
 
+def _one_line(message: object) -> str:
+    """``message`` (an exception or text) on one line: a newline, e.g. in a quoted TOML key, is escaped."""
+    return str(message).replace("\r", "\\r").replace("\n", "\\n")
+
+
 def main(argv: list[str] | None = None) -> None:
     """Console-script entry point: one-line errors with exit code 2 for bad input."""
     try:
@@ -408,16 +413,16 @@ def main(argv: list[str] | None = None) -> None:
         sys.stderr.write("aborted\n")
         sys.exit(130)
     except click_exc.ClickException as exc:
-        sys.stderr.write(f"error: {exc.format_message()}\n")
+        sys.stderr.write(f"error: {_one_line(exc.format_message())}\n")
         sys.exit(exc.exit_code if exc.exit_code else 2)
     except ParameterError as exc:
-        sys.stderr.write(f"error: {exc}\n")
+        sys.stderr.write(f"error: {_one_line(exc)}\n")
         sys.exit(2)
     except SolverError as exc:
-        sys.stderr.write(f"solver error: {exc}\n")
+        sys.stderr.write(f"solver error: {_one_line(exc)}\n")
         sys.exit(1)
     except FlexbeamError as exc:
-        sys.stderr.write(f"error: {exc}\n")
+        sys.stderr.write(f"error: {_one_line(exc)}\n")
         sys.exit(2)
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")
