@@ -45,7 +45,7 @@ def test_every_field_once_and_every_key_valid(rows):
     ("key", "type_", "default", "allowed"),
     [
         ("beam.length", "float", "required", "> 0"),
-        ("beam.poisson_ratio", "float", "0.3", "[-1, 0.5)"),
+        ("beam.poisson_ratio", "float", "0.3", "(-1, 0.5)"),
         ("contact.restitution", "float", "0.8", "[0, 1]"),
         ("contact.stiffness", "float (optional)", "omitted", "> 0"),
         ("model.modes", "integer", "8", "[0, 64]"),

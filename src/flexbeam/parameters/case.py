@@ -209,7 +209,7 @@ class Obstacle(_Section):
     """The obstacle in the plane of motion, fixed or on a compliant support.
 
     ``kind = "sphere"``: a hemisphere with ``centre`` and ``radius`` > 0 (the gap
-    |r - c| - r_s of a point would never close); ``kind = "half-plane"``: the plane
+    ``|r - c| - r_s`` of a point would never close); ``kind = "half-plane"``: the plane
     through ``centre`` with outward unit ``normal``.  When ``centre`` is omitted the obstacle is placed so that it
     touches the contact point P with the beam straight at ``initial.impact_angle``
     (sphere directly beneath P along the beam normal; plane tangent there).
