@@ -139,9 +139,12 @@ KILLER = '''
 import importlib
 import os
 
-sweep_module = importlib.import_module("flexbeam.sweep")  # the attribute flexbeam.sweep is the function
-# dask imports a preload and then reloads it: wrap the original once
-_run_case = getattr(sweep_module.run_case, "__wrapped__", sweep_module.run_case)
+# flexbeam.sweep.run_case (public) is what every case runs; a task names it by its home module
+# and name, so the replacement goes there.  The attribute flexbeam.sweep may be the function
+# fb.sweep, hence import_module.  dask imports a preload and then reloads it: wrap the original once.
+_run_case = importlib.import_module("flexbeam.sweep").run_case
+_run_case = getattr(_run_case, "__wrapped__", _run_case)
+home = importlib.import_module(_run_case.__module__)
 
 
 def run_case(data, *args, **kwargs):
@@ -151,7 +154,8 @@ def run_case(data, *args, **kwargs):
 
 
 run_case.__wrapped__ = _run_case
-sweep_module.run_case = run_case  # tasks name the function by module and name: this one runs
+run_case.__module__, run_case.__qualname__ = _run_case.__module__, _run_case.__qualname__
+setattr(home, _run_case.__name__, run_case)
 '''
 
 
