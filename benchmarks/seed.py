@@ -9,12 +9,15 @@ library versions and the load average -- timings on a loaded machine are noisy):
 
 * **flexbeam** -- ``fb.simulate(case, method)`` of the ``seed-experiment`` case with
   ``model.modes`` = n (default 4, 8, 12, 16, 32) for the methods CCFM and CCM and
-  ``solver.integrator`` = ``"reference"`` and ``"exponential"``.  Each configuration is
-  first run once over 2 ms (compiles or loads the cached Numba kernels), then timed over
+  ``solver.integrator`` = ``"reference"`` and ``"exponential"`` (the compiled modal
+  integrator).  Each configuration is first run once over 2 ms (warm-up), then timed over
   ``--repeats`` runs, fewer if the runs of that row exceed ``--budget`` seconds (at least
   one; the ``runs`` column says how many).  ``wall`` is the median of the Solution's own
   ``metrics()["wall_time"]`` (the integration alone); ``simulate`` the median of the whole
-  ``simulate()`` call (set-up, integration, output evaluation).  ``ran`` is the
+  ``simulate()`` call (set-up, integration, the contact log's peaks and impulses on the
+  dense output; the output samples are evaluated only when asked for); ``metrics`` the
+  median of the ``metrics()`` call that follows.  ``free max`` is the most steps a free
+  flight took, ``contact med/max`` the median and largest steps per contact phase.  ``ran`` is the
   integrator the Solution reports it used (``metrics()["integrator"]`` if present, else
   ``provenance["integrator"]``): a configuration may fall back to the reference path.
   ``peak`` is the first contact's peak force, ``d ref(n)`` its relative difference from
@@ -29,13 +32,12 @@ library versions and the load average -- timings on a loaded machine are noisy):
   ``--scipy-rtol``/``--scipy-atol``.  No step limit or other help from flexbeam's
   event machinery.  The peak force is found on its dense output.  The ratio column
   ``scipy/x`` is scipy's median integration time over the flexbeam row's ``wall``.
-* **start-up** -- the cold compile: a subprocess with ``NUMBA_CACHE_DIR`` pointed at an
-  empty temporary directory runs a 2 ms seed simulation with each integrator; the first
-  call of each minus the second call of the same is the compile time.  In a warm-cache
-  subprocess the same difference is the time spent loading the cached kernels.  The warm
-  start-up is ``flexbeam run seed-experiment --json`` (and with the exponential
-  integrator, and ``flexbeam --help``) timed from process start to exit, median of
-  ``--startup-runs``, with the default (warm) cache.
+* **start-up** -- the first run after installing: ``flexbeam run seed-experiment --json``
+  in a fresh process with ``NUMBA_CACHE_DIR`` pointed at an empty directory (the compiled
+  kernels are built by pip; Numba serves only the finite-element reference), and a
+  subprocess that times the first and second 2 ms ``simulate()`` per integrator.  The warm
+  start-up is ``flexbeam run seed-experiment --json`` (and ``flexbeam --help``) timed from
+  process start to exit, median of ``--startup-runs``.
 * **kane-spinup** -- 20 s of the Kane spin-up on each integrator.
 * **Exudyn** (if importable; ``pip install flexbeam[bench]``) -- the equivalent model:
   32 ``ObjectANCFCable2D`` elements, the first node pinned at O (a revolute joint),
@@ -44,7 +46,7 @@ library versions and the load average -- timings on a loaded machine are noisy):
   Hertz-type spring-damper (the same K, exponent and restitution as flexbeam's law)
   between P on the cable and the sphere's centre, 0.1 s of Exudyn's default implicit
   solver (generalized-alpha) at a fixed 1e-5 s step.  Timed: the solve alone (median
-  of the repeats), ratio ``exudyn/x`` against the flexbeam CCFM row at 12 modes.
+  of the repeats), ratio ``exudyn/x`` against the flexbeam CCFM row at 16 modes.
 """
 
 from __future__ import annotations
@@ -67,14 +69,15 @@ from typing import Any
 import numpy as np
 
 import flexbeam as fb
-from flexbeam.model.system import CONTACT_FORCE, CONTACT_NONE, BeamSystem
+from flexbeam.model.system import BeamSystem
+from flexbeam.phases import ContactMode
 from flexbeam.simulation import initial_state
 
 CASE = "seed-experiment"
 METHODS = ("ccfm", "ccm")
 INTEGRATORS = ("reference", "exponential")
-COLUMNS = ("method", "n", "integrator", "ran", "runs", "wall [ms]", "simulate [ms]", "steps", "peak [N]",
-           "d ref(n)", "d conv", "scipy [ms]", "scipy/x")
+COLUMNS = ("method", "n", "integrator", "ran", "runs", "wall [ms]", "simulate [ms]", "metrics [ms]", "steps",
+           "free max", "contact med/max", "peak [N]", "d ref(n)", "d conv", "scipy [ms]", "scipy/x")
 
 
 # ---------------------------------------------------------------------------- helpers
@@ -151,13 +154,23 @@ def flexbeam_row(method: str, n: int, integrator: str, args) -> dict[str, Any]:
         row["error"] = f"{type(exc).__name__}: {exc}"
         return row
     sols = [s for _, s in runs]
-    metrics = [s.metrics() for s in sols]
+    metrics, metric_times = [], []
+    for s in sols:
+        t0 = time.perf_counter()
+        metrics.append(s.metrics())
+        metric_times.append(time.perf_counter() - t0)
     m = metrics[-1]
+    phase_steps = getattr(getattr(sols[-1], "source", None), "run", None)
+    phase_steps = phase_steps.phase_steps if phase_steps is not None else []
+    free = [k for name, k in phase_steps if name == "free"]
+    contact = [k for name, k in phase_steps if name != "free"]
     row.update(
         ran=integrator_ran(sols[-1]), runs=len(runs), status=m["status"],
         wall=median([x["wall_time"] for x in metrics]), simulate=median([t for t, _ in runs]),
-        steps=m["steps"], nfev=m["nfev"], peak=m["peak_force"], contacts=m["contacts"],
-        duration=m["contact_duration"],
+        metrics=median(metric_times), steps=m["steps"], nfev=m["nfev"], peak=m["peak_force"],
+        contacts=m["contacts"], duration=m["contact_duration"],
+        free_max=max(free) if free else None, contact_median=statistics.median(contact) if contact else None,
+        contact_max=max(contact) if contact else None,
     )
     return row
 
@@ -171,7 +184,7 @@ def scipy_ccfm(case, rtol: float, atol: float) -> dict[str, Any]:
     system = BeamSystem.from_case(case)
     y, _ = initial_state(system, case)
     t, t_end = 0.0, case.solver.t_end
-    free = system.rhs_function(CONTACT_NONE)
+    free = system.rhs_function(ContactMode.NONE)
 
     def gap(t: float, y: np.ndarray) -> float:
         return system.gap(t, y)[0]
@@ -190,7 +203,7 @@ def scipy_ccfm(case, rtol: float, atol: float) -> dict[str, Any]:
         if in_contact:
             vn = system.gap(t, y)[1]
             p = system.law.parameters(-vn, system.effective_mass(t, y))
-            fun, event = system.rhs_function(CONTACT_FORCE, p), separation
+            fun, event = system.rhs_function(ContactMode.FORCE, p), separation
             contacts += 1
         else:
             fun, event = free, onset
@@ -211,7 +224,7 @@ def scipy_ccfm(case, rtol: float, atol: float) -> dict[str, Any]:
     peak = math.nan
     if first_contact is not None:  # peak force on the dense output of the first contact
         t0, t1, dense, p = first_contact
-        force = lambda s: float(system.rhs(s, dense(s), CONTACT_FORCE, p)[1])
+        force = lambda s: float(system.rhs(s, dense(s), ContactMode.FORCE, p)[1])
         grid = np.linspace(t0, t1, 401)
         forces = [force(s) for s in grid]
         i = int(np.argmax(forces))
@@ -239,7 +252,7 @@ COLD_SCRIPT = textwrap.dedent("""
     t_start = time.perf_counter()
     import flexbeam as fb
     t_import = time.perf_counter() - t_start
-    import flexbeam.integrate.exponential, flexbeam.simulation
+    import flexbeam.integrate.modal, flexbeam.simulation
     out = {"import": t_import, "import_simulation": time.perf_counter() - t_start - t_import}
     for integrator in ("reference", "exponential"):
         case = fb.load_case("seed-experiment", {"model.modes": 4, "solver.t_end": 2e-3,
@@ -272,13 +285,13 @@ def first_call_times(cache_dir: str | None) -> dict[str, Any]:
     return out
 
 
-def cli_time(argv: list[str], runs: int) -> dict[str, Any]:
+def cli_time(argv: list[str], runs: int, env: dict[str, str] | None = None) -> dict[str, Any]:
     exe = shutil.which("flexbeam", path=os.path.dirname(sys.executable)) or shutil.which("flexbeam")
     cmd = [exe, *argv] if exe else [sys.executable, "-m", "flexbeam.cli", *argv]
     times = []
     for _ in range(runs):
         t0 = time.perf_counter()
-        proc = subprocess.run(cmd, capture_output=True, text=True)
+        proc = subprocess.run(cmd, capture_output=True, text=True, env={**os.environ, **(env or {})})
         times.append(time.perf_counter() - t0)
         if proc.returncode != 0:
             return {"command": "flexbeam " + " ".join(argv), "error": proc.stderr.strip()[-200:]}
@@ -293,11 +306,12 @@ def startup(args) -> dict[str, Any]:
     if not args.quick:
         out["warm"] = first_call_times(None)
     extra = [] if args.t_end == 0.1 else ["--set", f"solver.t_end={args.t_end}"]
+    if args.cold:  # a whole first run of the command line in a fresh process with an empty Numba cache
+        with tempfile.TemporaryDirectory(prefix="flexbeam-numba-cold-") as tmp:
+            out["cli_cold"] = cli_time(["run", CASE, "--json", *extra], 1, {"NUMBA_CACHE_DIR": tmp})
     out["cli"] = [cli_time(["run", CASE, "--json", *extra], args.startup_runs)]
     if not args.quick:
-        out["cli"] += [cli_time(["run", CASE, "--json", "--set", "solver.integrator=exponential", *extra],
-                                args.startup_runs),
-                       cli_time(["--help"], args.startup_runs)]
+        out["cli"] += [cli_time(["--help"], args.startup_runs)]
     return out
 
 
@@ -349,7 +363,7 @@ def exudyn_seed(t_end: float, elements: int = 32, step: float = 1e-5) -> dict[st
     law = system.law
     rate0 = abs(case.initial.impact_velocity)
     omega = case.initial.impact_velocity / x_P  # rigid rotation: P's normal velocity = omega x_P
-    centre = system.contact.centre  # the sphere touches P on the straight beam at theta = 0
+    centre = system.contact.obstacle.centre  # the sphere touches P on the straight beam at theta = 0
 
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -480,7 +494,7 @@ def run(args) -> dict[str, Any]:
     result["kane"] = kane(args) if args.kane else []
     result["exudyn"] = exudyn_row(args) if args.exudyn else {"skipped": "--no-exudyn"}
     ex = result["exudyn"]
-    base = next((r for r in rows if r["method"] == "ccfm" and r["n"] == 12 and "error" not in r
+    base = next((r for r in rows if r["method"] == "ccfm" and r["n"] == 16 and "error" not in r
                  and r["integrator"] == "exponential"), None) or next(
         (r for r in rows if r["method"] == "ccfm" and "error" not in r), None)
     if "wall" in ex and base:
@@ -504,9 +518,12 @@ def markdown(res: dict[str, Any]) -> str:
             lines.append(f"| {r['method']} | {r['n']} | {r['integrator']} | error: {r['error'][:120]} |"
                          + " |" * (len(COLUMNS) - 4))
             continue
+        contact = (f"{fmt(r.get('contact_median'))}/{fmt(r.get('contact_max'))}"
+                   if r.get("contact_max") is not None else "-")
         cells = [r["method"], r["n"], r["integrator"], r["ran"], r["runs"], ms(r["wall"]), ms(r["simulate"]),
-                 r["steps"], fmt(r["peak"], ".6g"), pct(r.get("d_ref", math.nan)), pct(r.get("d_conv", math.nan)),
-                 ms(r.get("scipy_wall")), fmt(r.get("scipy_ratio"), ".3g")]
+                 ms(r.get("metrics")), r["steps"], fmt(r.get("free_max")), contact, fmt(r["peak"], ".6g"),
+                 pct(r.get("d_ref", math.nan)), pct(r.get("d_conv", math.nan)), ms(r.get("scipy_wall")),
+                 fmt(r.get("scipy_ratio"), ".3g")]
         lines.append("| " + " | ".join(str(c) for c in cells) + " |")
     lines.append("")
     for method, c in res["converged"].items():
@@ -536,11 +553,15 @@ def markdown(res: dict[str, Any]) -> str:
             if "error" in d:
                 lines.append(f"  {label}: error {d['error']}")
                 continue
-            what = "compile (empty NUMBA_CACHE_DIR)" if label == "cold" else "cache load (warm cache)"
+            what = "first call, empty NUMBA_CACHE_DIR" if label == "cold" else "first call, warm"
             lines.append(f"  {label}: import flexbeam {ms(d['import'])} ms, then flexbeam.simulation and the "
                          f"integrators {ms(d['import_simulation'])} ms; first simulate() minus second = {what}: "
                          f"reference {ms(d['reference_first_call'])} ms, exponential "
                          f"{ms(d['exponential_first_call'])} ms; whole process {d['process']:.3g} s")
+        if "cli_cold" in st:
+            c = st["cli_cold"]
+            lines.append(f"  `{c['command']}` with an empty Numba cache (the first run after installing): "
+                         + (f"error {c['error']}" if "error" in c else f"{c['median']:.3g} s"))
         for c in st["cli"]:
             if "error" in c:
                 lines.append(f"  `{c['command']}`: error {c['error']}")

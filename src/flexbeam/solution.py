@@ -12,14 +12,15 @@ import json
 import math
 import os
 import tempfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .methods.base import ContactEvent
+if TYPE_CHECKING:
+    from .sampling import RunSource
 
 #: variable name -> (units, long name)
 VARIABLES: dict[str, tuple[str, str]] = {
@@ -45,12 +46,36 @@ VARIABLES: dict[str, tuple[str, str]] = {
 }
 
 
+@dataclass
+class ContactEvent:
+    """One contact (or, for IMM, one instantaneous impact).
+
+    Times in s; velocities are P's normal velocity delta' [m/s] (negative = approaching) just before the
+    contact and at its end (IMM: right after the jump).
+    """
+
+    index: int
+    onset: float
+    end: float = float("nan")
+    velocity_before: float = float("nan")
+    velocity_after: float = float("nan")
+    impulse: float = float("nan")
+    peak_force: float = float("nan")
+    peak_time: float = float("nan")
+    energy_before: float = float("nan")
+    energy_after: float = float("nan")
+
+    @property
+    def duration(self) -> float:
+        return self.end - self.onset
+
+
 #: peak refinement stops at this bracket [s]: near a peak F ~ F_max (1 - ((t - t_p) / tau)^2) with
 #: tau >~ 1e-5 s for any contact pulse resolved at all, so the force is then exact to ~1e-10 relative
 PEAK_XTOL = 1e-10
 
 
-def _interior_maxima(f: np.ndarray, rtol: float = 1e-9, start: bool = False) -> list[int]:
+def interior_maxima(f: np.ndarray, rtol: float = 1e-9, start: bool = False) -> list[int]:
     """Indices of the sampled local maxima of f (a plateau counts once, at its start).
 
     A maximum must stand above its lower neighbour by more than ``rtol`` max|f|: the
@@ -65,7 +90,27 @@ def _interior_maxima(f: np.ndarray, rtol: float = 1e-9, start: bool = False) -> 
     return idx
 
 
-def _golden_max(f, a: float, b: float, xtol: float) -> tuple[float, float]:
+def zoom_max(f, a: float, b: float, xtol: float, points: int = 33) -> tuple[float, float]:
+    """Maximum of f on [a, b] by repeated zooming on a grid: f (vectorised, times -> values) at ``points``
+    points, then the grid around the largest value, until the bracket is below ``xtol``.
+
+    For a force near a smooth peak this needs log(xtol / (b - a)) / log(points / 2) calls of f (4 from a step of
+    1e-5 s to 1e-10 s), each a single vectorised evaluation.
+    """
+    best_t, best_f = a, -math.inf
+    while True:
+        t = np.linspace(a, b, points)
+        v = np.asarray(f(t), float)
+        i = int(np.argmax(v))
+        if v[i] > best_f:
+            best_t, best_f = float(t[i]), float(v[i])
+        if b - a <= xtol:
+            return best_t, best_f
+        dt = (b - a) / (points - 1)
+        a, b = max(a, t[i] - dt), min(b, t[i] + dt)
+
+
+def golden_max(f, a: float, b: float, xtol: float) -> tuple[float, float]:
     """Maximum of a unimodal f on [a, b] by golden-section search (Kiefer 1953).
 
     Plain Python on purpose: the peak refinement then does not import scipy.optimize,
@@ -86,44 +131,79 @@ def _golden_max(f, a: float, b: float, xtol: float) -> tuple[float, float]:
     return (c, fc) if fc >= fd else (d, fd)
 
 
-@dataclass
 class Solution:
     """Arrays over the output samples plus the contact log and run information.
 
     Attributes
     ----------
     time
-        Sample times [s] (event instants included; a velocity jump gives two samples
-        at the same time).
+        Sample times [s] (event instants included; a velocity jump gives two samples at the same time).
     phase
-        Phase name of each sample ("free", "contact", "constrained").
+        Phase name of each sample ("free", "contact", "constrained", "resting").
     arrays
         Name -> array, see :data:`VARIABLES`.
     contacts
         Contact-event log.
     status, message
-        "success", "failed", "max-contacts", "resting", ... and the reason.
+        "success", "failed", "max-contacts", ... and the reason.
     stats
         steps, nfev, wall_time [s] (integration alone).
     provenance
         Version, case (TOML), method, tolerances, derived parameters.
+
+    The arrays are given (the finite-element reference) or evaluated on first use from the run's dense output
+    (``source``, a :class:`~flexbeam.sampling.RunSource`): the metrics do not need them.
     """
 
-    time: np.ndarray
-    phase: np.ndarray
-    arrays: dict[str, np.ndarray]
-    contacts: list[ContactEvent]
-    status: str
-    message: str
-    stats: dict[str, float]
-    provenance: dict[str, Any]
-    measuring_points: np.ndarray = field(default_factory=lambda: np.empty(0))
-    _force_at: Any = None  # callable t -> F on the dense output of the contact phases
+    def __init__(
+        self,
+        time: np.ndarray | None = None,
+        phase: np.ndarray | None = None,
+        arrays: dict[str, np.ndarray] | None = None,
+        contacts: list[ContactEvent] | None = None,
+        status: str = "success",
+        message: str = "",
+        stats: dict[str, float] | None = None,
+        provenance: dict[str, Any] | None = None,
+        measuring_points: np.ndarray | None = None,
+        _force_at: Any = None,
+        source: RunSource | None = None,
+    ) -> None:
+        if source is None and (time is None or phase is None or arrays is None):
+            raise ValueError("Solution: give time, phase and arrays, or a source")
+        self._samples = None if source is not None else (np.asarray(time), np.asarray(phase), arrays)
+        self.contacts = list(contacts or [])
+        self.status, self.message = status, message
+        self.stats = dict(stats or {})
+        self.provenance = dict(provenance or {})
+        self.measuring_points = np.empty(0) if measuring_points is None else np.asarray(measuring_points, float)
+        self._force_at = _force_at if source is None else source.force_at
+        self.source = source
+        self._peaks: dict[int, list[tuple[float, float]]] = {}
+
+    # ----------------------------------------------------------------- samples
+    def _loaded(self) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+        if self._samples is None:
+            assert self.source is not None
+            self._samples = self.source.samples
+        return self._samples
+
+    @property
+    def time(self) -> np.ndarray:
+        return self._loaded()[0]
+
+    @property
+    def phase(self) -> np.ndarray:
+        return self._loaded()[1]
+
+    @property
+    def arrays(self) -> dict[str, np.ndarray]:
+        return self._loaded()[2]
 
     @cached_property
     def _in_contact(self) -> np.ndarray:
-        """Samples of contact or constrained phases (bool per sample)."""
-        return np.isin(self.phase, ("contact", "constrained"))
+        """Samples of contact, constrained or resting phases (bool per sample)."""
+        return np.isin(self.phase, ("contact", "constrained", "resting"))
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.arrays[name]
@@ -142,56 +222,74 @@ class Solution:
     def energy_drift(self) -> tuple[float, float]:
         """(end, max) relative change of the total energy.
 
-        Relative to ``max(|E(0)|, max_t T(t))`` so that a zero gravitational reference
-        does not divide by zero.
+        Relative to ``max(|E(0)|, max_t T(t))`` so that a zero gravitational reference does not divide by
+        zero.  With a run's dense output the energies are those at every step boundary, else at the samples.
         """
-        E = self.arrays["total_energy"]
+        if self.source is not None:
+            _, E, T = self.source.checkpoints
+        else:
+            E, T = self.arrays["total_energy"], self.arrays["kinetic_energy"]
         if E.size == 0:
             return math.nan, math.nan
-        scale = max(abs(E[0]), float(np.max(self.arrays["kinetic_energy"])), 1e-300)
+        scale = max(abs(E[0]), float(np.max(T)), 1e-300)
         return float((E[-1] - E[0]) / scale), float(np.max(np.abs(E - E[0])) / scale)
 
     def _refine_max(self, t_guess: float, h: float, lo: float, hi: float) -> tuple[float, float]:
+        if self.source is not None:
+            a, b = max(lo, t_guess - h), min(hi, t_guess + h)
+            if b <= a:
+                return t_guess, float(self.source.force_many(np.array([t_guess]))[0])
+            return zoom_max(self.source.force_many, a, b, xtol=PEAK_XTOL)
         if self._force_at is None:
             i = int(np.argmin(np.abs(self.time - t_guess)))
             return float(self.time[i]), float(self.arrays["contact_force"][i])
         a, b = max(lo, t_guess - h), min(hi, t_guess + h)
         if b <= a:
             return t_guess, float(self._force_at(t_guess))
-        t_max, f_max = _golden_max(self._force_at, a, b, xtol=PEAK_XTOL)
+        t_max, f_max = golden_max(self._force_at, a, b, xtol=PEAK_XTOL)
         f_guess = float(self._force_at(t_guess))
         if f_max >= f_guess:
             return t_max, f_max
         return t_guess, f_guess
 
+    def _force_samples(self, ev: ContactEvent) -> tuple[np.ndarray, np.ndarray]:
+        """(times, force) of one contact: on the dense output (a run) or at the samples."""
+        end = ev.end if math.isfinite(ev.end) else math.inf
+        if self.source is not None:
+            return self.source.force_profile(ev.onset, end if math.isfinite(end) else self.source.run.t_final)
+        t = self.time
+        sel = np.nonzero((t >= ev.onset) & (t <= end) & self._in_contact)[0]
+        return t[sel], self.arrays["contact_force"][sel]
+
     def force_peaks(self, contact: int = 0, threshold: float = 0.05) -> list[tuple[float, float]]:
         """Local maxima (time [s], force [N]) of one contact's force above ``threshold`` x peak."""
         if contact >= len(self.contacts):
             return []
-        ev = self.contacts[contact]
-        F = self.arrays["contact_force"]
-        t = self.time
-        end = ev.end if math.isfinite(ev.end) else t[-1]
-        sel = np.nonzero((t >= ev.onset) & (t <= end) & self._in_contact)[0]
-        if sel.size < 3:
-            return []
-        f, tt = F[sel], t[sel]
-        h = float(np.median(np.diff(tt))) if tt.size > 1 else 0.0
-        idx = _interior_maxima(f, start=True)
-        peaks = [self._refine_max(float(tt[i]), h, ev.onset, end) for i in idx]
+        if contact not in self._peaks:
+            self._peaks[contact] = self._all_peaks(contact)
+        peaks = self._peaks[contact]
         if not peaks:
             return []
         top = max(p[1] for p in peaks)
         return [p for p in peaks if p[1] > threshold * top]
 
+    def _all_peaks(self, contact: int) -> list[tuple[float, float]]:
+        ev = self.contacts[contact]
+        tt, f = self._force_samples(ev)
+        if tt.size < 3:
+            return []
+        end = ev.end if math.isfinite(ev.end) else float(tt[-1])
+        h = float(np.median(np.diff(tt))) if tt.size > 1 else 0.0
+        idx = interior_maxima(f, start=True)
+        return [self._refine_max(float(tt[i]), h, ev.onset, end) for i in idx]
+
     def sensor_pulse(self, threshold: float = 0.05) -> tuple[list[tuple[float, float]], float]:
         """Peaks (time [s], force [N]) and duration [s] of the first sensor-force pulse.
 
-        Compliant support only.  Like the experiment, which "determined the beginning and
-        ending of the impact by the sign of the impact force" (Duan et al. 2013, Sec. 4),
-        the pulse runs from the first contact's onset until the sensor force
-        -(k_s s + c_s s') first returns to zero (linear interpolation between samples);
-        its peaks are the sampled local maxima above ``threshold`` x its maximum.
+        Compliant support only.  Like the experiment, which "determined the beginning and ending of the impact
+        by the sign of the impact force" (Duan et al. 2013, Sec. 4), the pulse runs from the first contact's
+        onset until the sensor force -(k_s s + c_s s') first returns to zero (linear interpolation between
+        samples); its peaks are the sampled local maxima above ``threshold`` x its maximum.
         """
         if "sensor_force" not in self.arrays or not self.contacts:
             return [], math.nan
@@ -208,7 +306,7 @@ class Solution:
         else:
             k, end = t.size, math.nan
         ff, tt = f[i0:k], t[i0:k]
-        peaks = [(float(tt[i]), float(ff[i])) for i in _interior_maxima(ff)]
+        peaks = [(float(tt[i]), float(ff[i])) for i in interior_maxima(ff)]
         if not peaks:
             return [], end - self.contacts[0].onset
         top = max(p[1] for p in peaks)
@@ -217,13 +315,12 @@ class Solution:
     def metrics(self) -> dict[str, Any]:
         """The run's summary numbers (the ``--json`` contract of ``flexbeam run``).
 
-        ``peak_force`` [N], ``peak_time`` [s after the first onset], ``contact_duration``
-        [s], ``force_peaks`` (list of local maxima [N] above 5 % of the peak) with
-        ``force_peak_times`` [s after onset], ``contacts``, ``post_impact_velocity``
-        (P's normal velocity at the end of the first contact [m/s], positive away from
-        the obstacle), ``energy_drift``, ``wall_time`` [s], ``steps``; with a compliant
-        obstacle support also ``sensor_peak_force``, ``sensor_second_peak_force`` [N] and
-        ``sensor_duration`` [s] of the first sensor-force pulse (:meth:`sensor_pulse`).
+        ``peak_force`` [N], ``peak_time`` [s after the first onset], ``contact_duration`` [s], ``force_peaks``
+        (list of local maxima [N] above 5 % of the peak) with ``force_peak_times`` [s after onset],
+        ``contacts``, ``post_impact_velocity`` (P's normal velocity at the end of the first contact [m/s],
+        positive away from the obstacle), ``energy_drift``, ``wall_time`` [s], ``steps``; with a compliant
+        obstacle support also ``sensor_peak_force``, ``sensor_second_peak_force`` [N] and ``sensor_duration``
+        [s] of the first sensor-force pulse (:meth:`sensor_pulse`).
         """
         drift, drift_max = self.energy_drift()
         out: dict[str, Any] = {
@@ -263,13 +360,15 @@ class Solution:
                 out["force_peak_times"] = [p[0] - ev.onset for p in peaks]
                 others = [p[1] for p in peaks if p[0] != tp]
                 out["second_peak_force"] = max(others) if others else math.nan
-        if "sensor_force" in self.arrays:
+        if self.provenance.get("compliant_support") or (self._samples is not None and "sensor_force" in self.arrays):
             peaks, duration = self.sensor_pulse()
             ranked = sorted((p[1] for p in peaks), reverse=True)
             out["sensor_peak_force"] = ranked[0] if ranked else math.nan
             out["sensor_second_peak_force"] = ranked[1] if len(ranked) > 1 else math.nan
             out["sensor_duration"] = duration
-        if "tip_deflection" in self.arrays and self.arrays["tip_deflection"].size:
+        if self.source is not None:
+            out["tip_deflection_min"], out["tip_deflection_max"] = self.source.extremes("tip_deflection")
+        elif "tip_deflection" in self.arrays and self.arrays["tip_deflection"].size:
             out["tip_deflection_min"] = float(np.min(self.arrays["tip_deflection"]))
             out["tip_deflection_max"] = float(np.max(self.arrays["tip_deflection"]))
         return out
@@ -314,8 +413,8 @@ class Solution:
             "title": "flexbeam simulation",
             "status": self.status,
             "message": self.message,
-            "metrics": json.dumps(_jsonable(self.metrics())),
-            **{k: (v if isinstance(v, (str, int, float)) else json.dumps(_jsonable(v)))
+            "metrics": json.dumps(jsonable(self.metrics())),
+            **{k: (v if isinstance(v, (str, int, float)) else json.dumps(jsonable(v)))
                for k, v in self.provenance.items()},
         }
         return xr.Dataset(data_vars, coords=coords, attrs=attrs)
@@ -378,11 +477,12 @@ def write_text_atomic(path: str | Path, text: str) -> Path:
     return path
 
 
-def _jsonable(obj: Any) -> Any:
+def jsonable(obj: Any) -> Any:
+    """``obj`` with numpy scalars as Python numbers and non-finite floats as None (strict JSON)."""
     if isinstance(obj, dict):
-        return {k: _jsonable(v) for k, v in obj.items()}
+        return {k: jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
+        return [jsonable(v) for v in obj]
     if isinstance(obj, (np.floating, float)):
         v = float(obj)
         return v if math.isfinite(v) else None
@@ -393,4 +493,7 @@ def _jsonable(obj: Any) -> Any:
 
 def metrics_json(metrics: dict[str, Any]) -> str:
     """JSON text of metrics (NaN -> null)."""
-    return json.dumps(_jsonable(metrics), indent=2)
+    return json.dumps(jsonable(metrics), indent=2)
+
+
+_jsonable = jsonable  # the former private name, still imported by modules being split (issue 10)

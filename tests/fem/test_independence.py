@@ -2,7 +2,8 @@
 
 FE-vs-modal agreement can only catch an error in the modal contact force, gap or equations
 if the finite-element package does not run them.  It may take from the modal side only the
-case's inputs, interpreted alike on purpose: the contact law objects and their chi(e)
+case's inputs, interpreted alike on purpose: the contact set-up (where P is, where the obstacle stands, which
+law with which stiffness: ``ContactSetup.from_case``), the contact law objects and their chi(e)
 (``make_law``, ``ContactLaw``), the Hertz stiffness of the materials and the rigid Hertz
 impact duration (used to size the contact step, not in the equations), and the prescribed
 drive profile (``JointDrive``).  This test reads the import statements of every module.
@@ -19,6 +20,7 @@ FEM = Path(flexbeam.fem.__file__).resolve().parent
 #: the modal model's packages and modules
 MODAL = ("model", "contact", "integrate", "methods", "simulation")
 ALLOWED = {
+    "contact.setup": {"ContactSetup"},
     "contact.laws": {"ContactLaw", "make_law"},
     "contact.hertz": {"effective_modulus", "sphere_on_cylinder_stiffness", "rigid_hertz_impact"},
     "model.drive": {"JointDrive"},

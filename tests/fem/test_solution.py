@@ -10,7 +10,7 @@ import pytest
 import flexbeam as fb
 from flexbeam.errors import ParameterError
 from flexbeam.fem import FemBeam, build_mesh, simulate_fem
-from flexbeam.model.outputs import SUPPORT_COLUMNS
+from flexbeam.model.system import SUPPORT_COLUMNS
 from flexbeam.solution import VARIABLES
 from tests.fem.cases import seed
 

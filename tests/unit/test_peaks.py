@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from flexbeam.solution import _interior_maxima
+from flexbeam.solution import interior_maxima
 
 
 def test_two_hertz_like_peaks_are_found_at_fine_sampling():
@@ -13,7 +13,7 @@ def test_two_hertz_like_peaks_are_found_at_fine_sampling():
         return 900.0 * np.sin(np.pi * t / 6e-4) ** 1.5 + 300.0 * np.exp(-(((t - 4.5e-4) / 3e-5) ** 2))
 
     t = np.arange(0.0, 6e-4, 2e-7)
-    idx = _interior_maxima(force(t))
+    idx = interior_maxima(force(t))
     assert len(idx) == 2
     fine = np.linspace(4e-4, 5e-4, 1_000_001)  # the second maximum on a 1e-10 s grid
     assert abs(t[idx[0]] - 3e-4) <= 2e-7
@@ -24,4 +24,4 @@ def test_round_off_ripple_of_a_resting_force_is_no_peak():
     """A static reaction with relative ripple 1e-13 (what an integrator leaves) has no maxima."""
     rng = np.random.default_rng(1)
     f = 7.5088644 * (1.0 + 1e-13 * rng.standard_normal(50_000))
-    assert _interior_maxima(f) == []
+    assert interior_maxima(f) == []

@@ -1,4 +1,5 @@
-"""Exact modal propagation of the exponential integrator against quadrature and an ODE solver."""
+"""Exact modal propagation of the compiled integrator (``kernels/src/propagation.c``) against quadrature and an
+ODE solver."""
 
 from __future__ import annotations
 
@@ -9,22 +10,22 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import quad, solve_ivp
 
-from flexbeam.integrate.exponential_kernels import MOMENT_SERIES, _osc_moments, gauss_tables, step_weights
+from flexbeam.kernels import core
 
+MOMENT_SERIES = 1.0  # propagation.c: power series below this argument, recurrences above
 THETAS = [0.0, 1e-8, 0.3, 0.999 * MOMENT_SERIES, MOMENT_SERIES, 1.001 * MOMENT_SERIES, 2.5, 40.0, 3.0e3]
 
 
 @pytest.mark.parametrize("theta", THETAS)
 def test_moments_equal_their_integrals(theta):
-    """Cm, Sm of :func:`_osc_moments` are the integrals of cos(theta (1 - u)) u^m and sin(...) u^m / theta.
+    """Cm, Sm of the kernels' moments are the integrals of cos(theta (1 - u)) u^m and sin(...) u^m / theta.
 
     Truth: adaptive quadrature of the defining integrals (sin(theta x) / theta written as
     x sinc, so theta = 0 is the limit 1 / ((m + 1) (m + 2))), on both sides of the
     series/recurrence switch.
     """
     p = 4
-    Cm, Sm = np.empty(p), np.empty(p)
-    _osc_moments(theta, math.cos(theta), math.sin(theta), p, Cm, Sm)
+    Cm, Sm = core.moments(theta)
     for m in range(p):
         if theta < 10.0:
             c = quad(lambda u, m=m: math.cos(theta * (1 - u)) * u**m, 0, 1, epsabs=1e-15, epsrel=1e-13)[0]
@@ -46,15 +47,16 @@ def test_step_weights_propagate_a_forced_oscillator(omega):
     The step spans from a fraction of a period (w = 50) to ~100 periods (w = 3e5), where
     the exact propagation is the point of the method.
     """
-    c, _, Vinv, _, _ = gauss_tables(4)
+    c = np.array(core.nodes())
+    Vinv = np.linalg.inv(np.vander(c, 4, increasing=True))
     h = 2e-3
     fn = np.array([3.0, -1.0, 2.0, 0.5]) * (1.0 + omega**2 * 1e-6)
     coef = Vinv @ fn
     forcing = lambda t: np.polyval(coef[::-1], t / h)
     s = np.array([0.1, 0.5, 1.0])
-    Cw, SW, WS = (np.empty((1, s.size)) for _ in range(3))
-    RE, RV = np.empty((1, s.size, 4)), np.empty((1, s.size, 4))
-    step_weights(np.array([omega]), h, s, Vinv, Cw, SW, WS, RE, RV)
+    weights = [core.weights(omega, h, si) for si in s]
+    Cw, SW, WS = (np.array([[w[i] for w in weights]]) for i in range(3))
+    RE, RV = np.array([[w[3] for w in weights]]), np.array([[w[4] for w in weights]])
     eta0, v0 = 1e-3, -0.2
     sol = solve_ivp(lambda t, y: [y[1], forcing(t) - omega**2 * y[0]], (0, h), [eta0, v0], method="DOP853",
                     rtol=1e-12, atol=1e-16, t_eval=s * h, max_step=h / max(1.0, omega * h / 0.5))

@@ -23,8 +23,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 import flexbeam as fb
-from flexbeam.contact.impulse import impulse_jump
 from flexbeam.errors import ParameterError
+from flexbeam.methods.impulse import impulse_jump
 from flexbeam.model.system import BeamSystem
 from flexbeam.simulation import initial_state
 from flexbeam.validation import two_mass_chain

@@ -9,7 +9,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 import flexbeam as fb
-from flexbeam.contact.impulse import impulse_jump
+from flexbeam.methods.impulse import impulse_jump
 from flexbeam.model.system import BeamSystem
 from flexbeam.simulation import initial_state
 from tests.conftest import rigid_rod_mass_inertia, seed

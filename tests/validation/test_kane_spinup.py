@@ -97,9 +97,14 @@ def _check_first_order_run(case: fb.Case) -> None:
     assert peak > 0.02 * L  # a real deflection, not a vanishing one (0.57 m at W = 6 rad/s)
     np.testing.assert_allclose(tip[idx], qs, atol=0.025 * peak)
     assert tip.min() == pytest.approx(qs.min(), rel=0.025)
+    # the metrics are the extremes over the run (on the dense output): beyond the sampled ones, by at most what
+    # the deflection can change within one sample interval
     m = sol.metrics()
-    assert m["tip_deflection_min"] == pytest.approx(tip.min())
-    assert m["tip_deflection_max"] == pytest.approx(tip.max())
+    dt = np.diff(t)
+    ok = dt > 0
+    within = np.max(np.abs(np.diff(tip)[ok] / dt[ok])) * np.max(dt)
+    assert 0.0 <= tip.min() - m["tip_deflection_min"] <= within
+    assert 0.0 <= m["tip_deflection_max"] - tip.max() <= within
 
     # after the spin-up: quasi-static deflection 0; a small free vibration that does not grow
     after = t >= Ts

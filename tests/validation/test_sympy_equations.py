@@ -1,26 +1,32 @@
 """Lagrange's equations derived with sympy from the kinematics, against flexbeam's kernels.
 
-Independent derivation (nothing of flexbeam's equations is used):
+Independent derivation (nothing of flexbeam's equations is used), in both body frames:
 
-* kinematics of a two-mode beam on a hub of radius r_h and inertia J_h,
-  rho(x) = (r_h + x + u_x, u_y), r = A(theta) rho, u_y = phi_1(x) q_1 + phi_2(x) q_2 and the
-  coupling (foreshortening) deformation u_x = -1/2 int_0^x (du_y/dxi)^2 dxi = -1/2 q^T H(x) q
-  (first-order model) or u_x = 0 (zeroth-order model);
-* T = 1/2 J_h theta'^2 + 1/2 int mu |r'|^2 dx, truncated to second order in (q, q') with a
+* kinematics of a two-mode beam on a hub of radius r_h and inertia J_h, in a frame turned by theta:
+  the beam is clamped to the hub's rim, whose angle relative to the frame is alpha = asin(d q) (d_i = phi_i'(0),
+  zero in the hub frame: there the frame is the hub); the root sits at r_h (cos alpha, sin alpha) and the
+  inextensible beam shortens, rho(x) = (r_h cos alpha + x - 1/2 int_0^x (du_y/dxi)^2 dxi, u_y),
+  u_y = phi_1(x) q_1 + phi_2(x) q_2 (first-order model; the zeroth-order model keeps rho_x = r_h + x);
+  r = A(theta) rho;
+* T = 1/2 J_h (theta' + alpha')^2 + 1/2 int mu |r'|^2 dx, truncated to second order in (q, q') with a
   bookkeeping parameter eps (q -> eps q, q' -> eps q', keep eps^0..eps^2);
-  V = 1/2 int EI (u_y'')^2 dx + g int mu r_y dx, a joint torque tau;
-* M = d^2 T / dz' dz',  Q = tau e_theta - (d/dt dT/dz')|_{z''=0} + dT/dz - dV/dz.
+  V = 1/2 int EI (u_y'')^2 dx + g int mu r_y dx; a joint torque tau on the hub angle theta + alpha;
+* M = d^2 T / dz' dz',  Q = tau d(theta + alpha)/dz - (d/dt dT/dz')|_{z''=0} + dT/dz - dV/dz.
+
+Shape functions: in the hub frame the classical clamped-free eigenfunctions written out in this file; in the
+system frame flexbeam's hub + beam eigenmodes, taken as given (they are checked against closed forms and their
+boundary conditions in tests/unit/test_modes.py): this test checks the equations for the shapes.
 
 cos(theta) and sin(theta) are the symbols C, S (d/dtheta = -S d/dC + C d/dS) and C^2 + S^2 = 1
 is imposed by polynomial reduction.  The x-dependence stays symbolic (b = r_h + x, phi_i(x),
-phi_i''(x), H_ij(x)) until the integrals over x: each monomial of these becomes one symbol
-<w * monomial> = int_0^L w(x) monomial(x) dx (w = mu or EI), evaluated here by Gauss-Legendre
-quadrature of the classical clamped-free eigenfunctions written out in this file, with H(x)
-itself computed by a nested quadrature of phi_i' phi_j' (not by flexbeam's integration by parts).
+phi_i''(x), H_ij(x) = int_0^x phi_i' phi_j') until the integrals over x: each monomial of these becomes one
+symbol <w * monomial> = int_0^L w(x) monomial(x) dx (w = mu or EI), evaluated here by Gauss-Legendre
+quadrature, with H(x) itself computed by a nested quadrature of phi_i' phi_j' (not by flexbeam's integration
+by parts).
 
 M(q) and the parts of Q (elastic, velocity-dependent, gravity, torque) are compared with
 ``BeamSystem.mass_matrix`` / ``BeamSystem.generalized_forces`` at random states to 1e-10
-relative, for both coupling models, with and without a hub.
+relative, for both coupling models and both frames, with and without a hub.
 """
 
 from __future__ import annotations
@@ -48,7 +54,8 @@ th, w, eps = sp.symbols("theta omega epsilon", real=True)
 q = sp.symbols("q1:3", real=True)
 u = sp.symbols("qd1:3", real=True)
 C, S = sp.symbols("C S", real=True)  # cos(theta), sin(theta)
-g, tau, Jh = sp.symbols("g tau J_h", real=True)
+g, tau, Jh, rh = sp.symbols("g tau J_h r_h", real=True)
+d = sp.symbols("d1:3", real=True)  # hub slopes phi_i'(0) (zero in the hub frame)
 # x-dependent quantities at one material point
 b = sp.Symbol("b", real=True)  # r_h + x
 p = sp.symbols("phi1:3", real=True)  # phi_i(x)
@@ -96,7 +103,10 @@ def derive(first_order: bool):
     qe = [eps * qi for qi in q]  # q -> eps q; then dr/dt = sum dr/dq_i q_i' carries eps q_i' too
     H = [[h11, h12], [h12, h22]]
     uy = p[0] * qe[0] + p[1] * qe[1]
-    ux = -sp.Rational(1, 2) * sum(H[i][j] * qe[i] * qe[j] for i in range(2) for j in range(2)) \
+    slope = d[0] * qe[0] + d[1] * qe[1]  # sin(alpha), the root slope in the frame
+    # the rim's shortening r_h (1 - cos alpha) = r_h (1 - sqrt(1 - sin^2 alpha)), as a series in eps
+    rim = rh * sp.series(1 - sp.sqrt(1 - slope**2), eps, 0, 3).removeO()
+    ux = (-rim - sp.Rational(1, 2) * sum(H[i][j] * qe[i] * qe[j] for i in range(2) for j in range(2))) \
         if first_order else sp.Integer(0)
     X, Y = b + ux, uy
     r = sp.Matrix([C * X - S * Y, S * X + C * Y])
@@ -108,7 +118,10 @@ def derive(first_order: bool):
     density_Ve = _truncate(sp.Rational(1, 2) * uyxx**2)
     density_Vg = _truncate(g * r[1])
     integrals: dict = {}
-    T = sp.Rational(1, 2) * Jh * w**2 + _integrate(density_T, "mu", integrals)
+    # alpha' = (d q')/sqrt(1 - (d q)^2) = eps (d q') + O(eps^3): the hub's energy to second order
+    alpha_rate = eps * (d[0] * u[0] + d[1] * u[1])
+    T_hub = _truncate(sp.Rational(1, 2) * Jh * (w + alpha_rate) ** 2)
+    T = T_hub + _integrate(density_T, "mu", integrals)
     V = _integrate(density_Ve, "EI", integrals) + _integrate(density_Vg, "mu", integrals)
     N = len(Z)
     M = sp.Matrix(N, N, lambda i, j: sp.diff(T, ZD[i], ZD[j]))
@@ -116,7 +129,9 @@ def derive(first_order: bool):
     for i in range(N):
         dTdv = sp.diff(T, ZD[i])
         ddt = sum(_d(dTdv, Z[j]) * ZD[j] for j in range(N))  # d/dt at z'' = 0
-        Q.append(sp.expand((tau if i == 0 else 0) - ddt + _d(T, Z[i]) - _d(V, Z[i])))
+        # the torque's virtual work tau d(theta + alpha) = tau (d theta + d.dq) to the model's order
+        work = tau if i == 0 else tau * d[i - 1]
+        Q.append(sp.expand(work - ddt + _d(T, Z[i]) - _d(V, Z[i])))
     assert all(not M[i, j].has(C, S) for i in range(N) for j in range(N))
     return M, sp.Matrix(Q), integrals
 
@@ -149,30 +164,34 @@ def _gauss(lo, hi, m):
     return 0.5 * (hi - lo) * xi + 0.5 * (hi + lo), 0.5 * (hi - lo) * wi
 
 
-def integral_values(integrals: dict, hub_radius: float) -> dict:
-    """Numbers of the integral symbols by Gauss-Legendre quadrature (H by nested quadrature)."""
+def integral_values(integrals: dict, hub_radius: float, shapes=modes) -> dict:
+    """Numbers of the integral symbols by Gauss-Legendre quadrature (H by nested quadrature) for ``shapes``
+    (x, derivative) -> (m, 2), and of the hub slopes d_i = phi_i'(0) and r_h."""
     x, wx = _gauss(0.0, L, 60)
     H = np.empty((x.size, 2, 2))
     for k, xk in enumerate(x):
         xs, ws = _gauss(0.0, xk, 40)
-        d1 = modes(xs, 1)
+        d1 = shapes(xs, 1)
         H[k] = (d1 * ws[:, None]).T @ d1
-    fields = [hub_radius + x, *modes(x, 0).T, *modes(x, 2).T, H[:, 0, 0], H[:, 0, 1], H[:, 1, 1]]
+    fields = [hub_radius + x, *shapes(x, 0).T, *shapes(x, 2).T, H[:, 0, 0], H[:, 0, 1], H[:, 1, 1]]
     out = {}
     for (weight, monom), sym in integrals.items():
         f = np.ones_like(x)
         for field_, e in zip(fields, monom):
             f = f * field_**e
         out[sym] = float(np.sum(wx * (MU if weight == "mu" else EI) * f))
+    slope = shapes(np.zeros(1), 1)[0] if shapes is not modes else np.zeros(2)
+    out.update({d[0]: float(slope[0]), d[1]: float(slope[1]), rh: hub_radius})
     return out
 
 
-def make_case(coupling: str, hub_radius: float, hub_inertia: float, gravity: float, torque: float) -> Case:
+def make_case(coupling: str, hub_radius: float, hub_inertia: float, gravity: float, torque: float,
+              frame: str = "hub") -> Case:
     return Case.model_validate({
         "beam": {"length": L, "density": 2.0, "youngs_modulus": 3.0, "section": "general",
                  "area": MU / 2.0, "second_moment": EI / 3.0, "half_depth": 0.05},
         "hub": {"radius": hub_radius, "inertia": hub_inertia},
-        "model": {"modes": 2, "coupling": coupling, "gravity": gravity},
+        "model": {"modes": 2, "coupling": coupling, "gravity": gravity, "frame": frame},
         "drive": {"kind": "torque", "torque": torque},
         "contact": {"position": 0.8 * L, "stiffness": 1e6},
     })
@@ -203,11 +222,15 @@ def test_kinetic_energy_has_the_textbook_structure():
 STATES = np.random.default_rng(2024).uniform(-1.0, 1.0, size=(6, 6)) * [math.pi, 3.0, 0.3, 0.1, 2.0, 1.0]
 
 
+@pytest.mark.parametrize("frame", ["hub", "system"])
 @pytest.mark.parametrize("coupling", ["first-order", "zeroth-order"])
 @pytest.mark.parametrize("hub", [(0.0, 0.0), (0.4, 0.25)], ids=["no-hub", "hub"])
-def test_mass_matrix_and_forces_match_flexbeam(coupling, hub):
+def test_mass_matrix_and_forces_match_flexbeam(coupling, hub, frame):
     M_sym, Q_sym, integrals = derive(coupling == "first-order")
-    values = integral_values(integrals, hub[0])
+    shapes = modes
+    if frame == "system":
+        shapes = BeamSystem.from_case(make_case(coupling, hub[0], hub[1], 0.0, 0.0, frame)).beam.shapes
+    values = integral_values(integrals, hub[0], shapes)
     args = (th, w, *q, *u, g, tau, Jh)
     subs = {**values, C: sp.cos(th), S: sp.sin(th)}
     f_M = sp.lambdify(args, M_sym.subs(subs), "numpy")
@@ -217,7 +240,7 @@ def test_mass_matrix_and_forces_match_flexbeam(coupling, hub):
         return (np.array(f_M(*state, grav, torque, hub[1]), float),
                 np.array(f_Q(*state, grav, torque, hub[1]), float).ravel())
 
-    systems = {(gr, tq): BeamSystem.from_case(make_case(coupling, hub[0], hub[1], gr, tq))
+    systems = {(gr, tq): BeamSystem.from_case(make_case(coupling, hub[0], hub[1], gr, tq, frame))
                for gr in (0.0, GRAV) for tq in (0.0, TAU)}
 
     def flex_MQ(state, grav, torque):
@@ -246,9 +269,14 @@ def test_mass_matrix_and_forces_match_flexbeam(coupling, hub):
         Qg_s = sympy_MQ(state, GRAV, 0.0)[1] - sympy_MQ(state, 0.0, 0.0)[1]
         Qg_f = flex_MQ(state, GRAV, 0.0)[1] - flex_MQ(state, 0.0, 0.0)[1]
         close(Qg_f, Qg_s)
-        # joint torque acts on theta only
+        # the joint torque acts on the hub angle theta + d q
         Qt_f = flex_MQ(state, GRAV, TAU)[1] - flex_MQ(state, GRAV, 0.0)[1]
-        np.testing.assert_allclose(Qt_f, [TAU, 0.0, 0.0], rtol=0, atol=1e-12)
+        Qt_s = sympy_MQ(state, GRAV, TAU)[1] - sympy_MQ(state, GRAV, 0.0)[1]
+        np.testing.assert_allclose(Qt_f, Qt_s, rtol=0, atol=1e-12)
+        if frame == "hub":
+            np.testing.assert_allclose(Qt_f, [TAU, 0.0, 0.0], rtol=0, atol=1e-12)
+        else:
+            assert abs(Qt_f[1]) > 1e-3 * abs(TAU)  # the root slope carries the torque to the modes
         # and the whole thing at once
         close(flex_MQ(state, GRAV, TAU)[1], sympy_MQ(state, GRAV, TAU)[1])
 

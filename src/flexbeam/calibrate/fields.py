@@ -87,9 +87,9 @@ class Parameter:
             raise ParameterError(f"--fit {key}: not a real-valued field (only numbers can be fitted)")
         x0 = _get(case, key)
         if x0 is None and key == "contact.stiffness":
-            from ..model.system import BeamSystem
+            from ..contact.setup import contact_law
 
-            x0 = BeamSystem.from_case(case).law.stiffness
+            x0 = contact_law(case).stiffness
         if x0 is None:
             raise ParameterError(f"--fit {key}: the case gives no value; give a starting value with --set {key}=VALUE")
         x0 = float(x0)

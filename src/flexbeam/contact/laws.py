@@ -18,21 +18,16 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
-from numba import njit
 
 from ..errors import ParameterError, closest
+from ..kernels import core
 
 
-@njit(cache=True)
-def law_force(p, d, dd):
-    """Contact force F and its elastic part F_k for parameters p = [K, n, chi/d'_0, C]."""
-    if d <= 0.0:
-        return 0.0, 0.0
-    fk = p[0] * d ** p[1]
-    f = fk * (1.0 + p[2] * dd) + p[3] * dd
-    if f < 0.0:
-        f = 0.0
-    return f, fk
+def law_force(p: np.ndarray, d: float, dd: float) -> tuple[float, float]:
+    """Contact force F and its elastic part F_k for parameters p = [K, n, chi/d'_0, C] at penetration d >= 0
+    and rate d' (the compiled ``fb_law_force`` the integrators use)."""
+    F, Fk, _, _ = core.law_force(np.ascontiguousarray(p, float), float(d), float(dd))
+    return F, Fk
 
 
 @dataclass(frozen=True)
@@ -196,8 +191,7 @@ def make_law(name: str, stiffness: float, exponent: float, restitution: float) -
     return cls(stiffness=stiffness, exponent=exponent, restitution=restitution)
 
 
-@njit(cache=True)
-def law_potential(p, d):
+def law_potential(p: np.ndarray, d: float) -> float:
     """Elastic contact potential U_c = K d^(n+1)/(n+1) [J] of parameters p at penetration d."""
     if d <= 0.0:
         return 0.0

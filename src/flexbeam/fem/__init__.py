@@ -13,7 +13,7 @@ coupling-deformation approximation.
   and the banded iteration matrix, Newton iterations, band solver (Numba);
 * :mod:`flexbeam.fem.contact_law`, :mod:`flexbeam.fem.gap` -- the FE's own evaluation
   of the contact-law force and of the gap to the obstacle (Numba), and
-  :mod:`flexbeam.fem.contact_setup` -- the law and the obstacle read from the case;
+  :mod:`flexbeam.contact.setup` -- the law and the obstacle read from the case (shared input);
 * :mod:`flexbeam.fem.model` -- mesh, properties, statics, frequencies;
 * :mod:`flexbeam.fem.integrator` -- generalized-alpha (Chung & Hulbert 1993) step;
 * :mod:`flexbeam.fem.eventdriven` -- the run with contact-event location and step sizes;

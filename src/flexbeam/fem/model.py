@@ -26,12 +26,12 @@ import numpy as np
 from scipy.linalg import eigh
 
 from ..contact.laws import ContactLaw
+from ..contact.setup import ContactSetup
 from ..errors import ParameterError
 from ..model.drive import JointDrive
 from ..parameters.case import Case
 from .assembly import assemble, energies, node_states, normal_velocities
 from .banded import BAND, band_to_dense, fix_first_dof
-from .contact_setup import ContactSetup
 from .element import GAUSS_W, GAUSS_XI, point_on_element
 from .gap import gap_at
 
@@ -131,10 +131,10 @@ class FemBeam:
             gravity=case.model.gravity,
             drive=JointDrive(case.drive, theta0=initial_angle(case)),
             law=contact.law,
-            obstacle_kind=int(contact.kind),
-            obstacle_centre=np.asarray(contact.centre, float),
-            obstacle_radius=float(contact.radius),
-            obstacle_normal=np.asarray(contact.normal, float),
+            obstacle_kind=int(contact.obstacle.kind),
+            obstacle_centre=np.asarray(contact.obstacle.centre, float),
+            obstacle_radius=float(contact.obstacle.radius),
+            obstacle_normal=np.asarray(contact.obstacle.normal, float),
             measuring=measuring,
         )
 

@@ -1,4 +1,8 @@
-"""What the three impact methods share: free flight, the gap event, the contact log."""
+"""What the three impact methods share: free flight, the impact event, the contact log.
+
+An impact method (:class:`~flexbeam.integrate.loop.PhaseMethod`) gives the phase loop the first phase and, at
+every event a phase ends on, the next phase and the state after it (a velocity jump for CCM's onset and IMM).
+"""
 
 from __future__ import annotations
 
@@ -7,42 +11,23 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact.impulse import Jump
-from ..contact.laws import law_potential
-from ..integrate.eventdriven import Event, Phase, Stop
-from ..model.system import CONTACT_CONSTRAINT, CONTACT_FORCE, BeamSystem
+from ..contact.hertz import rigid_hertz_impact
+from ..integrate.loop import Stop
+from ..model.system import BeamSystem
 from ..parameters.case import Case
+from ..phases import ContactMode, EventKind, Phase
+from ..solution import ContactEvent
+from .impulse import Jump
 
-
-@dataclass
-class ContactEvent:
-    """One contact (or, for IMM, one instantaneous impact).
-
-    Times in s; velocities are P's normal velocity delta' [m/s] (negative = approaching)
-    just before the contact and at its end (IMM: right after the jump).
-    """
-
-    index: int
-    onset: float
-    end: float = float("nan")
-    velocity_before: float = float("nan")
-    velocity_after: float = float("nan")
-    impulse: float = float("nan")
-    peak_force: float = float("nan")
-    peak_time: float = float("nan")
-    energy_before: float = float("nan")
-    energy_after: float = float("nan")
-
-    @property
-    def duration(self) -> float:
-        return self.end - self.onset
+#: steps per (estimated) contact duration at least: a contact phase's step is bounded by t_c / CONTACT_STEPS
+CONTACT_STEPS = 8
 
 
 @dataclass
 class ImpactMethod:
-    """Base of CCFM, CCM and IMM: the free phase and the impact event.
+    """Base of CCFM, CCM and IMM: the free phase, the impact event and the transitions back to free flight.
 
-    Subclasses add their contact phase(s) and transitions.
+    Subclasses say what an impact starts (:meth:`on_impact`).
     """
 
     system: BeamSystem
@@ -56,61 +41,52 @@ class ImpactMethod:
     gap_tolerance = 1e-12
 
     def __post_init__(self) -> None:
-        self._free_fun = self.system.rhs_function()
-        self.impact_event = Event("impact", self.gap_event, -1)
-        self.release_event = Event("release", self.multiplier_event, -1)
         w = self.case.solver.baumgarte_frequency
         self.baumgarte = np.array([w, w, 0.0, 0.0])
 
-    # events ---------------------------------------------------------------
+    # phases -----------------------------------------------------------------
+    def free_phase(self) -> Phase:
+        """Unimpact motion until the gap closes."""
+        return Phase("free", ContactMode.NONE, (EventKind.IMPACT,), self.case.solver.sample_step)
+
+    def constrained_phase(self, contact: ContactEvent, name: str = "constrained") -> Phase:
+        """Contact held closed by the unilateral constraint until its multiplier turns tensile.
+
+        Baumgarte stabilisation (Baumgarte 1972; Hairer & Wanner, Solving ODEs II, Sec. VII.2) with
+        alpha = beta = ``solver.baumgarte_frequency``.  A CCM contact is sampled at the contact spacing, IMM's
+        resting contact at the free one.  The phase starts consistent (delta = 0 at the located event,
+        delta' = 0 after the e = 0 jump), so the terms only damp the integration drift.
+        """
+        s = self.case.solver
+        step = s.contact_sample_step if name == "constrained" else s.sample_step
+        return Phase(name, ContactMode.CONSTRAINT, (EventKind.RELEASE,), step, self.baumgarte, contact)
+
+    # events -----------------------------------------------------------------
     def gap_event(self, t: float, y: np.ndarray) -> tuple[float, float]:
-        """(delta, delta') of the contact point: the impact/separation event function."""
+        """(delta, delta') of the contact point."""
         delta, vn, _, _ = self.system.gap(t, y)
         return delta, vn
 
-    def free_phase(self) -> Phase:
-        """Unimpact motion until the gap closes."""
-        return Phase("free", self._free_fun, [self.impact_event], self.case.solver.sample_step,
-                     step_limit=self.safe_step)
-
-    def safe_step(self, t: float, y: np.ndarray) -> float:
-        """Largest free-flight step that cannot carry P through the obstacle.
-
-        P moves at most |v_P| h (to first order) in a step h; allowing a quarter of the
-        obstacle's size (sphere radius; 1 mm for a point) or half the current gap keeps
-        at least one event check point inside the obstacle, and the Hermite check on
-        (delta, delta') catches a shallower dip.  A half-plane cannot be passed through.
-        """
-        if self.system.contact.kind != 0:
-            return math.inf
-        r, v, _, _ = self.system.point_state(t, y, self.system.contact.point)
-        speed = math.hypot(v[0], v[1])
-        if speed == 0.0:
-            return math.inf
-        size = self.system.contact.radius or 1e-3
-        gap = self.gap_event(t, y)[0]
-        return max(0.25 * size, 0.5 * gap) / speed
-
     def gap_acceleration(self, t: float, y: np.ndarray) -> float:
         """delta'' under free motion (no contact force) at state y."""
-        _, _, gamma, J = self.system.gap(t, y)
-        yd = self.system.rhs(t, y)[0]
-        n1 = self.system.n + 1
-        if self.system.prescribed:
-            thdd = self.system.drive.motion(t)[2]
-            zdd = np.concatenate(([thdd], yd[self.system.n : 2 * self.system.n]))
+        sysm = self.system
+        _, _, gamma, J = sysm.gap(t, y)
+        yd = sysm.rhs(t, y)[0]
+        n = sysm.n
+        if sysm.prescribed:
+            zdd = np.concatenate(([sysm.drive.motion(t)[2]], yd[n : 2 * n]))
         else:
-            zdd = yd[n1 : 2 * n1]
-        if self.system.compliant:  # s'' of the support coordinate
-            zdd = np.append(zdd, yd[self.system.support_index + 1])
+            zdd = yd[n + 1 : 2 * n + 2]
+        if sysm.compliant:  # s'' of the support coordinate
+            zdd = np.append(zdd, yd[sysm.support_index + 1])
         return float(J @ zdd + gamma)
 
     def approaching(self, t: float, y: np.ndarray, located: bool = False) -> bool:
-        """Does a contact start here?  The gap is closed and P moves into the obstacle,
-        or rests on it (|delta'| below ``grazing_speed``) while free motion would press it in.
+        """Does a contact start here?  The gap is closed and P moves into the obstacle, or rests on it
+        (|delta'| below ``grazing_speed``) while free motion would press it in.
 
-        ``located``: the gap's zero was just located as an event, so it is zero to
-        within round-off and only the motion decides.
+        ``located``: the gap's zero was just located as an event, so it is zero to within round-off and only
+        the motion decides.
         """
         delta, vn = self.gap_event(t, y)
         if not (located or delta <= self.gap_tolerance):
@@ -119,6 +95,11 @@ class ImpactMethod:
             return True
         return abs(vn) <= self.grazing_speed and self.gap_acceleration(t, y) < 0.0
 
+    def holds(self, t: float, y: np.ndarray) -> bool:
+        """Would the closed contact push (multiplier >= 0) at this state?"""
+        return self.system.rhs(t, y, ContactMode.CONSTRAINT, self.baumgarte)[1] >= 0.0
+
+    # the contact log -----------------------------------------------------------
     def new_contact(self, t: float, y: np.ndarray) -> ContactEvent:
         """Log a contact onset, stopping the run past ``solver.max_contacts``."""
         if len(self.contacts) >= self.case.solver.max_contacts:
@@ -127,8 +108,7 @@ class ImpactMethod:
                 f"stopped at t = {t:.9g} s after {len(self.contacts)} contacts "
                 f"(solver.max_contacts); the contacts accumulate (Zeno-like)",
             )
-        vn = self.gap_event(t, y)[1]
-        ev = ContactEvent(index=len(self.contacts), onset=t, velocity_before=vn)
+        ev = ContactEvent(index=len(self.contacts), onset=t, velocity_before=self.gap_event(t, y)[1])
         self.contacts.append(ev)
         return ev
 
@@ -140,38 +120,18 @@ class ImpactMethod:
         ev.energy_before, ev.energy_after = jump.kinetic_before, jump.kinetic_after
         return ev
 
-    # constrained (sticking) contact ----------------------------------------
-    def multiplier_event(self, t: float, y: np.ndarray) -> tuple[float, float]:
-        """Contact multiplier lambda of the constrained phase (separation when < 0)."""
-        return float(self.system.rhs(t, y, CONTACT_CONSTRAINT, self.baumgarte)[1]), float("nan")
+    def contact_time(self, t: float, y: np.ndarray, stiffness: float, exponent: float) -> float:
+        """Duration of a rigid-body Hertz impact at the onset's effective mass and approach speed [s]
+        (Johnson 1985, Sec. 11.4), the time scale of a contact; inf when P does not approach."""
+        speed = abs(self.gap_event(t, y)[1])
+        m_eff = self.system.effective_mass(t, y)
+        if speed <= 1e-9 or not math.isfinite(m_eff):
+            return math.inf
+        return rigid_hertz_impact(m_eff, speed, stiffness, exponent)[2]
 
-    def holds(self, t: float, y: np.ndarray) -> bool:
-        """Would the closed contact push (lambda >= 0) at this state?"""
-        return self.multiplier_event(t, y)[0] >= 0.0
-
-    def constrained_phase(self, contact: ContactEvent, name: str = "constrained") -> Phase:
-        """Contact held closed by the unilateral constraint until lambda turns tensile.
-
-        Baumgarte stabilisation (Baumgarte 1972; Hairer & Wanner, Solving ODEs II,
-        Sec. VII.2) with alpha = beta = ``solver.baumgarte_frequency``.  A CCM contact is
-        sampled at the contact spacing, IMM's resting contact at the free one.  The phase starts
-        consistent (delta = 0 at the located event, delta' = 0 after the e = 0 jump),
-        so the terms only damp the integration drift, critically, on a time scale far
-        slower than the beam's modes (no added stiffness for the explicit solver).
-        """
-        step = self.case.solver.contact_sample_step if name == "constrained" else self.case.solver.sample_step
-        return Phase(
-            name,
-            self.system.rhs_function(CONTACT_CONSTRAINT, self.baumgarte),
-            [self.release_event],
-            step,
-            data={"mode": CONTACT_CONSTRAINT, "p": self.baumgarte, "contact": contact},
-            keep_dense=True,
-        )
-
-    # phase machine of the methods whose contacts start with a velocity jump ----
+    # phase machine ----------------------------------------------------------------
     def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        """Phase and state right after an impact (CCM, IMM override this)."""
+        """Phase and state right after an impact."""
         raise NotImplementedError
 
     def start(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
@@ -179,29 +139,15 @@ class ImpactMethod:
             return self.on_impact(t, y)
         return self.free_phase(), y
 
-    def transition(self, phase: Phase, event: Event, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        """Free flight -> impact at a located gap closure; any contact phase -> free at its end."""
-        if phase.name == "free":
+    def transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        """IMPACT: the method's contact starts (a grazing touch keeps flying); SEPARATION and RELEASE: the
+        contact ends and free flight resumes."""
+        if event == EventKind.IMPACT:
             if self.approaching(t, y, located=True):
                 return self.on_impact(t, y)
-            return self.free_phase(), y  # grazing touch: keep flying
-        ev = phase.data["contact"]
-        ev.end = t
-        ev.velocity_after = self.gap_event(t, y)[1]
-        return self.free_phase(), y
-
-    # outputs --------------------------------------------------------------
-    def force(self, phase: Phase, t: float, y: np.ndarray) -> tuple[float, float]:
-        """(contact force F [N], contact potential U_c [J]) at a sample of ``phase``."""
-        mode = phase.data.get("mode", 0)
-        if mode == 0:
-            return 0.0, 0.0
-        p = phase.data["p"]
-        F = float(self.system.rhs(t, y, mode, p)[1])
-        if mode == CONTACT_FORCE:
-            return F, law_potential(p, -self.gap_event(t, y)[0])
-        return F, 0.0
-
-    def joint_torque(self, phase: Phase, t: float, y: np.ndarray) -> float:
-        """Joint torque [N m] at a sample (the reaction when theta(t) is prescribed)."""
-        return self.system.joint_torque(t, y, phase.data.get("mode", 0), phase.data.get("p"))
+            return self.free_phase(), y
+        if event in (EventKind.SEPARATION, EventKind.RELEASE) and phase.contact is not None:
+            phase.contact.end = t
+            phase.contact.velocity_after = self.gap_event(t, y)[1]
+            return self.free_phase(), y
+        raise ValueError(f"{self.name}: phase '{phase.name}' cannot end on {event.name}")

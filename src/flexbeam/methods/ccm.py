@@ -1,21 +1,20 @@
 """CCM: contact constraint method (Duan, Zhang & Hong 2013, Sec. 3.2).
 
-At contact onset the impulse-momentum map with e = 0 makes P's normal velocity
-zero (generalised velocities jump, coordinates do not); the contact is then a
-unilateral constraint delta(q) = 0 whose multiplier lambda is the contact force,
-found from the index-1 DAE [M J^T; J 0][z''; -lambda] = [Q; -J'z' - 2 alpha delta' -
-beta^2 delta] (see :meth:`ImpactMethod.constrained_phase`).  The contact ends when
-lambda crosses zero towards tension (a located event); the motion is then free until
-the gap closes again, and every later contact is treated the same way.
+At contact onset the impulse-momentum map with e = 0 makes P's normal velocity zero (generalised velocities
+jump, coordinates do not); the contact is then a unilateral constraint delta(q) = 0 whose multiplier lambda is
+the contact force, found from the index-1 DAE [M J^T; J 0][z''; -lambda] = [Q; -J'z' - 2 alpha delta' -
+beta^2 delta] (see :meth:`ImpactMethod.constrained_phase`).  The contact ends when lambda crosses zero towards
+tension (a located event); the motion is then free until the gap closes again, and every later contact is
+treated the same way.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..contact.impulse import impulse_jump
-from ..integrate.eventdriven import Phase
+from ..phases import Phase
 from .base import ImpactMethod
+from .impulse import impulse_jump
 
 
 class CCM(ImpactMethod):

@@ -1,24 +1,23 @@
 """IMM: impulse-momentum method with a coefficient of restitution.
 
-Each impact is instantaneous: M (z'^+ - z'^-) = J^T P with J z'^+ = -e J z'^-, the
-coordinates unchanged (:func:`flexbeam.contact.impulse.impulse_jump`); no force
-history exists.  Every contact of the run is treated the same way.
+Each impact is instantaneous: M (z'^+ - z'^-) = J^T P with J z'^+ = -e J z'^-, the coordinates unchanged
+(:func:`flexbeam.methods.impulse.impulse_jump`); no force history exists.  Every contact of the run is treated
+the same way.
 
-Accumulating impacts (e < 1 with gravity pressing P onto the obstacle: a Zeno
-sequence whose impact speeds shrink geometrically) are ended deliberately: once an
-impact's approach speed falls below ``solver.rest_velocity`` the velocity is
-cancelled (e = 0) and P rests on the obstacle -- the contact is then held by the
-unilateral constraint of the CCM phase (phase "resting", the force is its
-multiplier) until that force would turn tensile, when free motion resumes.
+Accumulating impacts (e < 1 with gravity pressing P onto the obstacle: a Zeno sequence whose impact speeds
+shrink geometrically) are ended deliberately: once an impact's approach speed falls below
+``solver.rest_velocity`` the velocity is cancelled (e = 0) and P rests on the obstacle -- the contact is then
+held by the unilateral constraint of the CCM phase (phase "resting", the force is its multiplier) until that
+force would turn tensile, when free motion resumes.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..contact.impulse import impulse_jump
-from ..integrate.eventdriven import Phase
+from ..phases import Phase
 from .base import ImpactMethod
+from .impulse import impulse_jump
 
 
 class IMM(ImpactMethod):

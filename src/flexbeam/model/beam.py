@@ -1,17 +1,33 @@
-"""Modal integrals of a uniform beam on a hub (Gauss-Legendre quadrature).
+"""Modal integrals of a uniform beam on a hub, in the hub frame or the system frame.
 
-With transverse deflection u_y = Phi(x) q and the coupling deformation
-u_x = -1/2 q^T H(x) q, H(x) = int_0^x Phi'^T Phi' dxi (PHYSICS.md), the constant
-matrices of the rigid-flexible coupling equations are
+Formulation (``docs/formulation.md``).  The floating frame turns by theta about O; the beam
+point of material coordinate x sits at rho(x) = (r_h + x + u_x, u_y) in it, with the transverse
+deflection u_y = Psi(x) q and the coupling (foreshortening) deformation
 
-    J0   = int mu (r_h + x)^2 dx             m1   = int mu (r_h + x) dx
-    M_ff = int mu Phi^T Phi dx               K_ff = int EI Phi''^T Phi'' dx
-    m_tf = int mu (r_h + x) Phi dx           s_f  = int mu Phi dx
-    D    = int mu (r_h + x) H(x) dx = int Phi'^T Phi' [int_x^L mu (r_h + xi) dxi] dx
-    G    = int mu H(x) dx        = int Phi'^T Phi' mu (L - x) dx
+    u_x(x) = -1/2 q^T H(x) q,     H(x) = r_h d^T d + int_0^x Psi'^T Psi' dxi,     d = Psi'(0),
 
-(the last forms follow by integrating by parts, so no nested quadrature is needed).
-The zeroth-order model sets D = G = H = 0.
+(the beam does not stretch: its root lies on the hub's rim and its arc is inextensible; the
+r_h d^T d term is the rim's own shortening, r_h (1 - cos alpha) for a root slope alpha = d q).
+The hub angle is phi = theta + d q; the hub's kinetic energy 1/2 J_h phi'^2.
+
+* ``frame = "hub"``: Psi are the clamped-free modes, d = 0, theta is the hub angle.
+* ``frame = "system"``: Psi are the flexible eigenmodes of the hub + beam system
+  (:func:`flexbeam.model.modes.mode_shapes` with the case's J_h and r_h), orthogonal to the
+  rigid rotation in the kinetic-energy inner product, so that the linear mass matrix is
+  diag(J_h + J0, mu L I): theta carries the system's rigid rotation and no coordinate is light.
+
+The constant matrices, by Gauss-Legendre quadrature (no nested quadrature: the double integrals
+are integrated by parts):
+
+    J0   = int mu (r_h + x)^2 dx              m1  = int mu (r_h + x) dx
+    M_ff = int mu Psi^T Psi dx                K_ff = int EI Psi''^T Psi'' dx
+    m_tf = int mu (r_h + x) Psi dx            s_f = int mu Psi dx
+    D    = int mu (r_h + x) H(x) dx = r_h m1 d^T d + int Psi'^T Psi' [int_x^L mu (r_h + xi) dxi] dx
+    G    = int mu H(x) dx          = r_h mu L d^T d + int Psi'^T Psi' mu (L - x) dx
+
+and the mass-matrix blocks seen by the equations (the hub's 1/2 J_h (theta' + d q')^2 included):
+J_c = J_h + J0, m_tq = m_tf + J_h d, M_qq = M_ff + J_h d^T d, M_c = M_ff - D.  The zeroth-order
+model sets D = G = H = 0.
 """
 
 from __future__ import annotations
@@ -22,14 +38,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..parameters.case import Case
-from .modes import cantilever_modes
+from .modes import ModeShapes, mode_shapes
 
 
 @dataclass(frozen=True)
 class PointData:
     """Modal data of one material point x of the beam.
 
-    ``base = r_h + x``; ``phi``, ``dphi`` are Phi(x), Phi'(x); ``H`` is H(x);
+    ``base = r_h + x``; ``phi``, ``dphi`` are Psi(x), Psi'(x); ``H`` is H(x);
     ``offset`` is the distance c from the centre line to the point, measured against
     the floating-frame normal e2 (c > 0: below the centre line).
     """
@@ -44,18 +60,20 @@ class PointData:
 
 @dataclass(frozen=True)
 class ModalBeam:
-    """Constant modal matrices of the rigid-flexible coupling beam model.
+    """Constant modal matrices of the rigid-flexible coupling beam model (see the module docstring).
 
     All arrays are float64; with ``n = 0`` they are empty and the model is a rigid rod.
     """
 
     n: int
     coupling: str
+    frame: str
     length: float
     line_density: float
     bending_stiffness: float
     hub_radius: float
     hub_inertia: float
+    shapes: ModeShapes
     J0: float
     m1: float
     Mff: np.ndarray
@@ -64,21 +82,45 @@ class ModalBeam:
     sf: np.ndarray
     D: np.ndarray
     G: np.ndarray
+    #: hub slope d = Psi'(0) [1/m] (zero in the hub frame): hub angle = theta + d q
+    d: np.ndarray
 
     @property
     def first_order(self) -> bool:
         """True when the coupling deformation u_x is kept."""
         return self.coupling == "first-order"
 
+    @property
+    def Jc(self) -> float:
+        """J_h + J0: the rigid rotary inertia about O [kg m^2]."""
+        return self.hub_inertia + self.J0
+
+    @property
+    def Mc(self) -> np.ndarray:
+        """M_ff - D: the q-dependent part of the theta-theta mass entry, J_c + q^T M_c q."""
+        return self.Mff - self.D
+
+    @property
+    def mtq(self) -> np.ndarray:
+        """theta-q mass coupling m_tf + J_h d (zero in the system frame)."""
+        return self.mtf + self.hub_inertia * self.d
+
+    @property
+    def Mqq(self) -> np.ndarray:
+        """q-q mass block M_ff + J_h d^T d (mu L I in either frame)."""
+        return self.Mff + self.hub_inertia * np.outer(self.d, self.d)
+
     def point(self, x: float, offset: float = 0.0) -> PointData:
         """Modal data of the material point ``x`` (``offset`` below the centre line)."""
-        phi = cantilever_modes(np.array([x]), self.length, self.n, 0)[0]
-        dphi = cantilever_modes(np.array([x]), self.length, self.n, 1)[0]
+        phi = self.shapes(np.array([x]), 0)[0]
+        dphi = self.shapes(np.array([x]), 1)[0]
         H = np.zeros((self.n, self.n))
-        if self.first_order and self.n and x > 0.0:
-            xg, wg = _gauss(0.0, x, _auto_points(self.n, 0))
-            d1 = cantilever_modes(xg, self.length, self.n, 1)
-            H = (d1 * wg[:, None]).T @ d1
+        if self.first_order and self.n:
+            H = self.hub_radius * np.outer(self.d, self.d)
+            if x > 0.0:
+                xg, wg = _gauss(0.0, x, _auto_points(self.n, 0))
+                d1 = self.shapes(xg, 1)
+                H = H + (d1 * wg[:, None]).T @ d1
         return PointData(float(x), self.hub_radius + x, phi, dphi, H, float(offset))
 
 
@@ -96,6 +138,16 @@ def _gauss(a: float, b: float, m: int) -> tuple[np.ndarray, np.ndarray]:
     return 0.5 * (b - a) * xi + 0.5 * (b + a), 0.5 * (b - a) * wi
 
 
+def case_shapes(case: Case) -> ModeShapes:
+    """Shape functions of ``case``'s frame: clamped-free (hub frame) or hub + beam eigenmodes (system)."""
+    beam, hub = case.beam, case.hub
+    L = beam.length
+    if case.frame == "hub":
+        return mode_shapes(case.model.modes, L)
+    inertia = hub.inertia / (beam.line_density * L**3)
+    return mode_shapes(case.model.modes, L, inertia, hub.radius / L)
+
+
 def build_modal_beam(case: Case) -> ModalBeam:
     """Compute the modal integrals of ``case`` by Gauss-Legendre quadrature.
 
@@ -106,10 +158,12 @@ def build_modal_beam(case: Case) -> ModalBeam:
     beam, hub, model = case.beam, case.hub, case.model
     n, L = model.modes, beam.length
     mu, EI, rh = beam.line_density, beam.bending_stiffness, hub.radius
+    shapes = case_shapes(case)
     x, w = _gauss(0.0, L, _auto_points(n, model.quadrature_points))
-    phi = cantilever_modes(x, L, n, 0)
-    d1 = cantilever_modes(x, L, n, 1)
-    d2 = cantilever_modes(x, L, n, 2)
+    phi = shapes(x, 0)
+    d1 = shapes(x, 1)
+    d2 = shapes(x, 2)
+    d = shapes(np.zeros(1), 1)[0] if case.frame == "system" else np.zeros(n)
     r = rh + x
     J0 = float(np.sum(w * mu * r**2))
     m1 = float(np.sum(w * mu * r))
@@ -119,20 +173,24 @@ def build_modal_beam(case: Case) -> ModalBeam:
     sf = (w * mu) @ phi
     if model.coupling == "first-order" and n:
         outer = mu * (rh * (L - x) + 0.5 * (L**2 - x**2))  # int_x^L mu (r_h + xi) dxi
-        D = (d1 * (w * outer)[:, None]).T @ d1
-        G = (d1 * (w * mu * (L - x))[:, None]).T @ d1
+        dd = np.outer(d, d)
+        D = rh * m1 * dd + (d1 * (w * outer)[:, None]).T @ d1
+        G = rh * mu * L * dd + (d1 * (w * mu * (L - x))[:, None]).T @ d1
     else:
         D = np.zeros((n, n))
         G = np.zeros((n, n))
+    Mff, Kff, mtf = _orthogonality(shapes, mu, EI, hub.inertia, d, Mff, Kff, mtf)
     sym = lambda a: 0.5 * (a + a.T)  # noqa: E731 - remove round-off asymmetry
     return ModalBeam(
         n=n,
         coupling=model.coupling,
+        frame=case.frame,
         length=L,
         line_density=mu,
         bending_stiffness=EI,
         hub_radius=rh,
         hub_inertia=hub.inertia,
+        shapes=shapes,
         J0=J0,
         m1=m1,
         Mff=sym(Mff),
@@ -141,4 +199,36 @@ def build_modal_beam(case: Case) -> ModalBeam:
         sf=sf,
         D=sym(D),
         G=sym(G),
+        d=d,
     )
+
+
+def _orthogonality(shapes: ModeShapes, mu: float, EI: float, Jh: float, d: np.ndarray, Mff: np.ndarray,
+                  Kff: np.ndarray, mtf: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The exact values of the integrals that the eigenfunctions' orthogonality fixes.
+
+    The shapes are exact eigenfunctions, normalised to int mu Psi^T Psi dx + J_h d^T d = mu L I with
+    int EI Psi''^T Psi'' dx = EI L diag(beta^4) (Blevins 1979; for the hub + beam system by the boundary terms
+    of docs/formulation.md), and in the system frame orthogonal to the rigid rotation, m_tf + J_h d = 0.  The
+    quadrature reproduces these to ~1e-11 (the unit tests check it); the exact values are used so that the
+    linearised mass and stiffness matrices are exactly diagonal in the modal coordinates.
+    """
+    n, L = shapes.n, shapes.length
+    if n == 0:
+        return Mff, Kff, mtf
+    beta = shapes.roots / L
+    Kff = EI * L * np.diag(beta**4)
+    Mff = mu * L * np.eye(n) - Jh * np.outer(d, d)
+    if not shapes.clamped:
+        mtf = -Jh * d
+    return Mff, Kff, mtf
+
+
+def hub_angle_rate(beam: ModalBeam, theta: float, omega: float, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
+    """Hub angle phi = theta + d q and rate phi' = theta' + d q' [rad, rad/s]."""
+    if not beam.n:
+        return theta, omega
+    return theta + float(beam.d @ q), omega + float(beam.d @ qd)
+
+
+__all__ = ["ModalBeam", "PointData", "build_modal_beam", "case_shapes", "hub_angle_rate"]

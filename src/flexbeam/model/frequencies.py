@@ -1,7 +1,8 @@
 """Natural frequencies of small in-plane vibration about steady rotation.
 
-Linearising the flexible equations of :mod:`flexbeam.model.kernels` about
-theta' = Omega = const, theta'' = 0, q = 0, g = 0, with the hub held at constant speed:
+Linearising the flexible equations (``docs/formulation.md``) about theta' = Omega = const, theta'' = 0,
+q = 0, g = 0, with the hub held at constant speed -- the beam root clamped to a hub turning at a prescribed
+rate, the hub frame with its clamped-free modes:
 
     M_ff q'' + [K_ff + Omega^2 (D - M_ff)] q = 0   ->   omega^2 = eig(K_ff + Omega^2 (D - M_ff), M_ff).
 
@@ -40,6 +41,9 @@ def spin_frequencies(beam: ModalBeam, spin: float, plane: str = "chordwise") -> 
         Ascending frequencies; an unstable (divergent) mode is returned as the
         negative square root of ``|omega^2|``, so a negative entry flags instability.
     """
+    if beam.frame != "hub":
+        raise ValueError("beam: spin frequencies about a hub held at constant speed need the hub frame "
+                         "(build it with hub_frame_beam)")
     if beam.n == 0:
         return np.empty(0)
     K = beam.Kff + spin**2 * beam.D
@@ -51,10 +55,12 @@ def spin_frequencies(beam: ModalBeam, spin: float, plane: str = "chordwise") -> 
     return np.sign(w2) * np.sqrt(np.abs(w2))
 
 
+def hub_frame_beam(case: Case, coupling: str | None = None) -> ModalBeam:
+    """The modal beam of ``case`` in the hub frame (clamped-free modes), optionally with another coupling model."""
+    model = case.model.model_copy(update={"frame": "hub", **({"coupling": coupling} if coupling else {})})
+    return build_modal_beam(case.model_copy(update={"model": model}))
+
+
 def case_frequencies(case: Case, spin: float, plane: str = "chordwise") -> dict[str, np.ndarray]:
-    """Frequencies of both coupling models for ``case`` at hub rate ``spin``."""
-    out = {}
-    for coupling in ("first-order", "zeroth-order"):
-        c = case.model_copy(update={"model": case.model.model_copy(update={"coupling": coupling})})
-        out[coupling] = spin_frequencies(build_modal_beam(c), spin, plane)
-    return out
+    """Frequencies of both coupling models for ``case`` at hub rate ``spin`` (hub held at constant speed)."""
+    return {c: spin_frequencies(hub_frame_beam(case, c), spin, plane) for c in ("first-order", "zeroth-order")}

@@ -1,27 +1,43 @@
-"""Clamped-free (cantilever) Euler-Bernoulli eigenfunctions in a stable form.
+"""Euler-Bernoulli eigenfunctions of a beam on a rotating hub, in a numerically stable form.
 
-The classical form
+Two families of shape functions serve the two body frames of :mod:`flexbeam.model.beam`
+(``docs/formulation.md``):
 
-    phi(x) = cosh(bx) - cos(bx) - sigma (sinh(bx) - sin(bx)),
-    sigma = (cosh(bL) + cos(bL)) / (sinh(bL) + sin(bL)),
+* **clamped-free** (the hub frame): the cantilever modes, u(0) = u'(0) = 0;
+* **hub + beam** (the system frame of a free or torque-driven joint): the flexible eigenmodes
+  of the linear system of a hub of inertia J_h and radius r_h, free to turn about O, carrying
+  the beam clamped to its rim.  The beam root then moves with the hub angle alpha,
+  u(0) = r_h u'(0), u'(0) = alpha, and the hub's moment balance is the boundary condition
 
-loses all digits for high modes (cosh - sigma sinh cancels).  Writing
-cosh(a) - sigma sinh(a) = 1/2 e^{-a} (1 + sigma) + 1/2 e^{a} (1 - sigma) and
+      J_h alpha'' = EI (u''(0) - r_h u'''(0)),   i.e.   -J_h w^2 u'(0) = EI (u''(0) - r_h u'''(0)).
 
-    1/2 e^{bL} (1 - sigma) = (sin bL - cos bL - e^{-bL}) / (1 - e^{-2bL} + 2 e^{-bL} sin bL)
+  (from the variation of 1/2 J_h alpha'^2 + int 1/2 mu u'^2 - 1/2 EI u''^2 with
+  du(0) = r_h d alpha, du'(0) = d alpha).  J_h = 0, r_h = 0 gives the pinned-free beam
+  (tan bL = tanh bL); J_h -> inf the clamped-free one.  The modes are orthogonal to the rigid
+  rotation (u = r_h + x, alpha = 1) and to each other in the kinetic-energy inner product
+  <u, v> = int mu u v dx + J_h u'(0) v'(0).
 
-keeps every exponential argument <= 0, so the modes are accurate for any index
-(see e.g. Gonçalves et al., J. Sound Vib. 2007 for the same idea).  The normalisation
-is the classical one, int_0^L phi^2 dx = L, |phi(L)| = 2.
+Stable form.  The free end (u'' = u''' = 0 at x = L) leaves two constants; with xi = x/L,
+z = beta L, E = e^-z,
 
-The roots b_k L of cos(bL) cosh(bL) = -1 are found by :func:`scipy.optimize.brentq`
-on the bounded form cos(z) + 1/cosh(z) = 0 near (2k - 1) pi / 2.
+    u(xi) = c e^(-z xi) + (a - c E) e^(-z (1 - xi)) + a cos z(1 - xi) + (2 c E - a) sin z(1 - xi),
+
+in which every exponential has a non-positive argument, so the modes are accurate for any
+index (the classical cosh/sinh form loses all digits for high modes; Goncalves et al.,
+J. Sound Vib. 2007 use the same idea).  The two root conditions are a 2 x 2 linear system in
+(a, c) whose determinant, scaled to O(1), is the characteristic function; its k-th positive
+root lies between the k-th and (k+1)-th clamped-free roots (a rank-one relaxation of the
+clamped constraint interlaces the spectra), where it is bracketed and refined.
+
+Normalisation: int_0^L u^2 dx + (J_h / mu) u'(0)^2 = L (the classical int phi^2 dx = L for the
+cantilever, |phi(L)| = 2), with the sign of the cantilever convention, sign u_k(L) = (-1)^(k+1).
 """
 
 from __future__ import annotations
 
 import functools
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -50,49 +66,201 @@ def cantilever_roots(n: int) -> np.ndarray:
     return np.array([_root(k) for k in range(1, n + 1)], dtype=float)
 
 
-def cantilever_modes(x: np.ndarray, length: float, n: int, derivative: int = 0) -> np.ndarray:
-    """Clamped-free mode shapes (or their derivatives) at points ``x``.
+def _root_rows(z: float, inertia: float, radius: float) -> tuple[float, float, float, float]:
+    """The two root conditions as rows (r1a, r1c), (r2a, r2c) in the constants (a, c), scaled to O(1).
+
+    ``inertia`` = J_h / (mu L^3) (``inf``: clamped), ``radius`` = r_h / L.  Row 1 is
+    u(0) - r_h u'(0) = 0, row 2 is J_h w^2 u'(0) + EI (u''(0) - r_h u'''(0)) = 0 divided by EI/L^2
+    (with w^2 = EI beta^4 / mu), each divided by its largest coefficient scale.
+    """
+    E = math.exp(-z)
+    c, s = math.cos(z), math.sin(z)
+    # u(0), u'(0) L / z, u''(0) L^2 / z^2, u'''(0) L^3 / z^3 as (coefficient of a, coefficient of c)
+    a0, c0 = E + c - s, 1.0 - E * E + 2.0 * E * s
+    a1, c1 = E + s + c, -1.0 - E * E - 2.0 * E * c
+    a2, c2 = E - c + s, 1.0 - E * E - 2.0 * E * s
+    a3, c3 = E - s - c, -1.0 - E * E + 2.0 * E * c
+    rz = radius * z
+    r1a, r1c = (a0 - rz * a1) / (1.0 + rz), (c0 - rz * c1) / (1.0 + rz)
+    if math.isinf(inertia):
+        return r1a, r1c, a1, c1
+    jz3 = inertia * z**3
+    scale = 1.0 + jz3 + rz
+    return r1a, r1c, (jz3 * a1 + a2 - rz * a3) / scale, (jz3 * c1 + c2 - rz * c3) / scale
+
+
+def _characteristic(z: float, inertia: float, radius: float) -> float:
+    r1a, r1c, r2a, r2c = _root_rows(z, inertia, radius)
+    return r1a * r2c - r1c * r2a
+
+
+def _illinois(f, a: float, b: float, fa: float, fb: float) -> float:
+    """Root of f in the bracket [a, b] (fa fb < 0) by the Illinois variant of regula falsi
+    (Dowell & Jarratt 1971): superlinear, always bracketed (scipy.optimize is not imported
+    at start-up)."""
+    side = 0
+    for _ in range(200):
+        m = (a * fb - b * fa) / (fb - fa)
+        fm = f(m)
+        if fm == 0.0 or abs(b - a) <= 4e-16 * abs(m):
+            return m
+        if (fm > 0.0) == (fb > 0.0):
+            b, fb = m, fm
+            if side == -1:
+                fa *= 0.5
+            side = -1
+        else:
+            a, fa = m, fm
+            if side == 1:
+                fb *= 0.5
+            side = 1
+    return 0.5 * (a + b)
+
+
+def hub_beam_roots(n: int, inertia: float, radius: float) -> np.ndarray:
+    """First ``n`` flexible roots beta_k L of the hub + beam system.
 
     Parameters
     ----------
-    x
-        Material coordinates in [0, L] [m], shape (m,).
+    n
+        Number of roots.
+    inertia
+        Hub inertia ratio J_h / (mu L^3) (``math.inf``: clamped-free).
+    radius
+        Hub radius ratio r_h / L.
+    """
+    if math.isinf(inertia):
+        return cantilever_roots(n)
+    clamped = cantilever_roots(n + 1)
+    f = lambda z: _characteristic(z, inertia, radius)  # noqa: E731
+    out = np.empty(n)
+    for k in range(n):
+        lo, hi = clamped[k] * (1.0 + 1e-13), clamped[k + 1] * (1.0 - 1e-13)
+        grid = np.linspace(lo, hi, 9)
+        vals = [f(z) for z in grid]
+        root = clamped[k]  # a very heavy hub: the root sits within round-off above the clamped one
+        for i in range(len(grid) - 1):
+            if vals[i] == 0.0:
+                root = grid[i]
+                break
+            if (vals[i] > 0.0) != (vals[i + 1] > 0.0):
+                root = _illinois(f, grid[i], grid[i + 1], vals[i], vals[i + 1])
+                break
+        out[k] = root
+    return out
+
+
+def _stable_terms(z: float, xi: np.ndarray):
+    """e^(-z xi), e^(-z (1 - xi)), cos z(1 - xi), sin z(1 - xi)."""
+    arg = z * (1.0 - xi)
+    return np.exp(-z * xi), np.exp(-arg), np.cos(arg), np.sin(arg)
+
+
+def _combine(z, a, c, terms, derivative):
+    e1, e2, co, si = terms
+    E = math.exp(-z)
+    d, b = a - c * E, 2.0 * c * E - a
+    if derivative == 0:
+        return c * e1 + d * e2 + a * co + b * si
+    if derivative == 1:
+        return -c * e1 + d * e2 + a * si - b * co
+    if derivative == 2:
+        return c * e1 + d * e2 - a * co - b * si
+    if derivative == 3:
+        return -c * e1 + d * e2 - a * si + b * co
+    raise ValueError("derivative: must be 0, 1, 2 or 3")
+
+
+@dataclass(frozen=True)
+class ModeShapes:
+    """``n`` flexible eigenfunctions of a beam of ``length`` L on a hub (see the module docstring).
+
+    Attributes
+    ----------
     length
         Beam length L [m].
-    n
-        Number of modes.
-    derivative
-        0, 1, 2 or 3: which derivative d^k phi / dx^k to return.
-
-    Returns
-    -------
-    ndarray, shape (m, n)
-        ``out[i, k] = phi_k^(derivative)(x_i)``.
+    roots
+        beta_k L (n).
+    a, c
+        Constants of the stable form, normalised.
+    inertia, radius
+        J_h / (mu L^3) (``inf`` for clamped-free) and r_h / L.
     """
-    x = np.atleast_1d(np.asarray(x, dtype=float))
-    out = np.empty((x.size, n))
-    if n == 0:
+
+    length: float
+    roots: np.ndarray
+    a: np.ndarray
+    c: np.ndarray
+    inertia: float
+    radius: float
+
+    @property
+    def n(self) -> int:
+        return int(self.roots.size)
+
+    @property
+    def clamped(self) -> bool:
+        return math.isinf(self.inertia)
+
+    def __call__(self, x: np.ndarray, derivative: int = 0) -> np.ndarray:
+        """Shapes (or their x-derivatives) at points ``x`` [m]: ``out[i, k] = psi_k^(derivative)(x_i)``."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        out = np.empty((x.size, self.n))
+        xi = x / self.length
+        for k, z in enumerate(self.roots):
+            out[:, k] = (z / self.length) ** derivative * _combine(
+                z, self.a[k], self.c[k], _stable_terms(z, xi), derivative
+            )
         return out
-    bl = cantilever_roots(n)
-    for k, z in enumerate(bl):
-        b = z / length
-        em = math.exp(-z)
-        den = 1.0 - em * em + 2.0 * em * math.sin(z)
-        sigma = (1.0 + em * em + 2.0 * em * math.cos(z)) / den
-        a_plus = (math.sin(z) - math.cos(z) - em) / den  # = 1/2 e^{bL}(1 - sigma)
-        bx = b * x
-        e_minus = 0.5 * (1.0 + sigma) * np.exp(-bx)  # 1/2 (1 + sigma) e^{-bx}
-        e_plus = a_plus * np.exp(bx - z)  # 1/2 (1 - sigma) e^{bx}
-        c, s = np.cos(bx), np.sin(bx)
-        if derivative == 0:
-            val = e_minus + e_plus - c + sigma * s
-        elif derivative == 1:
-            val = b * (-e_minus + e_plus + s + sigma * c)
-        elif derivative == 2:
-            val = b**2 * (e_minus + e_plus + c - sigma * s)
-        elif derivative == 3:
-            val = b**3 * (-e_minus + e_plus - s - sigma * c)
-        else:
-            raise ValueError("derivative: must be 0, 1, 2 or 3")
-        out[:, k] = val
+
+
+@functools.cache
+def mode_shapes(n: int, length: float, inertia: float = math.inf, radius: float = 0.0) -> ModeShapes:
+    """The first ``n`` eigenfunctions for hub inertia ratio J_h/(mu L^3) and radius ratio r_h/L.
+
+    ``inertia = inf`` (the default) gives the clamped-free cantilever modes.
+    """
+    roots = hub_beam_roots(n, inertia, radius)
+    a = np.empty(n)
+    c = np.empty(n)
+    xs, ws = np.polynomial.legendre.leggauss(8 * n + 48)
+    xi, wi = 0.5 * (xs + 1.0), 0.5 * ws
+    for k, z in enumerate(roots):
+        r1a, r1c, r2a, r2c = _root_rows(z, inertia, radius)
+        ak, ck = (r1c, -r1a) if math.hypot(r1a, r1c) >= math.hypot(r2a, r2c) else (r2c, -r2a)
+        terms = _stable_terms(z, xi)
+        u = _combine(z, ak, ck, terms, 0)
+        norm2 = float(np.sum(wi * u * u))  # int_0^1 u^2 dxi
+        if not math.isinf(inertia):
+            slope = _combine(z, ak, ck, _stable_terms(z, np.zeros(1)), 1)[0] * z  # du/dxi at 0
+            norm2 += inertia * slope * slope  # (J_h / (mu L^3)) (du/dxi)^2 = (J_h / mu) u'(0)^2 / L
+        tip = _combine(z, ak, ck, _stable_terms(z, np.ones(1)), 0)[0]
+        sign = (1.0 if tip >= 0.0 else -1.0) * (1.0 if k % 2 == 0 else -1.0)
+        scale = sign / math.sqrt(norm2)
+        a[k], c[k] = ak * scale, ck * scale
+    return ModeShapes(float(length), roots, a, c, float(inertia), float(radius))
+
+
+def cantilever_modes(x: np.ndarray, length: float, n: int, derivative: int = 0) -> np.ndarray:
+    """Clamped-free mode shapes (or their derivatives 0..3) at points ``x``, shape (m, n)."""
+    return mode_shapes(n, float(length))(x, derivative)
+
+
+def pinned_free_roots(n: int) -> np.ndarray:
+    """First ``n`` positive roots of tan z = tanh z (the flexible pinned-free modes: 3.9266, 7.0686, ...).
+
+    Newton's method on sin z cosh z - cos z sinh z scaled by e^-z, from the asymptote (4k + 1) pi/4.
+    """
+    out = np.empty(n)
+    for k in range(1, n + 1):
+        z = (4 * k + 1) * math.pi / 4
+        for _ in range(50):
+            t = math.exp(-2.0 * z)
+            f = math.sin(z) * (1.0 + t) - math.cos(z) * (1.0 - t)  # 2 e^-z (sin cosh - cos sinh)
+            df = math.cos(z) * (1.0 + t) + math.sin(z) * (1.0 - t) - 2.0 * t * (math.sin(z) + math.cos(z))
+            step = f / df
+            z -= step
+            if abs(step) <= 4e-16 * z:
+                break
+        out[k - 1] = z
     return out

@@ -122,10 +122,23 @@ class Hub(_Section):
 
 
 class Model(_Section):
-    """Discretisation and physics options of the rigid-flexible coupling model."""
+    """Discretisation and physics options of the rigid-flexible coupling model.
+
+    ``frame`` chooses the body reference frame together with its shape functions
+    (``docs/formulation.md``): the *system* frame is pinned at O and carries the rigid rotation
+    of hub and beam, with the flexible eigenmodes of the hub + beam system as shapes (no light
+    coordinate for a hub without inertia); the *hub* frame is the hub's tangent frame with
+    clamped-free modes (the seed paper's choice, and the natural one for a prescribed hub angle).
+    """
 
     modes: Annotated[int, Field(ge=0, le=64)] = Field(
-        8, description="number of assumed clamped-free modes n (0 = rigid beam)"
+        8, description="number of assumed modes n (0 = rigid beam)"
+    )
+    frame: Literal["auto", "system", "hub"] = Field(
+        "auto",
+        description="body frame and shape functions: 'system' (frame pinned at O carrying the rigid rotation, "
+        "flexible eigenmodes of the hub + beam system), 'hub' (the hub's tangent frame, clamped-free modes, as "
+        "in the seed paper), 'auto' (system for a free or torque-driven joint, hub for a prescribed angle)",
     )
     coupling: Literal["first-order", "zeroth-order"] = Field(
         "first-order",
@@ -371,6 +384,13 @@ class Case(_Section):
     output: Output = Field(default_factory=Output)
     fem: Fem = Field(default_factory=Fem)
 
+    @property
+    def frame(self) -> str:
+        """The body frame this case uses: ``model.frame`` with ``"auto"`` resolved by the drive kind."""
+        if self.model.frame != "auto":
+            return self.model.frame
+        return "hub" if self.drive.kind == "prescribed" else "system"
+
     @model_validator(mode="after")
     def _consistent(self) -> Case:
         L = self.beam.length
@@ -385,6 +405,11 @@ class Case(_Section):
                     f"output.measuring_points[{i}]: must lie on the beam, 0 <= x <= {L:g} m "
                     f"(got {x:g})"
                 )
+        if self.model.frame == "system" and self.drive.kind == "prescribed":
+            raise ValueError(
+                "model.frame: 'system' needs a free or torque-driven joint; with drive.kind = 'prescribed' the "
+                "hub angle is given and the frame is 'hub' (or 'auto')"
+            )
         if self.obstacle.kind == "half-plane" and self.contact.stiffness is None:
             raise ValueError(
                 "contact.stiffness: required for a half-plane obstacle (a cylinder on a plane "

@@ -52,7 +52,7 @@ def section_rotating(reduced: bool, figdir: Path | None) -> Section:
             "beam": {"length": 1.0, "density": 1.0, "youngs_modulus": 1.0, "section": "general",
                      "area": 1.0, "second_moment": 1.0, "half_depth": 0.0},
             "hub": {"radius": delta},
-            "model": {"modes": modes, "coupling": coupling, "gravity": 0.0},
+            "model": {"modes": modes, "coupling": coupling, "gravity": 0.0, "frame": "hub"},
             "contact": {"position": 1.0},
         })
         return build_modal_beam(case)

@@ -13,7 +13,7 @@ from ..runs import rod_mass_and_inertia, seed, simulate
 
 
 def section_imm(reduced: bool, figdir: Path | None) -> Section:
-    from ...contact.impulse import impulse_jump
+    from ...methods.impulse import impulse_jump
     from ...model.system import BeamSystem
     from ...simulation import initial_state
 

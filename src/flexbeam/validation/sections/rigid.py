@@ -37,7 +37,7 @@ def section_pendulum(reduced: bool, figdir: Path | None) -> Section:
 
 def section_hertz(reduced: bool, figdir: Path | None) -> Section:
     from ...contact.hertz import rigid_hertz_impact
-    from ...model.system import BeamSystem
+    from ...contact.setup import contact_law
 
     s = Section("hertz", "Rigid-body Hertz impact",
                 "K. L. Johnson, *Contact Mechanics* (1985), Sec. 11.4: a rigid mass m at speed v on "
@@ -54,7 +54,7 @@ def section_hertz(reduced: bool, figdir: Path | None) -> Section:
                      solver__t_end=2e-3)
         sol = simulate(case)
         sols.append(sol)
-        K = BeamSystem.from_case(case).law.stiffness
+        K = contact_law(case).stiffness
         _, J_O = rod_mass_and_inertia(case)
         m_eff = J_O / case.contact.position**2
         v = abs(v0)

@@ -1,0 +1,214 @@
+"""The production integrator: exact modal propagation with Gauss collocation, compiled (``flexbeam.kernels``).
+
+Linearising M(z) z'' = Q + J^T F about the undeformed beam at rest gives M0 z'' + K0 z = R; in the modal
+coordinates z = Psi eta of (K0, M0) each mode is propagated exactly over a step for a polynomial forcing and the
+remainder R (mass-matrix variation, centrifugal stiffening, Coriolis, gravity, drive, contact) is collocated at
+four Gauss nodes (``kernels/src/collocation.c``).  In the system frame (the default for a free or torque-driven
+joint, ``docs/formulation.md``) M0 = diag(J_c, mu L I) and K0 = diag(0, K_ff) are diagonal, so Psi is a diagonal
+scaling and the remainder is small and smooth: free flight takes long steps, a contact ~20-40.  A compliant
+support adds its coordinate sqrt(m_s) s as one more mode of frequency sqrt(k_s / m_s).
+
+The whole step loop of a phase -- steps, step control, the guaranteed event search and location -- runs in
+compiled code (``kernels/src/phase.c``); each accepted step is recorded (start state, nodal forcing) as the
+phase's dense output, evaluated only when outputs are asked for.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kernels import core, pack_basis
+from ..model.system import BeamSystem
+from ..phases import EventKind, Phase
+from .loop import PhaseRun
+
+OMEGA_RIGID_DEFAULT = 1e3  # [rad/s] weighs a rigid angle error when the beam has no flexible mode
+FIRST_STEP = 1e-5  # [s] first step of a phase (the controller grows it by up to 5x per step)
+_ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE = 0, 1, 2, 3, 4
+_EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4}
+
+
+@dataclass(frozen=True)
+class ModalBasis:
+    """The linearisation's modes: z_ext = Psi eta with z_ext = [z, s] (s: a compliant support's coordinate).
+
+    ``omega`` (N) and ``Psi`` (N x N) with Psi^T M0 Psi = I, Psi^T K0 Psi = diag(omega^2); ``toM`` = Psi^T M0
+    (eta from z); ``row0`` = e0^T M0^-1 and ``inv00`` = (M0^-1)_00 for the Sherman-Morrison update of a free
+    joint's mass matrix; ``diagonal``: Psi is diagonal.
+    """
+
+    omega: np.ndarray
+    Psi: np.ndarray
+    toM: np.ndarray
+    row0: np.ndarray
+    inv00: float
+    nz: int
+    diagonal: bool
+
+    @classmethod
+    def of(cls, system: BeamSystem) -> ModalBasis:
+        b = system.beam
+        n, nz = b.n, system.nz
+        if system.prescribed:
+            M0, K0 = b.Mqq.copy(), b.Kff.copy()
+        else:
+            M0 = np.zeros((n + 1, n + 1))
+            M0[0, 0] = b.Jc
+            M0[0, 1:] = M0[1:, 0] = b.mtq
+            M0[1:, 1:] = b.Mqq
+            K0 = np.zeros((n + 1, n + 1))
+            K0[1:, 1:] = b.Kff
+        offdiag = lambda A: A - np.diag(np.diag(A))  # noqa: E731
+        diagonal = not offdiag(M0).any() and not offdiag(K0).any()
+        if diagonal:
+            Psi = np.diag(1.0 / np.sqrt(np.diag(M0))) if nz else np.zeros((0, 0))
+            w2 = np.diag(K0) / np.diag(M0) if nz else np.zeros(0)
+        else:  # (K0, M0) through the Cholesky factor M0 = L L^T (no scipy at start-up)
+            Linv = np.linalg.inv(np.linalg.cholesky(M0))
+            w2, Y = np.linalg.eigh(Linv @ K0 @ Linv.T)
+            Psi = Linv.T @ Y
+            w2 = np.where(w2 < 1e-10 * max(float(np.max(w2, initial=0.0)), 1.0), 0.0, w2)
+        omega = np.sqrt(np.maximum(w2, 0.0))
+        if nz:
+            M0inv = np.linalg.inv(M0)
+            row0 = M0inv[0] if not system.prescribed else np.zeros(nz)
+            inv00 = float(M0inv[0, 0]) if not system.prescribed else 0.0
+        else:
+            row0, inv00 = np.zeros(0), 0.0
+        toM = Psi.T @ M0
+        if system.compliant:  # the support's sqrt(m_s) s, frequency sqrt(k_s / m_s)
+            ms, ks = float(system.contact.obstacle.support[0]), float(system.contact.obstacle.support[1])
+            omega = np.append(omega, math.sqrt(ks / ms))
+            Psi = _border(Psi, 1.0 / math.sqrt(ms))
+            toM = _border(toM, math.sqrt(ms))
+        return cls(omega, np.ascontiguousarray(Psi), np.ascontiguousarray(toM), row0, inv00, nz, diagonal)
+
+    @property
+    def N(self) -> int:
+        return self.omega.size
+
+    def packed(self) -> np.ndarray:
+        return pack_basis(self.omega, self.Psi, self.toM, self.row0, self.inv00, self.nz, self.diagonal)
+
+    @property
+    def omega_rigid(self) -> float:
+        """Lowest flexible frequency: it weighs a rigid-mode angle error in the energy norm."""
+        positive = self.omega[self.omega > 0.0]
+        return float(positive.min()) if positive.size else OMEGA_RIGID_DEFAULT
+
+
+def _border(A: np.ndarray, value: float) -> np.ndarray:
+    N = A.shape[0]
+    out = np.zeros((N + 1, N + 1))
+    out[:N, :N] = A
+    out[N, N] = value
+    return out
+
+
+class ModalDense:
+    """A phase's dense output from its step records (callable on an array of times, rows of states)."""
+
+    def __init__(self, stepper: ModalStepper, records: np.ndarray) -> None:
+        self.stepper, self.records = stepper, records
+        self.breaks = np.append(records[:, 0], records[-1, 0] + records[-1, 1])
+
+    def __call__(self, times: np.ndarray) -> np.ndarray:
+        times = np.ascontiguousarray(times, float)
+        order = np.argsort(times, kind="stable")
+        Y = np.empty((times.size, self.stepper.system.size))
+        Ys = np.empty_like(Y)
+        core.dense(self.stepper.kernel, self.stepper.basis_buffer, self.records, self.records.shape[0],
+                   np.ascontiguousarray(times[order]), Ys)
+        Y[order] = Ys
+        return Y
+
+    def nodal_forces(self) -> tuple[np.ndarray, np.ndarray]:
+        """(times, values) of the contact force (or multiplier) at every step's Gauss nodes."""
+        c, _ = gauss_nodes()
+        N = self.stepper.basis.N
+        off = 4 + 2 * N + 4 * N
+        t = self.records[:, 0:1] + self.records[:, 1:2] * c[None, :]
+        return t.ravel(), self.records[:, off : off + 4].ravel()
+
+
+def gauss_nodes() -> tuple[np.ndarray, np.ndarray]:
+    """The 4 Gauss-Legendre nodes and weights on (0, 1) of the collocation."""
+    x, w = np.polynomial.legendre.leggauss(4)
+    return 0.5 * (x + 1.0), 0.5 * w
+
+
+class ModalStepper:
+    """Advances phases of one system with the compiled collocation integrator."""
+
+    name = "exponential modal Gauss collocation (p = 4), compiled, event-driven"
+
+    def __init__(self, system: BeamSystem, rtol: float = 1e-6, atol: float = 1e-9,
+                 max_step: float | None = None) -> None:
+        self.system = system
+        self.rtol, self.atol = rtol, atol
+        self.max_step = max_step or math.inf
+        self.basis = ModalBasis.of(system)
+        self.basis_buffer = self.basis.packed()
+        self.kernel = system.kernel
+        self.record_size, self.state_size, _, _ = core.sizes(self.basis.N)
+        self.h = FIRST_STEP
+
+    # state conversion between the reference layout [z, z', (s, s'), E_d, W] and modal (eta, v)
+    def to_modal(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        nz, N = self.system.nz, self.basis.N
+        z, zd = np.empty(N), np.empty(N)
+        z[:nz], zd[:nz] = y[:nz], y[nz : 2 * nz]
+        if N > nz:
+            z[nz], zd[nz] = y[2 * nz], y[2 * nz + 1]
+        return self.basis.toM @ z, self.basis.toM @ zd
+
+    def from_modal(self, eta: np.ndarray, v: np.ndarray, Ed: float, W: float) -> np.ndarray:
+        nz, N = self.system.nz, self.basis.N
+        z, zd = self.basis.Psi @ eta, self.basis.Psi @ v
+        y = np.empty(self.system.size)
+        y[:nz], y[nz : 2 * nz] = z[:nz], zd[:nz]
+        if N > nz:
+            y[2 * nz], y[2 * nz + 1] = z[nz], zd[nz]
+        y[-2], y[-1] = Ed, W
+        return y
+
+    def advance(self, phase: Phase, t: float, y: np.ndarray, t_end: float) -> PhaseRun:
+        N = self.basis.N
+        eta, v = self.to_modal(y)
+        state = np.zeros(self.state_size)
+        # a contact starts with a short step (the force grows as d^n from zero: not polynomial at the onset),
+        # free flight where the last phase left off; the controller grows either by up to 5x per step
+        h = min(self.h, FIRST_STEP) if phase.in_contact else self.h
+        state[:5] = t, h, y[-2], y[-1], 0.0
+        state[5 : 5 + N], state[5 + N : 5 + 2 * N] = eta, v
+        bits = sum(_EVENT_BITS[e] for e in phase.events)
+        ctrl = np.zeros(10)
+        ctrl[0] = int(phase.mode)
+        ctrl[1:5] = phase.parameters[:4]
+        ctrl[5:10] = self.rtol, self.atol, min(self.max_step, phase.max_step), self.basis.omega_rigid, bits
+        info = np.zeros(4)
+        chunks = []
+        capacity = 64
+        while True:
+            records = np.empty((capacity, self.record_size))
+            code, nrec = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info)
+            if nrec:
+                chunks.append(records[:nrec])
+            if code != _ADV_FULL:
+                break
+            capacity *= 2
+        t1 = float(state[0])
+        self.h = float(state[1])
+        y1 = self.from_modal(state[5 : 5 + N], state[5 + N : 5 + 2 * N], state[2], state[3])
+        dense = ModalDense(self, np.ascontiguousarray(np.concatenate(chunks))) if chunks else None
+        event = EventKind(int(info[0])) if code == _ADV_EVENT else None
+        failure = ""
+        if code == _ADV_UNDERFLOW:
+            failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)"
+        elif code == _ADV_NONFINITE:
+            failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
+        return PhaseRun(t1, y1, event, dense, int(info[1]), int(info[3]), failure)
+

@@ -1,0 +1,72 @@
+"""The flat buffers the compiled kernels read (``fb_model_unpack`` / ``fb_basis_unpack`` in ``src/``).
+
+Model buffer (float64; integers stored exactly)::
+
+    [version, n, prescribed, drive, profile, npoints, nobstacles, kind_0 .. kind_{nobstacles-1},
+     Jc, m1, g, torque, spin_rate, spin_up_time, theta0,
+     Mc (n x n), Mqq (n x n), mtq (n), K (n x n), sf (n), G (n x n), d (n),
+     per point:    base, offset, phi (n), dphi (n), H (n x n),
+     per obstacle: cx, cy, radius, nx, ny, m_s, k_s, c_s, u_x, u_y]
+
+Points: 0 is the contact point P, 1 the beam tip (centre line), then the measuring points.
+
+Basis buffer::
+
+    [version, N, nz, diagonal, inv00, omega (N), Psi (N x N), toM (N x N), row0 (nz)]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from ..contact.setup import ObstacleGeometry
+    from ..model.beam import ModalBeam, PointData
+    from ..parameters.case import Drive
+
+LAYOUT_VERSION = 1
+DRIVES = {"free": 0, "torque": 1, "prescribed": 2}
+PROFILES = {"constant-rate": 0, "kane-spinup": 1}
+
+#: columns of the kernels' ``outputs`` (``FB_NCOLS`` in C), in order
+OUTPUT_COLUMNS = (
+    "theta", "theta_rate", "gap", "normal_velocity", "contact_force", "contact_energy",
+    "kinetic_energy", "elastic_energy", "gravitational_energy", "dissipated_energy", "drive_work",
+    "joint_torque", "tip_deflection", "support_displacement", "sensor_force",
+)  # fmt: skip
+
+
+def pack_model(
+    beam: ModalBeam,
+    drive: Drive,
+    theta0: float,
+    gravity: float,
+    points: Sequence[PointData],
+    obstacles: Sequence[ObstacleGeometry],
+) -> np.ndarray:
+    """The model buffer of a beam, its drive, points (P, tip, measuring points) and obstacles."""
+    n = beam.n
+    head = [LAYOUT_VERSION, n, int(drive.kind == "prescribed"), DRIVES[drive.kind], PROFILES[drive.profile],
+            len(points), len(obstacles), *[o.kind for o in obstacles]]
+    scalars = [beam.Jc, beam.m1, gravity, drive.torque if drive.kind == "torque" else 0.0, drive.spin_rate,
+               drive.spin_up_time, theta0]
+    parts: list[np.ndarray] = [np.asarray(head, float), np.asarray(scalars, float)]
+    for arr in (beam.Mc, beam.Mqq, beam.mtq, beam.Kff, beam.sf, beam.G, beam.d):
+        parts.append(np.asarray(arr, float).ravel())
+    for pt in points:
+        parts += [np.array([pt.base, pt.offset]), pt.phi.ravel(), pt.dphi.ravel(), pt.H.ravel()]
+    for o in obstacles:
+        parts += [np.asarray(o.centre, float), np.array([o.radius]), np.asarray(o.normal, float),
+                  np.asarray(o.support, float)]
+    return np.ascontiguousarray(np.concatenate(parts))
+
+
+def pack_basis(omega: np.ndarray, Psi: np.ndarray, toM: np.ndarray, row0: np.ndarray, inv00: float,
+               nz: int, diagonal: bool) -> np.ndarray:
+    """The basis buffer of a modal basis (see :class:`flexbeam.integrate.modal.ModalBasis`)."""
+    N = omega.size
+    head = np.array([LAYOUT_VERSION, N, nz, int(diagonal), inv00], float)
+    return np.ascontiguousarray(np.concatenate([head, omega, Psi.ravel(), toM.ravel(), np.asarray(row0, float)]))

@@ -1,0 +1,342 @@
+/* Event search on a step's exact dense output: the gap closing (impact) or opening (separation), and the
+ * collocated multiplier turning tensile (release).
+ *
+ * A step is declared free of a gap event only on a guarantee: either the obstacle is out of reach (the gap
+ * at the step start exceeds twice the largest distance P can travel, bounded mode by mode), or the gap,
+ * sampled at m points of the exact dense output, stays clear of zero by twice the bound B on the modes
+ * too fast for m samples, B = sum_k |j_k| (free amplitude_k + 2 max|f_k| / w_k^2) over w_k h / m > pi/4.
+ * Otherwise the sampling is refined (m x 4, twice); when every mode that can reach the obstacle is resolved,
+ * sign changes, excursions from zero and dips predicted by the cubic Hermite interpolant through (gap, rate)
+ * are located by Brent's method; and when they are not, the step is too long to decide and is shortened.
+ */
+#include <string.h>
+
+#include "integrator.h"
+
+#define SAMPLES 16      /* gap samples per step when the nodes do not decide (refined x4 up to twice) */
+#define LEBESGUE 3.0    /* > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.0 for p = 4) */
+#define HERMITE_PTS 16  /* sub-intervals on which a Hermite-predicted dip is checked and searched */
+
+void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
+    int N = d->ph->b->N;
+    fb_weight W[FB_MAXN];
+    for (int k = 0; k < N; k++) fb_weights(d->ph->b->omega[k], d->h, x, &W[k]);
+    fb_propagate(d->ph->b, W, 1, d->eta0, d->v0, d->f, eta, v);
+}
+
+static double gap_x(const fb_dense *d, double x, double *rate) {
+    double eta[FB_MAXN], v[FB_MAXN];
+    fb_dense_state(d, x, eta, v);
+    fb_gap g = fb_gap_at(d->ph, d->t0 + x * d->h, eta, v);
+    if (rate) *rate = g.rate;
+    return g.delta;
+}
+
+typedef double (*fb_scalar)(const fb_dense *d, double x);
+
+static double gap_value(const fb_dense *d, double x) { return gap_x(d, x, NULL); }
+
+/* Root of fn on [a, b] (fa fb <= 0) by Brent's method (Brent 1973, ch. 4), to 1e-15 of the step. */
+static double brent_fn(const fb_dense *d, double a, double b, double fa, double fb, fb_scalar fn) {
+    if (fa == 0.0) return a;
+    if (fb == 0.0) return b;
+    double c = a, fc = fa, e = b - a, dd = e;
+    for (int it = 0; it < 200; it++) {
+        if (fb * fc > 0.0) {
+            c = a;
+            fc = fa;
+            dd = e = b - a;
+        }
+        if (fabs(fc) < fabs(fb)) {
+            a = b; b = c; c = a;
+            fa = fb; fb = fc; fc = fa;
+        }
+        double tol = 2.0 * 2.2e-16 * fabs(b) + 0.5e-15, m = 0.5 * (c - b);
+        if (fabs(m) <= tol || fb == 0.0) return b;
+        if (fabs(e) >= tol && fabs(fa) > fabs(fb)) {
+            double s = fb / fa, p, q;
+            if (a == c) {
+                p = 2.0 * m * s;
+                q = 1.0 - s;
+            } else {
+                double qq = fa / fc, r = fb / fc;
+                p = s * (2.0 * m * qq * (qq - r) - (b - a) * (r - 1.0));
+                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
+            }
+            if (p > 0.0)
+                q = -q;
+            else
+                p = -p;
+            if (2.0 * p < fmin(3.0 * m * q - fabs(tol * q), fabs(e * q))) {
+                e = dd;
+                dd = p / q;
+            } else {
+                dd = e = m;
+            }
+        } else {
+            dd = e = m;
+        }
+        a = b;
+        fa = fb;
+        b += fabs(dd) > tol ? dd : (m > 0.0 ? tol : -tol);
+        fb = fn(d, b);
+    }
+    return b;
+}
+
+static double brent(const fb_dense *d, double a, double b, double fa, double fb) {
+    return brent_fn(d, a, b, fa, fb, gap_value);
+}
+
+/* The contact law's unclipped value K d^n (1 + chi' d') + C d' at the fraction x (d = -delta; -1 out of contact). */
+static double law_raw_x(const fb_dense *d, double x) {
+    double rate, delta = gap_x(d, x, &rate), pen = -delta;
+    const double *p = d->ph->p;
+    if (pen <= 0.0) return -1.0;
+    return p[0] * pow(pen, p[1]) * (1.0 + p[2] * (-rate)) + p[3] * (-rate);
+}
+
+/* Where the law's force switches between pushing and clipped to zero inside the step (a kink of the forcing,
+ * which the collocation polynomial cannot follow): the first sign change of the unclipped law value among the
+ * given points, located by Brent's method; FB_NO_EVENT if none. */
+double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, int count) {
+    const double *p = d->ph->p;
+    double prev = 0.0;
+    for (int i = 0; i < count; i++) {
+        double pen = -known[i].delta, rate = -known[i].rate;
+        double raw = pen > 0.0 ? p[0] * pow(pen, p[1]) * (1.0 + p[2] * rate) + p[3] * rate : -1.0;
+        if (i > 0 && pen > 0.0 && -known[i - 1].delta > 0.0 && (prev > 0.0) != (raw > 0.0))
+            return brent_fn(d, kx[i - 1], kx[i], prev, raw, law_raw_x);
+        prev = raw;
+    }
+    return FB_NO_EVENT;
+}
+
+/* argmin of sign * gap on [lo, hi] by golden-section search (Kiefer 1953). */
+static double golden_min(const fb_dense *d, double lo, double hi, double sign) {
+    const double gr = 0.5 * (sqrt(5.0) - 1.0);
+    double a = lo, b = hi, x1 = b - gr * (b - a), x2 = a + gr * (b - a);
+    double f1 = sign * gap_x(d, x1, NULL), f2 = sign * gap_x(d, x2, NULL);
+    while (b - a > 1e-14) {
+        if (f1 < f2) {
+            b = x2; x2 = x1; f2 = f1;
+            x1 = b - gr * (b - a);
+            f1 = sign * gap_x(d, x1, NULL);
+        } else {
+            a = x1; x1 = x2; f1 = f2;
+            x2 = a + gr * (b - a);
+            f2 = sign * gap_x(d, x2, NULL);
+        }
+    }
+    return 0.5 * (a + b);
+}
+
+/* A phase that starts on the event surface at rest (P left on the obstacle by a CCM release at lambda = 0)
+ * can cross inside an excursion far below round-off: the first point of a geometric grid from a where the gap
+ * is beyond the surface by more than 1e-6 |g(b)| and still moving that way is reported (Brent-refined if the
+ * gap is seen on the near side just before); FB_NO_EVENT if none. */
+static double leaves_surface(const fb_dense *d, double a, double b, double ga, double gb, double sign) {
+    double noise = 1e-6 * fabs(gb), prev_x = a, prev_g = ga;
+    for (int k = 48; k >= 0; k--) {
+        double x = a + (b - a) * ldexp(1.0, -k), rx;
+        double gx = gap_x(d, x, &rx);
+        if (sign * gx > noise && sign * rx > 0.0) return -sign * prev_g > 0.0 ? brent(d, prev_x, x, prev_g, gx) : x;
+        prev_x = x;
+        prev_g = gx;
+    }
+    return FB_NO_EVENT;
+}
+
+static int crosses(double a, double b, double sign) {
+    return sign < 0.0 ? (a > 0.0 && b <= 0.0) : (a < 0.0 && b >= 0.0);
+}
+
+/* Earliest event in the sampled (x, g, g' h): sign change, excursion from zero, or Hermite-predicted dip. */
+static double scan(const fb_dense *d, const double *x, const double *g, const double *rate, int m, double sign) {
+    for (int i = 0; i < m; i++) {
+        double a = g[i], b = g[i + 1], ra = rate[i], rb = rate[i + 1], hh = x[i + 1] - x[i];
+        if (crosses(a, b, sign)) return b == 0.0 ? x[i + 1] : brent(d, x[i], x[i + 1], a, b);
+        if (-sign * a <= 0.0 && -sign * b < 0.0) { /* starts on (or just behind) zero, ends beyond it */
+            if (-sign * ra > 0.0) {                 /* leaving at first: a hump */
+                double xm = golden_min(d, x[i], x[i + 1], sign), gm = gap_x(d, xm, NULL);
+                if (-sign * gm > 0.0) return brent(d, xm, x[i + 1], gm, b);
+                if (i == 0) {
+                    double xl = leaves_surface(d, x[i], x[i + 1], a, b, sign);
+                    if (xl <= 1.0) return xl;
+                }
+            }
+            continue;
+        }
+        int same = sign < 0.0 ? (a > 0.0 && b > 0.0) : (a < 0.0 && b < 0.0);
+        if (!same) continue;
+        int dip = 0;
+        for (int k = 0; k <= HERMITE_PTS && !dip; k++) {
+            double s = (double)k / HERMITE_PTS, s2 = s * s, s3 = s2 * s;
+            double poly = (2 * s3 - 3 * s2 + 1) * a + (s3 - 2 * s2 + s) * hh * ra + (-2 * s3 + 3 * s2) * b +
+                          (s3 - s2) * hh * rb;
+            dip = sign < 0.0 ? poly < 0.0 : poly > 0.0;
+        }
+        if (!dip) continue;
+        double px = x[i], pg = a;
+        for (int k = 1; k <= HERMITE_PTS; k++) {
+            double xx = x[i] + hh * k / HERMITE_PTS, gx = k == HERMITE_PTS ? b : gap_x(d, xx, NULL);
+            if (crosses(pg, gx, sign)) return brent(d, px, xx, pg, gx);
+            px = xx;
+            pg = gx;
+        }
+    }
+    return FB_NO_EVENT;
+}
+
+static double max_forcing(const fb_dense *d, int k) {
+    int N = d->ph->b->N;
+    double fm = 0.0;
+    for (int j = 0; j < FB_P; j++) fm = fmax(fm, fabs(d->f[j * N + k]));
+    return fm;
+}
+
+/* Is the obstacle out of reach within the step?  Each mode's velocity stays below its free amplitude
+ * sqrt(v^2 + w^2 eta^2) plus h LEBESGUE max_j |f_jk|, so the gap's rate stays below R = sum_k |j_k| (that bound)
+ * (+ |J_theta| max|theta'| for a prescribed theta, whose profiles have monotone rates; |J_theta| <= |r_P|); far
+ * if gap0 > 2 R h (a factor 2 for the variation of J over the step). */
+static int far(const fb_dense *d, const double *jm, double gap0) {
+    if (gap0 <= 0.0) return 0;
+    const fb_basis *b = d->ph->b;
+    double R = 0.0;
+    for (int k = 0; k < b->N; k++) {
+        double om = b->omega[k];
+        R += fabs(jm[k]) *
+             (sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]) + d->h * LEBESGUE * max_forcing(d, k));
+    }
+    if (d->ph->m->prescribed) {
+        double th, thd0, thd1, thdd;
+        fb_drive_motion(d->ph->m, d->t0, &th, &thd0, &thdd);
+        fb_drive_motion(d->ph->m, d->t0 + d->h, &th, &thd1, &thdd);
+        double rP = d->ph->m->points[0].base + fabs(d->ph->m->points[0].offset);
+        R += rP * fmax(fabs(thd0), fabs(thd1));
+    }
+    return gap0 > 2.0 * R * d->h;
+}
+
+/* Bounds on the gap between samples spaced by the fraction dx: *fast (modes with w dx h > pi/4, by their
+ * amplitude: free amplitude + 2 max|f| / w^2) and the return value, the deviation of the other modes from the
+ * linear interpolant, (dx h)^2 / 8 max|g''| with |g''| <= sum_k |j_k| (w_k^2 A_k + max|f_k|) + 2 max|gamma|
+ * (gamma: the gap's velocity-product acceleration, the curvature of P's path relative to the obstacle, at the
+ * samples); max|f_k| is the nodal maximum times the Lebesgue constant of the interpolation. */
+static double bounds(const fb_dense *d, const double *jm, double gamma, double dx, double *fast) {
+    const fb_basis *b = d->ph->b;
+    double B = 0.0, G2 = 2.0 * gamma, T = dx * d->h;
+    for (int k = 0; k < b->N; k++) {
+        double om = b->omega[k], fm = LEBESGUE * max_forcing(d, k);
+        double amp = om > 0.0 ? sqrt(d->eta0[k] * d->eta0[k] + (d->v0[k] / om) * (d->v0[k] / om)) : 0.0;
+        if (om * T > 0.25 * FB_PI) {
+            B += fabs(jm[k]) * (amp + 2.0 * fm / (om * om));
+        } else {
+            double forced = om > 0.0 ? fmin(2.0 * fm / (om * om), d->h * d->h * fm) : 0.0;
+            G2 += fabs(jm[k]) * (om * om * (amp + forced) + fm);
+        }
+    }
+    *fast = B;
+    return 0.125 * T * T * G2;
+}
+
+/* The largest sample spacing (fraction of the step) at which P cannot pass through a sphere of radius R between
+ * two samples: P may move at most max(R / 4, gap / 2) between them (the reference integrator's rule), at the
+ * largest sampled speed with a margin of 2.  No limit for a half-plane. */
+static double safe_spacing(const fb_dense *d, const fb_gap *g, int count) {
+    const fb_obstacle *o = &d->ph->m->obstacles[0];
+    if (o->kind != FB_SPHERE) return 1.0;
+    double speed = 0.0, gap = INFINITY;
+    for (int i = 0; i < count; i++) {
+        speed = fmax(speed, g[i].speed);
+        gap = fmin(gap, fabs(g[i].delta));
+    }
+    if (speed <= 0.0) return 1.0;
+    return fmax(0.25 * (o->radius > 0.0 ? o->radius : 1e-3), 0.5 * gap) / (2.0 * speed * d->h);
+}
+
+/* The gap at the points i / m of the step by exact hops between consecutive points. */
+static void sample_hops(const fb_dense *d, const double *A, int m, double *x, fb_gap *g) {
+    const fb_basis *b = d->ph->b;
+    int N = b->N;
+    fb_hop H[FB_MAXN];
+    for (int k = 0; k < N; k++) fb_hop_weights(b->omega[k], d->h / m, &H[k]);
+    double eta[FB_MAXN], v[FB_MAXN];
+    memcpy(eta, d->eta0, sizeof(double) * N);
+    memcpy(v, d->v0, sizeof(double) * N);
+    for (int i = 1; i <= m; i++) {
+        fb_hop_advance(b, H, A, (double)(i - 1) / m, 1.0 / m, eta, v);
+        x[i] = (double)i / m;
+        g[i] = fb_gap_at(d->ph, d->t0 + x[i] * d->h, eta, v);
+    }
+}
+
+/* First crossing of the gap in ``direction`` (-1: closing, +1: opening) inside the step, as a fraction of it:
+ * FB_NO_EVENT when the step is provably free of it, FB_UNDECIDED when it is too long to decide.
+ * ``known``: the gap at the start, the FB_P nodes and the end (the points kx) that the step's evaluation has
+ * already; ``jm``: the modal gap Jacobian near the start (at the first node). */
+double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known, const double *jm) {
+    double sign = direction < 0 ? -1.0 : 1.0;
+    double gap0 = known[0].delta, rate0 = known[0].rate;
+    if (direction < 0 && far(d, jm, gap0)) return FB_NO_EVENT;
+    int leaving = sign < 0.0 ? (gap0 > 0.0 || rate0 > 0.0) : (gap0 < 0.0 || rate0 < 0.0);
+    static const int levels[3] = {SAMPLES, 4 * SAMPLES, 16 * SAMPLES};
+    double x[16 * SAMPLES + 1], gv[16 * SAMPLES + 1], r[16 * SAMPLES + 1], A[FB_P * FB_MAXN];
+    fb_gap g[16 * SAMPLES + 1];
+    int m = FB_P + 1, level = 0;
+    for (int i = 0; i <= m; i++) {
+        x[i] = kx[i];
+        g[i] = known[i];
+    }
+    int have_A = 0;
+    for (;;) {
+        double dx = 0.0, worst = INFINITY, gam = 0.0;
+        for (int i = 0; i <= m; i++) {
+            gv[i] = g[i].delta;
+            r[i] = g[i].rate * d->h;
+            gam = fmax(gam, fabs(g[i].gamma));
+            if (i) {
+                dx = fmax(dx, x[i] - x[i - 1]);
+                worst = fmin(worst, fmin(-sign * gv[i - 1], -sign * gv[i]));
+            }
+        }
+        double B, curve = bounds(d, jm, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
+        if (dx <= safe) {
+            if (leaving && worst - 2.0 * B - curve > 0.0) return FB_NO_EVENT;
+            if (B == 0.0) return scan(d, x, gv, r, m, sign);
+        }
+        while (level < 3 && 1.0 / levels[level] > fmin(dx, safe) * (1.0 - 1e-12) && levels[level] <= m) level++;
+        if (level == 3) return FB_UNDECIDED;
+        if (!have_A) fb_monomial(d->f, d->ph->b->N, A), have_A = 1;
+        m = levels[level++];
+        x[0] = 0.0;
+        g[0] = known[0];
+        sample_hops(d, A, m, x, g);
+    }
+}
+
+/* Fraction of the step where the collocated multiplier lambda(s) (interpolant of the nodal values) turns
+ * tensile, or FB_NO_EVENT. */
+double fb_find_release(const double *lam) {
+    double prev = 0.0;
+    for (int j = 0; j < FB_P; j++) prev += lam[j] * fb_lagrange(j, 0.0);
+    for (int i = 1; i <= 32; i++) {
+        double x = i / 32.0, val = 0.0;
+        for (int j = 0; j < FB_P; j++) val += lam[j] * fb_lagrange(j, x);
+        if (prev >= 0.0 && val < 0.0) {
+            if (prev == 0.0) return (i - 1) / 32.0;
+            double lo = (i - 1) / 32.0, hi = x;
+            for (int it = 0; it < 60; it++) {
+                double mid = 0.5 * (lo + hi), vm = 0.0;
+                for (int j = 0; j < FB_P; j++) vm += lam[j] * fb_lagrange(j, mid);
+                if (vm >= 0.0)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            return hi;
+        }
+        prev = val;
+    }
+    return FB_NO_EVENT;
+}

@@ -1,0 +1,146 @@
+/* flexbeam compiled kernels: shared types and declarations.
+ *
+ * The model (model.c) evaluates the rigid-flexible coupling equations of docs/formulation.md;
+ * the integrator (propagation.c, collocation.c, events.c, stepcontrol.c, phase.c) propagates
+ * the modal equations exactly and collocates the nonlinear remainder.  module.c is the Python
+ * glue.  Python packs every array once per system into two flat buffers (layout in
+ * flexbeam/kernels/layout.py) which fb_model_unpack / fb_basis_unpack read back as pointers.
+ */
+#ifndef FLEXBEAM_KERNELS_H
+#define FLEXBEAM_KERNELS_H
+
+#include <math.h>
+#include <stddef.h>
+
+#define FB_LAYOUT_VERSION 1
+#define FB_PI 3.14159265358979323846
+#define FB_MAX_POINTS 64
+#define FB_MAX_OBSTACLES 8
+#define FB_P 4          /* Gauss-Legendre collocation nodes per step */
+#define FB_NPTS (FB_P + 1) /* the nodes and the step end */
+
+/* ContactMode (flexbeam.solution.ContactMode) */
+enum { FB_MODE_NONE = 0, FB_MODE_FORCE = 1, FB_MODE_CONSTRAINT = 2 };
+enum { FB_SPHERE = 0, FB_PLANE = 1 };
+enum { FB_DRIVE_FREE = 0, FB_DRIVE_TORQUE = 1, FB_DRIVE_PRESCRIBED = 2 };
+enum { FB_PROFILE_CONSTANT = 0, FB_PROFILE_KANE = 1 };
+
+/* A material point of the beam: base = r_h + x, offset c below the centre line, Psi(x), Psi'(x), H(x). */
+typedef struct {
+    double base, offset;
+    const double *phi, *dphi, *H;
+} fb_point;
+
+/* An obstacle: sphere (centre, radius) or half-plane (point, outward unit normal), optionally on a
+ * support of mass ms, stiffness ks, damping cs along the unit axis (ux, uy); ms = 0: rigidly held. */
+typedef struct {
+    int kind;
+    double cx, cy, radius, nx, ny;
+    double ms, ks, cs, ux, uy;
+} fb_obstacle;
+
+typedef struct {
+    int n;          /* flexible modes */
+    int prescribed; /* theta(t) given: coordinates q only */
+    int drive;      /* FB_DRIVE_* */
+    int profile;    /* FB_PROFILE_* (prescribed) */
+    double Jc, m1, g, torque, spin_rate, spin_up_time, theta0;
+    const double *Mc, *Mqq, *mtq, *K, *sf, *G, *d; /* n x n, n x n, n, n x n, n, n x n, n */
+    int npoints, nobstacles;
+    fb_point points[FB_MAX_POINTS];       /* points[0]: the contact point P */
+    fb_obstacle obstacles[FB_MAX_OBSTACLES];
+} fb_model;
+
+/* Number of generalised coordinates of the beam: [theta, q] or q. */
+static inline int fb_nz(const fb_model *m) { return m->prescribed ? m->n : m->n + 1; }
+/* Is obstacle 0 on a compliant support (two more states s, s')? */
+static inline int fb_compliant(const fb_model *m) { return m->nobstacles > 0 && m->obstacles[0].ms > 0.0; }
+/* Length of the reference-layout state [z, z', (s, s'), E_d, W]. */
+static inline int fb_state_size(const fb_model *m) { return 2 * fb_nz(m) + (fb_compliant(m) ? 2 : 0) + 2; }
+
+int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf);
+
+/* ------------------------------------------------------------------ model.c */
+typedef struct {
+    double r[2], v[2], a0[2];
+} fb_kin;
+
+typedef struct {
+    double delta, rate, gamma, nx, ny, Js;
+    double speed; /* |r' - s' u|: P's speed relative to the obstacle */
+} fb_gap;
+
+void fb_drive_motion(const fb_model *m, double t, double *th, double *thd, double *thdd);
+double fb_drive_torque(const fb_model *m, double t);
+void fb_state_split(const fb_model *m, double t, const double *y, double *th, double *thd, double *thdd,
+                    const double **q, const double **qd);
+double fb_quad(const double *A, const double *x, int n);
+void fb_matvec(const double *A, const double *x, int n, double *out);
+void fb_mass_matrix(const fb_model *m, const double *q, double *M);
+double fb_forces(const fb_model *m, double th, double thd, const double *q, const double *qd, double tau, int elastic,
+                 double *Q);
+void fb_energies(const fb_model *m, double th, double thd, const double *q, const double *qd, double *T, double *Ve,
+                 double *Vg);
+void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double thd, const double *q,
+                         const double *qd, fb_kin *out, double *dr);
+fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int nz, double s, double sd,
+                    double *J);
+double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd);
+double fb_law_potential(const double *p, double d);
+int fb_solve(double *A, double *b, int n);
+int fb_rhs(const fb_model *m, double t, const double *y, int mode, const double *p, double *dy, double *F,
+           double *torque);
+void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, int mode, const double *p,
+                double *cols, double *mv);
+
+#define FB_NCOLS 15 /* columns of fb_outputs, in the order of flexbeam.kernels.OUTPUT_COLUMNS */
+
+/* ------------------------------------------------------------------ modal basis (propagation.c) */
+/* The linearisation about the undeformed beam at rest, M0 z'' + K0 z = R, in modal coordinates
+ * z = Psi eta (Psi^T M0 Psi = I, Psi^T K0 Psi = diag(omega^2)); a compliant support adds the mode
+ * sqrt(m_s) s of frequency sqrt(k_s / m_s) as the last one. */
+typedef struct {
+    int N;            /* modal coordinates (beam + support) */
+    int nz;           /* beam coordinates */
+    int diagonal;     /* Psi is diagonal (system frame, prescribed theta) */
+    double inv00;     /* (M0^-1)_00 (free joint) */
+    const double *omega, *Psi, *toM, *row0, *K0;  /* N, N x N, N x N, nz, nz x nz */
+} fb_basis;
+
+int fb_basis_unpack(fb_basis *b, const double *buf, size_t nbuf);
+void fb_to_physical(const fb_basis *b, const double *eta, double *z);
+void fb_project(const fb_basis *b, const double *x, double *out); /* out = Psi^T x */
+
+/* Gauss-Legendre tables on (0, 1) for FB_P nodes: nodes c, weights w, the Vandermonde inverse (monomial
+ * coefficients from nodal values), the projection on the top Legendre polynomial (the multiplier's error), and
+ * the Lagrange basis polynomials' values at the step end. */
+typedef struct {
+    double c[FB_P], w[FB_P], Vinv[FB_P][FB_P], top[FB_P], lend[FB_P];
+} fb_tables;
+
+const fb_tables *fb_gauss(void);
+
+/* Propagation weights of one mode for the fraction s of a step h: free response and the response to
+ * each nodal forcing value (see propagation.c). */
+typedef struct {
+    double C, SW, WS;          /* cos(w T), sin(w T) / w, w sin(w T), T = s h */
+    double RE[FB_P], RV[FB_P]; /* position and velocity response to nodal forcing values */
+} fb_weight;
+
+void fb_weights(double w, double h, double s, fb_weight *out);
+void fb_moments(double th, double *Cm, double *Sm);
+
+/* A hop of length T: free response and the responses to the monomials u^m of u in [0, 1]. */
+typedef struct {
+    double C, SW, WS, pe[FB_P], pv[FB_P];
+} fb_hop;
+
+void fb_hop_weights(double w, double T, fb_hop *out);
+void fb_monomial(const double *f, int N, double *A);
+void fb_hop_advance(const fb_basis *b, const fb_hop *H, const double *A, double sa, double L, double *eta, double *v);
+void fb_propagate(const fb_basis *b, const fb_weight *W, int stride, const double *eta0, const double *v0,
+                  const double *f, double *eta, double *v);
+double fb_lagrange_integral(int j, double s);
+double fb_lagrange(int j, double s);
+
+#endif

@@ -1,0 +1,483 @@
+/* The rigid-flexible coupling equations of docs/formulation.md, evaluated in physical coordinates.
+ *
+ * Coordinates z = [theta, q] (free or torque-driven joint) or z = q (theta(t) prescribed).
+ * First-order approximation model (zeroth order: D = G = H = 0, so Mc = M_ff):
+ *
+ *   M(q) = [[Jc + q^T Mc q, m_tq^T], [m_tq, M_qq]]
+ *   Q_theta = tau - 2 theta' q^T Mc q' - g [cos(theta)(m1 - 1/2 q^T G q) - sin(theta) s_f q]
+ *   Q_q     = -K q + theta'^2 Mc q - g [cos(theta) s_f - sin(theta) G q] + tau d
+ *
+ * so that M z'' = Q + J^T F; the joint torque tau works on the hub angle theta + d q.
+ * Energies T = 1/2 z'^T M z', V_e = 1/2 q^T K q, V_g = g [sin(theta)(m1 - 1/2 q^T G q) + cos(theta) s_f q].
+ * A material point at x, offset c below the centre line along the deformed section normal (section
+ * rotation a = Psi'(x) q): rho = (r_h + x - 1/2 q^T H q + c sin a, Psi q - c cos a), r = A(theta) rho.
+ */
+#include <string.h>
+
+#include "flexbeam.h"
+
+#define MAXZ 66 /* n <= 64 modes, theta, and a support coordinate */
+
+/* Model buffer: [version, n, prescribed, drive, profile, npoints, nobstacles, obstacle kinds (nobstacles),
+ * Jc, m1, g, torque, spin_rate, spin_up_time, theta0, Mc, Mqq, mtq, K, sf, G, d,
+ * per point: base, offset, phi, dphi, H; per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy]
+ * (flexbeam.kernels.layout.pack_model writes it). */
+int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
+    const double *ints = buf;
+    size_t nints = 7;
+    if (nbuf < 7 || (int)ints[0] != FB_LAYOUT_VERSION) return -1;
+    int n = (int)ints[1];
+    m->n = n;
+    m->prescribed = (int)ints[2];
+    m->drive = (int)ints[3];
+    m->profile = (int)ints[4];
+    m->npoints = (int)ints[5];
+    m->nobstacles = (int)ints[6];
+    if (n < 0 || n > 64 || m->npoints < 1 || m->npoints > FB_MAX_POINTS || m->nobstacles < 0 ||
+        m->nobstacles > FB_MAX_OBSTACLES || nbuf < (size_t)(7 + m->nobstacles))
+        return -1;
+    nints += (size_t)m->nobstacles;
+    const double *f = buf + nints;
+    size_t nf = nbuf - nints;
+    size_t need = 7 + 4 * (size_t)n * n + 3 * (size_t)n + (size_t)m->npoints * (2 + 2 * n + (size_t)n * n) +
+                  10 * (size_t)m->nobstacles;
+    if (nf != need) return -2;
+    const double *p = f;
+    m->Jc = *p++;
+    m->m1 = *p++;
+    m->g = *p++;
+    m->torque = *p++;
+    m->spin_rate = *p++;
+    m->spin_up_time = *p++;
+    m->theta0 = *p++;
+    m->Mc = p; p += n * n;
+    m->Mqq = p; p += n * n;
+    m->mtq = p; p += n;
+    m->K = p; p += n * n;
+    m->sf = p; p += n;
+    m->G = p; p += n * n;
+    m->d = p; p += n;
+    for (int i = 0; i < m->npoints; i++) {
+        fb_point *P = &m->points[i];
+        P->base = *p++;
+        P->offset = *p++;
+        P->phi = p; p += n;
+        P->dphi = p; p += n;
+        P->H = p; p += n * n;
+    }
+    for (int i = 0; i < m->nobstacles; i++) {
+        fb_obstacle *o = &m->obstacles[i];
+        o->kind = (int)ints[7 + i];
+        o->cx = *p++; o->cy = *p++; o->radius = *p++; o->nx = *p++; o->ny = *p++;
+        o->ms = *p++; o->ks = *p++; o->cs = *p++; o->ux = *p++; o->uy = *p++;
+    }
+    return 0;
+}
+
+/* theta, theta', theta'' of a prescribed profile: constant rate, or Kane, Ryan & Banerjee (1987) eq. 57. */
+void fb_drive_motion(const fb_model *m, double t, double *th, double *thd, double *thdd) {
+    double W = m->spin_rate;
+    if (m->profile == FB_PROFILE_CONSTANT) {
+        *th = m->theta0 + W * t; *thd = W; *thdd = 0.0;
+        return;
+    }
+    double Ts = m->spin_up_time;
+    if (t < Ts) {
+        double a = 2.0 * FB_PI / Ts;
+        *th = m->theta0 + (W / Ts) * (0.5 * t * t + (cos(a * t) - 1.0) / (a * a));
+        *thd = (W / Ts) * (t - sin(a * t) / a);
+        *thdd = (W / Ts) * (1.0 - cos(a * t));
+        return;
+    }
+    *th = m->theta0 + W * (t - 0.5 * Ts); *thd = W; *thdd = 0.0;
+}
+
+double fb_drive_torque(const fb_model *m, double t) {
+    (void)t;
+    return m->drive == FB_DRIVE_TORQUE ? m->torque : 0.0;
+}
+
+void fb_state_split(const fb_model *m, double t, const double *y, double *th, double *thd, double *thdd,
+                    const double **q, const double **qd) {
+    int n = m->n;
+    if (m->prescribed) {
+        fb_drive_motion(m, t, th, thd, thdd);
+        *q = y;
+        *qd = y + n;
+    } else {
+        *th = y[0];
+        *thd = y[n + 1];
+        *thdd = 0.0;
+        *q = y + 1;
+        *qd = y + n + 2;
+    }
+}
+
+double fb_quad(const double *A, const double *x, int n) {
+    double acc = 0.0;
+    for (int i = 0; i < n; i++) {
+        double row = 0.0;
+        for (int j = 0; j < n; j++) row += A[i * n + j] * x[j];
+        acc += x[i] * row;
+    }
+    return acc;
+}
+
+void fb_matvec(const double *A, const double *x, int n, double *out) {
+    for (int i = 0; i < n; i++) {
+        double row = 0.0;
+        for (int j = 0; j < n; j++) row += A[i * n + j] * x[j];
+        out[i] = row;
+    }
+}
+
+static double dot(const double *a, const double *b, int n) {
+    double acc = 0.0;
+    for (int i = 0; i < n; i++) acc += a[i] * b[i];
+    return acc;
+}
+
+void fb_mass_matrix(const fb_model *m, const double *q, double *M) {
+    int n = m->n, N = n + 1;
+    M[0] = m->Jc + fb_quad(m->Mc, q, n);
+    for (int i = 0; i < n; i++) {
+        M[i + 1] = m->mtq[i];
+        M[(i + 1) * N] = m->mtq[i];
+        for (int j = 0; j < n; j++) M[(i + 1) * N + j + 1] = m->Mqq[i * n + j];
+    }
+}
+
+/* Q of the equations (elastic: with the elastic force -K q); returns q^T Mc q (the theta-theta mass change). */
+double fb_forces(const fb_model *m, double th, double thd, const double *q, const double *qd, double tau, int elastic,
+                 double *Q) {
+    int n = m->n;
+    double c = cos(th), s = sin(th), g = m->g;
+    double qMcqd = 0.0, qMcq = 0.0, qGq = 0.0, sfq = 0.0;
+    for (int i = 0; i < n; i++) {
+        double mcq = 0.0;
+        const double *Mc = m->Mc + i * n;
+        for (int j = 0; j < n; j++) mcq += Mc[j] * q[j];
+        qMcqd += mcq * qd[i];
+        qMcq += mcq * q[i];
+        Q[i + 1] = thd * thd * mcq + tau * m->d[i];
+    }
+    if (g != 0.0) {
+        for (int i = 0; i < n; i++) {
+            double gq = 0.0;
+            const double *G = m->G + i * n;
+            for (int j = 0; j < n; j++) gq += G[j] * q[j];
+            qGq += q[i] * gq;
+            sfq += m->sf[i] * q[i];
+            Q[i + 1] -= g * (c * m->sf[i] - s * gq);
+        }
+    }
+    if (elastic)
+        for (int i = 0; i < n; i++) {
+            double kq = 0.0;
+            const double *K = m->K + i * n;
+            for (int j = 0; j < n; j++) kq += K[j] * q[j];
+            Q[i + 1] -= kq;
+        }
+    Q[0] = tau - 2.0 * thd * qMcqd - g * (c * (m->m1 - 0.5 * qGq) - s * sfq);
+    return qMcq;
+}
+
+void fb_energies(const fb_model *m, double th, double thd, const double *q, const double *qd, double *T, double *Ve,
+                 double *Vg) {
+    int n = m->n;
+    *T = 0.5 * thd * thd * (m->Jc + fb_quad(m->Mc, q, n)) + thd * dot(m->mtq, qd, n) + 0.5 * fb_quad(m->Mqq, qd, n);
+    *Ve = 0.5 * fb_quad(m->K, q, n);
+    *Vg = m->g * (sin(th) * (m->m1 - 0.5 * fb_quad(m->G, q, n)) + cos(th) * dot(m->sf, q, n));
+}
+
+/* Position r, velocity v and the acceleration a0 at z'' = 0 (velocity-product terms, for J' z') of a point,
+ * and dr (2 x (n+1), row-major): dr/dz with z = [theta, q]. */
+void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double thd, const double *q,
+                         const double *qd, fb_kin *out, double *dr) {
+    int n = m->n, N = n + 1;
+    double ang = dot(P->dphi, q, n), angd = dot(P->dphi, qd, n);
+    double sa = sin(ang), ca = cos(ang), ct = cos(th), st = sin(th), c = P->offset;
+    double qHq = 0.0, rhod_x = 0.0, rhod_y = 0.0, qdHqd = 0.0;
+    for (int i = 0; i < n; i++) {
+        const double *H = P->H + i * n;
+        double hq = 0.0, hqd = 0.0;
+        for (int j = 0; j < n; j++) {
+            hq += H[j] * q[j];
+            hqd += H[j] * qd[j];
+        }
+        qHq += q[i] * hq;
+        qdHqd += qd[i] * hqd;
+        double dx = -hq + c * ca * P->dphi[i];
+        double dy = P->phi[i] + c * sa * P->dphi[i];
+        rhod_x += dx * qd[i];
+        rhod_y += dy * qd[i];
+        if (dr) {
+            dr[i + 1] = ct * dx - st * dy;
+            dr[N + i + 1] = st * dx + ct * dy;
+        }
+    }
+    double rx = P->base - 0.5 * qHq + c * sa;
+    double ry = dot(P->phi, q, n) - c * ca;
+    double acc_x = -qdHqd - c * sa * angd * angd, acc_y = c * ca * angd * angd;
+    if (dr) {
+        dr[0] = ct * (-ry) - st * rx;
+        dr[N] = st * (-ry) + ct * rx;
+    }
+    out->r[0] = ct * rx - st * ry;
+    out->r[1] = st * rx + ct * ry;
+    double vlx = rhod_x - thd * ry, vly = rhod_y + thd * rx;
+    out->v[0] = ct * vlx - st * vly;
+    out->v[1] = st * vlx + ct * vly;
+    double alx = acc_x - 2.0 * thd * rhod_y - thd * thd * rx, aly = acc_y + 2.0 * thd * rhod_x - thd * thd * ry;
+    out->a0[0] = ct * alx - st * aly;
+    out->a0[1] = st * alx + ct * aly;
+}
+
+/* Gap delta to obstacle o displaced by s along its support axis, its rate, gamma = delta'' at z'' = 0,
+ * the normal and J = d delta / dz (nz = n + 1 entries, from dr) and Js = d delta / ds.
+ * Sphere: delta = |r - c| - r_s, delta'' = n.r'' + (|r'|^2 - (n.r')^2) / |r - c|; half-plane: delta = n.(r - c). */
+fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int nz, double s, double sd,
+                    double *J) {
+    fb_gap out;
+    double cx = o->cx + s * o->ux, cy = o->cy + s * o->uy;
+    double vx = k->v[0] - sd * o->ux, vy = k->v[1] - sd * o->uy;
+    if (o->kind == FB_SPHERE) {
+        double dx = k->r[0] - cx, dy = k->r[1] - cy;
+        double dist = sqrt(dx * dx + dy * dy);
+        out.nx = dx / dist;
+        out.ny = dy / dist;
+        out.delta = dist - o->radius;
+        out.rate = out.nx * vx + out.ny * vy;
+        out.gamma = out.nx * k->a0[0] + out.ny * k->a0[1] + (vx * vx + vy * vy - out.rate * out.rate) / dist;
+    } else {
+        out.nx = o->nx;
+        out.ny = o->ny;
+        out.delta = o->nx * (k->r[0] - cx) + o->ny * (k->r[1] - cy);
+        out.rate = o->nx * vx + o->ny * vy;
+        out.gamma = o->nx * k->a0[0] + o->ny * k->a0[1];
+    }
+    out.Js = o->ms > 0.0 ? -(out.nx * o->ux + out.ny * o->uy) : 0.0;
+    out.speed = sqrt(vx * vx + vy * vy);
+    if (J && dr)
+        for (int i = 0; i < nz; i++) J[i] = out.nx * dr[i] + out.ny * dr[nz + i];
+    return out;
+}
+
+/* Contact law F = max(0, K d^n (1 + chi' d') + C d') with p = [K, n, chi / d'_0, C]; d = -delta >= 0.
+ * Returns F, its elastic part K d^n in *fk and the partial derivatives dF/dd, dF/dd'. */
+double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd) {
+    if (dF_dd) *dF_dd = 0.0;
+    if (dF_ddd) *dF_ddd = 0.0;
+    if (d <= 0.0) {
+        if (fk) *fk = 0.0;
+        return 0.0;
+    }
+    double kdn = p[0] * pow(d, p[1]);
+    if (fk) *fk = kdn;
+    double F = kdn * (1.0 + p[2] * dd) + p[3] * dd;
+    if (F <= 0.0) return 0.0;
+    if (dF_dd) *dF_dd = p[1] * kdn / d * (1.0 + p[2] * dd);
+    if (dF_ddd) *dF_ddd = kdn * p[2] + p[3];
+    return F;
+}
+
+double fb_law_potential(const double *p, double d) {
+    if (d <= 0.0) return 0.0;
+    return p[0] * pow(d, p[1] + 1.0) / (p[1] + 1.0);
+}
+
+/* Solve A x = b in place (b <- x) by Gaussian elimination with partial pivoting; A (n x n) is destroyed. */
+int fb_solve(double *A, double *b, int n) {
+    for (int k = 0; k < n; k++) {
+        int piv = k;
+        double best = fabs(A[k * n + k]);
+        for (int i = k + 1; i < n; i++)
+            if (fabs(A[i * n + k]) > best) {
+                best = fabs(A[i * n + k]);
+                piv = i;
+            }
+        if (!(best > 0.0)) return -1;
+        if (piv != k) {
+            for (int j = 0; j < n; j++) {
+                double t = A[k * n + j];
+                A[k * n + j] = A[piv * n + j];
+                A[piv * n + j] = t;
+            }
+            double t = b[k];
+            b[k] = b[piv];
+            b[piv] = t;
+        }
+        double inv = 1.0 / A[k * n + k];
+        for (int i = k + 1; i < n; i++) {
+            double f = A[i * n + k] * inv;
+            if (f == 0.0) continue;
+            for (int j = k + 1; j < n; j++) A[i * n + j] -= f * A[k * n + j];
+            b[i] -= f * b[k];
+        }
+    }
+    for (int k = n - 1; k >= 0; k--) {
+        double acc = b[k];
+        for (int j = k + 1; j < n; j++) acc -= A[k * n + j] * b[j];
+        b[k] = acc / A[k * n + k];
+    }
+    return 0;
+}
+
+/* Right-hand side dy/dt of the reference-layout state in a contact mode (see flexbeam.kernels.rhs):
+ * FB_MODE_FORCE: the law force F(d, d') of p = [K, n, chi/d'_0, C] acts as J^T F;
+ * FB_MODE_CONSTRAINT: the multiplier of [M J^T; J 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
+ * with p = [alpha, beta, ., .] (Baumgarte).  A compliant support adds m_s s'' = -k_s s - c_s s' + Js F.
+ * With theta(t) prescribed only the modal rows are solved and the joint torque is the theta row's residual.
+ * Returns 0, or -1 for a non-finite state or a singular system (dy then NaN). */
+int fb_rhs(const fb_model *m, double t, const double *y, int mode, const double *p, double *dy, double *F_out,
+           double *torque_out) {
+    int n = m->n, N = n + 1, size = fb_state_size(m), nb = 2 * fb_nz(m);
+    for (int i = 0; i < size; i++)
+        if (!isfinite(y[i])) goto fail;
+    double th, thd, thdd;
+    const double *q, *qd;
+    fb_state_split(m, t, y, &th, &thd, &thdd, &q, &qd);
+    const fb_obstacle *o = m->nobstacles ? &m->obstacles[0] : NULL;
+    int compliant = fb_compliant(m);
+    double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
+    double Fs = compliant ? -o->ks * s - o->cs * sd : 0.0;
+    double tau = m->prescribed ? 0.0 : fb_drive_torque(m, t);
+    double M[MAXZ * MAXZ], Q[MAXZ], J[MAXZ], dr[2 * MAXZ];
+    fb_mass_matrix(m, q, M);
+    fb_forces(m, th, thd, q, qd, tau, 1, Q);
+    double F = 0.0, diss = 0.0, Js = 0.0;
+    memset(J, 0, sizeof(double) * N);
+    if (mode != FB_MODE_NONE && o) {
+        fb_kin k;
+        fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &k, dr);
+        fb_gap gp = fb_gap_state(o, &k, dr, N, s, sd, J);
+        Js = gp.Js;
+        if (mode == FB_MODE_FORCE) {
+            double fk;
+            F = fb_law_force(p, -gp.delta, -gp.rate, &fk, NULL, NULL);
+            diss = (F - fk) * (-gp.rate);
+        } else {
+            double rhs_c = -gp.gamma - 2.0 * p[0] * gp.rate - p[1] * p[1] * gp.delta, inv_mass = 0.0;
+            if (compliant) {
+                rhs_c -= Js * Fs / o->ms;
+                inv_mass = Js * Js / o->ms;
+            }
+            double A[MAXZ * MAXZ], a[MAXZ], b[MAXZ];
+            int off = m->prescribed ? 1 : 0, nn = N - off;
+            if (m->prescribed) rhs_c -= J[0] * thdd;
+            for (int i = 0; i < nn; i++) {
+                a[i] = Q[i + off] - (m->prescribed ? M[(i + 1) * N] * thdd : 0.0);
+                b[i] = J[i + off];
+            }
+            double A2[MAXZ * MAXZ];
+            for (int i = 0; i < nn; i++)
+                for (int j = 0; j < nn; j++) A[i * nn + j] = A2[i * nn + j] = M[(i + off) * N + j + off];
+            if (nn > 0) {
+                if (fb_solve(A, a, nn) || fb_solve(A2, b, nn)) goto fail;
+                rhs_c -= dot(J + off, a, nn);
+                inv_mass += dot(J + off, b, nn);
+            }
+            if (inv_mass > 0.0) F = rhs_c / inv_mass;
+        }
+        for (int i = 0; i < N; i++) Q[i] += J[i] * F;
+    }
+    if (compliant) {
+        dy[nb] = sd;
+        dy[nb + 1] = (Fs + Js * F) / o->ms;
+        diss += o->cs * sd * sd;
+    }
+    double torque;
+    if (m->prescribed) {
+        double rhs[MAXZ], A[MAXZ * MAXZ];
+        for (int i = 0; i < n; i++) {
+            rhs[i] = Q[i + 1] - M[(i + 1) * N] * thdd;
+            for (int j = 0; j < n; j++) A[i * n + j] = M[(i + 1) * N + j + 1];
+        }
+        if (n > 0 && fb_solve(A, rhs, n)) goto fail;
+        torque = M[0] * thdd - Q[0];
+        for (int i = 0; i < n; i++) {
+            torque += M[i + 1] * rhs[i];
+            dy[i] = qd[i];
+            dy[n + i] = rhs[i];
+        }
+        dy[size - 2] = diss;
+        dy[size - 1] = torque * thd;
+    } else {
+        if (fb_solve(M, Q, N)) goto fail;
+        dy[0] = thd;
+        for (int i = 0; i < n; i++) dy[i + 1] = qd[i];
+        for (int i = 0; i < N; i++) dy[N + i] = Q[i];
+        dy[size - 2] = diss;
+        torque = tau;
+        dy[size - 1] = tau * (thd + dot(m->d, qd, n));
+    }
+    if (F_out) *F_out = F;
+    if (torque_out) *torque_out = torque;
+    return 0;
+fail:
+    for (int i = 0; i < size; i++) dy[i] = NAN;
+    if (F_out) *F_out = NAN;
+    if (torque_out) *torque_out = NAN;
+    return -1;
+}
+
+/* Output columns (FB_NCOLS per sample, see flexbeam.kernels.OUTPUT_COLUMNS) and the normal velocities of
+ * the measuring points (points[2:]) for reference-layout states Y at times T, all in one contact mode. */
+void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, int mode, const double *p,
+                double *cols, double *mv) {
+    int n = m->n, N = n + 1, size = fb_state_size(m), nb = 2 * fb_nz(m), nmeas = m->npoints - 2;
+    int compliant = fb_compliant(m);
+    const fb_obstacle *o = m->nobstacles ? &m->obstacles[0] : NULL;
+    double dr[2 * MAXZ], J[MAXZ], dy[2 * MAXZ + 4];
+    for (int k = 0; k < count; k++) {
+        const double *y = Y + (size_t)k * size;
+        double *out = cols + (size_t)k * FB_NCOLS;
+        double t = T[k], th, thd, thdd;
+        const double *q, *qd;
+        fb_state_split(m, t, y, &th, &thd, &thdd, &q, &qd);
+        double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
+        double F = 0.0, Uc = 0.0, torque = m->prescribed ? 0.0 : fb_drive_torque(m, t);
+        fb_gap gp = {0};
+        if (o) {
+            fb_kin kin;
+            fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &kin, dr);
+            gp = fb_gap_state(o, &kin, dr, N, s, sd, J);
+        }
+        if (m->prescribed || mode == FB_MODE_CONSTRAINT) {
+            fb_rhs(m, t, y, mode, p, dy, &F, &torque);
+        } else if (mode == FB_MODE_FORCE) {
+            F = fb_law_force(p, -gp.delta, -gp.rate, NULL, NULL, NULL);
+        }
+        if (mode == FB_MODE_FORCE) Uc = fb_law_potential(p, -gp.delta);
+        double Tk, Ve, Vg;
+        fb_energies(m, th, thd, q, qd, &Tk, &Ve, &Vg);
+        if (compliant) {
+            Tk += 0.5 * o->ms * sd * sd;
+            Ve += 0.5 * o->ks * s * s;
+        }
+        double phi = th + dot(m->d, q, n), phid = thd + dot(m->d, qd, n);
+        double e2x = -sin(phi), e2y = cos(phi); /* the hub's normal */
+        fb_kin tip;
+        fb_point_kinematics(m, &m->points[1], th, thd, q, qd, &tip, NULL);
+        out[0] = phi;
+        out[1] = phid;
+        out[2] = gp.delta;
+        out[3] = gp.rate;
+        out[4] = F;
+        out[5] = Uc;
+        out[6] = Tk;
+        out[7] = Ve;
+        out[8] = Vg;
+        out[9] = y[size - 2];
+        out[10] = y[size - 1];
+        out[11] = torque;
+        out[12] = e2x * tip.r[0] + e2y * tip.r[1];
+        out[13] = s;
+        out[14] = compliant ? -(o->ks * s + o->cs * sd) : 0.0;
+        for (int j = 0; j < nmeas; j++) {
+            fb_kin kin;
+            fb_point_kinematics(m, &m->points[2 + j], th, thd, q, qd, &kin, NULL);
+            mv[(size_t)k * nmeas + j] = e2x * kin.v[0] + e2y * kin.v[1];
+        }
+    }
+}

@@ -1,0 +1,331 @@
+/* Python glue of the compiled kernels: every argument array is a C-contiguous float64 buffer (numpy arrays),
+ * outputs are written into caller-allocated buffers.  The model and basis buffers are packed once per system
+ * by flexbeam.kernels.layout and unpacked per call (a few pointer assignments). */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <string.h>
+
+#include "integrator.h"
+
+int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, double *state, double t_end,
+               double *records, int capacity, int *nrec, double *info);
+int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, int nrec, const double *times,
+                  int count, double *Y);
+int fb_record_size(int N);
+int fb_state_buffer_size(int N);
+
+typedef struct {
+    Py_buffer view;
+    int held;
+} buf_t;
+
+static int get_buf(PyObject *obj, buf_t *b, int writable, const char *name) {
+    b->held = 0;
+    int flags = PyBUF_C_CONTIGUOUS | PyBUF_FORMAT | (writable ? PyBUF_WRITABLE : 0);
+    if (PyObject_GetBuffer(obj, &b->view, flags) < 0) {
+        PyErr_Format(PyExc_TypeError, "%s: expected a C-contiguous%s float64 array", name, writable ? " writable" : "");
+        return -1;
+    }
+    b->held = 1;
+    const char *fmt = b->view.format;
+    if (b->view.itemsize != 8 || !fmt || !(fmt[0] == 'd' || ((fmt[0] == '<' || fmt[0] == '=') && fmt[1] == 'd'))) {
+        PyErr_Format(PyExc_TypeError, "%s: expected float64", name);
+        PyBuffer_Release(&b->view);
+        b->held = 0;
+        return -1;
+    }
+    return 0;
+}
+
+static void release(buf_t *bufs, int count) {
+    for (int i = 0; i < count; i++)
+        if (bufs[i].held) PyBuffer_Release(&bufs[i].view);
+}
+
+#define LEN(b) ((size_t)((b).view.len / 8))
+#define PTR(b) ((double *)(b).view.buf)
+
+static int model_from(buf_t *b, fb_model *m) {
+    if (fb_model_unpack(m, PTR(*b), LEN(*b))) {
+        PyErr_SetString(PyExc_ValueError, "model: buffer does not match the kernel layout");
+        return -1;
+    }
+    return 0;
+}
+
+static int basis_from(buf_t *b, fb_basis *bs) {
+    if (fb_basis_unpack(bs, PTR(*b), LEN(*b))) {
+        PyErr_SetString(PyExc_ValueError, "basis: buffer does not match the kernel layout");
+        return -1;
+    }
+    return 0;
+}
+
+/* rhs(model, t, y, mode, p, dy) -> (F, torque) */
+static PyObject *py_rhs(PyObject *self, PyObject *args) {
+    PyObject *om, *oy, *op, *ody;
+    double t;
+    int mode;
+    if (!PyArg_ParseTuple(args, "OdOiOO", &om, &t, &oy, &mode, &op, &ody)) return NULL;
+    buf_t b[4];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(op, &b[2], 0, "p") ||
+        get_buf(ody, &b[3], 1, "dy") || model_from(&b[0], &m))
+        goto fail;
+    if (LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[3]) != LEN(b[1]) || LEN(b[2]) < 4) {
+        PyErr_SetString(PyExc_ValueError, "rhs: y, dy must have the state size and p four entries");
+        goto fail;
+    }
+    double F, torque;
+    fb_rhs(&m, t, PTR(b[1]), mode, PTR(b[2]), PTR(b[3]), &F, &torque);
+    release(b, 4);
+    return Py_BuildValue("dd", F, torque);
+fail:
+    release(b, 4);
+    return NULL;
+}
+
+/* outputs(model, times, Y, mode, p, cols, mv) */
+static PyObject *py_outputs(PyObject *self, PyObject *args) {
+    PyObject *om, *ot, *oY, *op, *oc, *omv;
+    int mode;
+    if (!PyArg_ParseTuple(args, "OOOiOOO", &om, &ot, &oY, &mode, &op, &oc, &omv)) return NULL;
+    buf_t b[6];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ot, &b[1], 0, "times") || get_buf(oY, &b[2], 0, "Y") ||
+        get_buf(op, &b[3], 0, "p") || get_buf(oc, &b[4], 1, "cols") || get_buf(omv, &b[5], 1, "mv") ||
+        model_from(&b[0], &m))
+        goto fail;
+    size_t count = LEN(b[1]);
+    if (LEN(b[2]) != count * fb_state_size(&m) || LEN(b[4]) != count * FB_NCOLS ||
+        LEN(b[5]) != count * (size_t)(m.npoints - 2) || LEN(b[3]) < 4) {
+        PyErr_SetString(PyExc_ValueError, "outputs: array sizes do not match");
+        goto fail;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    fb_outputs(&m, PTR(b[1]), PTR(b[2]), (int)count, mode, PTR(b[3]), PTR(b[4]), PTR(b[5]));
+    Py_END_ALLOW_THREADS
+    release(b, 6);
+    Py_RETURN_NONE;
+fail:
+    release(b, 6);
+    return NULL;
+}
+
+/* kinematics(model, point, t, y, out) : out = [r (2), v (2), a0 (2), dr (2 x (n+1))] */
+static PyObject *py_kinematics(PyObject *self, PyObject *args) {
+    PyObject *om, *oy, *oo;
+    int ip;
+    double t;
+    if (!PyArg_ParseTuple(args, "OidOO", &om, &ip, &t, &oy, &oo)) return NULL;
+    buf_t b[3];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oo, &b[2], 1, "out") ||
+        model_from(&b[0], &m))
+        goto fail;
+    if (ip < 0 || ip >= m.npoints || LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[2]) != (size_t)(6 + 2 * (m.n + 1))) {
+        PyErr_SetString(PyExc_ValueError, "kinematics: bad point index or array sizes");
+        goto fail;
+    }
+    double th, thd, thdd, *out = PTR(b[2]);
+    const double *q, *qd;
+    fb_state_split(&m, t, PTR(b[1]), &th, &thd, &thdd, &q, &qd);
+    fb_kin k;
+    fb_point_kinematics(&m, &m.points[ip], th, thd, q, qd, &k, out + 6);
+    out[0] = k.r[0]; out[1] = k.r[1]; out[2] = k.v[0]; out[3] = k.v[1]; out[4] = k.a0[0]; out[5] = k.a0[1];
+    release(b, 3);
+    Py_RETURN_NONE;
+fail:
+    release(b, 3);
+    return NULL;
+}
+
+/* gap(model, t, y, J) -> (delta, rate, gamma, nx, ny); J (n + 1 [+ 1 with a support]) = d delta / dz */
+static PyObject *py_gap(PyObject *self, PyObject *args) {
+    PyObject *om, *oy, *oJ;
+    double t;
+    if (!PyArg_ParseTuple(args, "OdOO", &om, &t, &oy, &oJ)) return NULL;
+    buf_t b[3];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oJ, &b[2], 1, "J") ||
+        model_from(&b[0], &m))
+        goto fail;
+    int compliant = fb_compliant(&m), N = m.n + 1;
+    if (m.nobstacles < 1 || LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[2]) != (size_t)(N + compliant)) {
+        PyErr_SetString(PyExc_ValueError, "gap: no obstacle, or array sizes do not match");
+        goto fail;
+    }
+    double th, thd, thdd, dr[2 * FB_MAXN], *J = PTR(b[2]);
+    const double *q, *qd, *y = PTR(b[1]);
+    fb_state_split(&m, t, y, &th, &thd, &thdd, &q, &qd);
+    int nb = 2 * fb_nz(&m);
+    double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
+    fb_kin k;
+    fb_point_kinematics(&m, &m.points[0], th, thd, q, qd, &k, dr);
+    fb_gap g = fb_gap_state(&m.obstacles[0], &k, dr, N, s, sd, J);
+    if (compliant) J[N] = g.Js;
+    release(b, 3);
+    return Py_BuildValue("ddddd", g.delta, g.rate, g.gamma, g.nx, g.ny);
+fail:
+    release(b, 3);
+    return NULL;
+}
+
+/* equations(model, t, y, M, Q, E): M ((n+1) x (n+1)), Q (n+1, with the applied torque), E = [T, Ve, Vg] */
+static PyObject *py_equations(PyObject *self, PyObject *args) {
+    PyObject *om, *oy, *oM, *oQ, *oE;
+    double t;
+    if (!PyArg_ParseTuple(args, "OdOOOO", &om, &t, &oy, &oM, &oQ, &oE)) return NULL;
+    buf_t b[5];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oM, &b[2], 1, "M") ||
+        get_buf(oQ, &b[3], 1, "Q") || get_buf(oE, &b[4], 1, "E") || model_from(&b[0], &m))
+        goto fail;
+    size_t N = (size_t)m.n + 1;
+    if (LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[2]) != N * N || LEN(b[3]) != N || LEN(b[4]) != 3) {
+        PyErr_SetString(PyExc_ValueError, "equations: array sizes do not match");
+        goto fail;
+    }
+    double th, thd, thdd, *E = PTR(b[4]);
+    const double *q, *qd;
+    fb_state_split(&m, t, PTR(b[1]), &th, &thd, &thdd, &q, &qd);
+    fb_mass_matrix(&m, q, PTR(b[2]));
+    fb_forces(&m, th, thd, q, qd, m.prescribed ? 0.0 : fb_drive_torque(&m, t), 1, PTR(b[3]));
+    fb_energies(&m, th, thd, q, qd, &E[0], &E[1], &E[2]);
+    release(b, 5);
+    Py_RETURN_NONE;
+fail:
+    release(b, 5);
+    return NULL;
+}
+
+/* law_force(p, d, dd) -> (F, Fk, dF/dd, dF/ddd) */
+static PyObject *py_law_force(PyObject *self, PyObject *args) {
+    PyObject *op;
+    double d, dd;
+    if (!PyArg_ParseTuple(args, "Odd", &op, &d, &dd)) return NULL;
+    buf_t b[1];
+    memset(b, 0, sizeof b);
+    if (get_buf(op, &b[0], 0, "p")) return NULL;
+    if (LEN(b[0]) < 4) {
+        release(b, 1);
+        PyErr_SetString(PyExc_ValueError, "law_force: p must have four entries");
+        return NULL;
+    }
+    double fk, gd, gr, F = fb_law_force(PTR(b[0]), d, dd, &fk, &gd, &gr);
+    release(b, 1);
+    return Py_BuildValue("dddd", F, fk, gd, gr);
+}
+
+/* advance(model, basis, ctrl, state, t_end, records, info) -> (code, nrec) */
+static PyObject *py_advance(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *oc, *os, *orec, *oi;
+    double t_end;
+    if (!PyArg_ParseTuple(args, "OOOOdOO", &om, &ob, &oc, &os, &t_end, &orec, &oi)) return NULL;
+    buf_t b[6];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(oc, &b[2], 0, "ctrl") ||
+        get_buf(os, &b[3], 1, "state") || get_buf(orec, &b[4], 1, "records") || get_buf(oi, &b[5], 1, "info") ||
+        model_from(&b[0], &m) || basis_from(&b[1], &bs))
+        goto fail;
+    int R = fb_record_size(bs.N);
+    if (LEN(b[2]) < 10 || LEN(b[3]) != (size_t)fb_state_buffer_size(bs.N) || LEN(b[4]) % R || LEN(b[5]) < 4 ||
+        bs.N > FB_MAXN) {
+        PyErr_SetString(PyExc_ValueError, "advance: array sizes do not match");
+        goto fail;
+    }
+    int nrec = 0, code;
+    Py_BEGIN_ALLOW_THREADS
+    code = fb_advance(&m, &bs, PTR(b[2]), PTR(b[3]), t_end, PTR(b[4]), (int)(LEN(b[4]) / R), &nrec, PTR(b[5]));
+    Py_END_ALLOW_THREADS
+    release(b, 6);
+    return Py_BuildValue("ii", code, nrec);
+fail:
+    release(b, 6);
+    return NULL;
+}
+
+/* dense(model, basis, records, nrec, times, Y) */
+static PyObject *py_dense(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *orec, *ot, *oY;
+    int nrec;
+    if (!PyArg_ParseTuple(args, "OOOiOO", &om, &ob, &orec, &nrec, &ot, &oY)) return NULL;
+    buf_t b[5];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(orec, &b[2], 0, "records") ||
+        get_buf(ot, &b[3], 0, "times") || get_buf(oY, &b[4], 1, "Y") || model_from(&b[0], &m) ||
+        basis_from(&b[1], &bs))
+        goto fail;
+    size_t count = LEN(b[3]);
+    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs.N) || LEN(b[4]) != count * fb_state_size(&m)) {
+        PyErr_SetString(PyExc_ValueError, "dense: array sizes do not match");
+        goto fail;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    fb_dense_eval(&m, &bs, PTR(b[2]), nrec, PTR(b[3]), (int)count, PTR(b[4]));
+    Py_END_ALLOW_THREADS
+    release(b, 5);
+    Py_RETURN_NONE;
+fail:
+    release(b, 5);
+    return NULL;
+}
+
+/* moments(theta) -> (Cm_0..Cm_3, Sm_0..Sm_3) of propagation.c (for the tests) */
+static PyObject *py_moments(PyObject *self, PyObject *args) {
+    double th, Cm[FB_P], Sm[FB_P];
+    if (!PyArg_ParseTuple(args, "d", &th)) return NULL;
+    fb_moments(th, Cm, Sm);
+    return Py_BuildValue("(dddd)(dddd)", Cm[0], Cm[1], Cm[2], Cm[3], Sm[0], Sm[1], Sm[2], Sm[3]);
+}
+
+/* weights(w, h, s) -> (C, SW, WS, RE (4), RV (4)) of one mode at the fraction s of a step h (for the tests) */
+static PyObject *py_weights(PyObject *self, PyObject *args) {
+    double w, h, s;
+    if (!PyArg_ParseTuple(args, "ddd", &w, &h, &s)) return NULL;
+    fb_weight W;
+    fb_weights(w, h, s, &W);
+    return Py_BuildValue("ddd(dddd)(dddd)", W.C, W.SW, W.WS, W.RE[0], W.RE[1], W.RE[2], W.RE[3], W.RV[0], W.RV[1],
+                         W.RV[2], W.RV[3]);
+}
+
+/* nodes() -> the Gauss nodes of the collocation on (0, 1) */
+static PyObject *py_nodes(PyObject *self, PyObject *args) {
+    const fb_tables *t = fb_gauss();
+    return Py_BuildValue("dddd", t->c[0], t->c[1], t->c[2], t->c[3]);
+}
+
+static PyObject *py_sizes(PyObject *self, PyObject *args) {
+    int N;
+    if (!PyArg_ParseTuple(args, "i", &N)) return NULL;
+    return Py_BuildValue("iiii", fb_record_size(N), fb_state_buffer_size(N), FB_P, FB_NCOLS);
+}
+
+static PyMethodDef methods[] = {
+    {"rhs", py_rhs, METH_VARARGS, "rhs(model, t, y, mode, p, dy) -> (F, torque)"},
+    {"outputs", py_outputs, METH_VARARGS, "outputs(model, times, Y, mode, p, cols, mv)"},
+    {"kinematics", py_kinematics, METH_VARARGS, "kinematics(model, point, t, y, out)"},
+    {"gap", py_gap, METH_VARARGS, "gap(model, t, y, J) -> (delta, rate, gamma, nx, ny)"},
+    {"equations", py_equations, METH_VARARGS, "equations(model, t, y, M, Q, E)"},
+    {"law_force", py_law_force, METH_VARARGS, "law_force(p, d, dd) -> (F, Fk, dF/dd, dF/ddd)"},
+    {"advance", py_advance, METH_VARARGS, "advance(model, basis, ctrl, state, t_end, records, info) -> (code, nrec)"},
+    {"dense", py_dense, METH_VARARGS, "dense(model, basis, records, nrec, times, Y)"},
+    {"moments", py_moments, METH_VARARGS, "moments(theta) -> (Cm, Sm)"},
+    {"weights", py_weights, METH_VARARGS, "weights(w, h, s) -> (C, SW, WS, RE, RV)"},
+    {"nodes", py_nodes, METH_NOARGS, "nodes() -> the collocation's Gauss nodes on (0, 1)"},
+    {"sizes", py_sizes, METH_VARARGS, "sizes(N) -> (record size, state buffer size, nodes, output columns)"},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef moduledef = {PyModuleDef_HEAD_INIT, "_core", "flexbeam compiled kernels", -1, methods};
+
+PyMODINIT_FUNC PyInit__core(void) { return PyModule_Create(&moduledef); }

@@ -1,0 +1,46 @@
+"""The impact methods by name: one registry that the simulation, the CLI, sweeps and reports read.
+
+Adding an impact method: write its class (a subclass of :class:`flexbeam.methods.base.ImpactMethod` saying what
+an impact starts), and add it to :data:`IMPACT_METHODS`.  ``"fem"`` is the independent finite-element reference
+(``flexbeam.fem``), which runs its own contact model and integrator.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from .errors import ParameterError, closest
+
+if TYPE_CHECKING:
+    from .methods.base import ImpactMethod
+
+#: method name -> (module, class, one-line description); "fem" is dispatched separately
+IMPACT_METHODS: dict[str, tuple[str, str, str]] = {
+    "ccfm": ("flexbeam.methods.ccfm", "CCFM", "continuous contact force (a law's force while the gap is closed)"),
+    "ccm": ("flexbeam.methods.ccm", "CCM", "contact constraint (e = 0 jump, then the unilateral constraint)"),
+    "imm": ("flexbeam.methods.imm", "IMM", "impulse-momentum with a coefficient of restitution"),
+}
+
+#: every name ``simulate`` accepts
+METHOD_NAMES = (*IMPACT_METHODS, "fem")
+
+
+def impact_method(name: str) -> type[ImpactMethod]:
+    """The impact method class of ``name`` (a one-line ParameterError for an unknown name)."""
+    if name not in IMPACT_METHODS:
+        raise ParameterError(
+            f"method: unknown impact method '{name}'; allowed: {', '.join(METHOD_NAMES)}{closest(name, METHOD_NAMES)}"
+        )
+    import importlib
+
+    module, cls, _ = IMPACT_METHODS[name]
+    return getattr(importlib.import_module(module), cls)
+
+
+def check_method(name: str) -> str:
+    """``name`` if it is a method ``simulate`` accepts, else a one-line ParameterError."""
+    if name not in METHOD_NAMES:
+        raise ParameterError(
+            f"method: unknown impact method '{name}'; allowed: {', '.join(METHOD_NAMES)}{closest(name, METHOD_NAMES)}"
+        )
+    return name

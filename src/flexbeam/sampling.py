@@ -1,0 +1,196 @@
+"""Outputs of a run, evaluated on demand from its phases' dense output.
+
+The integrators keep each phase's dense output and evaluate nothing while they run.  A :class:`RunSource`
+evaluates, when asked: the output samples (the time grid of ``solver.sample_step`` in free flight and
+``solver.contact_sample_step`` in contact, plus every phase's ends) for arrays, figures and NetCDF; the contact
+force on the dense output for peaks (located to :data:`PEAK_XTOL`) and impulses; and the energies at the step
+boundaries for the energy balance of the metrics.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cached_property
+
+import numpy as np
+
+from .integrate.loop import RunResult, Segment
+from .kernels import OUTPUT_COLUMNS
+from .model.system import SUPPORT_COLUMNS, BeamSystem
+
+#: force evaluations per step when searching a contact's force for local maxima
+PEAK_POINTS_PER_STEP = 16
+
+
+def sample_grid(t0: float, t1: float, step: float) -> np.ndarray:
+    """t0, the multiples of ``step`` strictly inside (t0, t1), and t1 (t0 alone for a zero-length phase)."""
+    if t1 <= t0:
+        return np.array([t0])
+    k0, k1 = math.floor(t0 / step) + 1, math.floor(t1 / step)
+    grid = np.arange(k0, k1 + 1) * step if k1 >= k0 else np.empty(0)
+    grid = grid[(grid > t0) & (grid < t1)]
+    return np.concatenate(([t0], grid, [t1]))
+
+
+class RunSource:
+    """Lazy outputs of a run of ``system`` (see the module docstring)."""
+
+    def __init__(self, run: RunResult, system: BeamSystem) -> None:
+        self.run, self.system = run, system
+
+    @property
+    def segments(self) -> list[Segment]:
+        return self.run.segments
+
+    def evaluate(self, seg: Segment, times: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
+        """(columns, measuring velocities, states) of segment ``seg`` at ``times``."""
+        Y = seg.states(times)
+        cols, mv = self.system.outputs(times, Y, seg.phase.mode, seg.phase.parameters)
+        return cols, mv, Y
+
+    @cached_property
+    def samples(self) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+        """(time, phase name, arrays) over the whole run."""
+        sysm = self.system
+        n, nz = sysm.n, sysm.nz
+        times, phases, parts = [], [], []
+        for seg in self.segments:
+            t = sample_grid(seg.t0, seg.t1, seg.phase.sample_step)
+            cols, mv, Y = self.evaluate(seg, t)
+            qs = Y[:, nz - n : nz]
+            qds = Y[:, 2 * nz - n : 2 * nz]
+            times.append(t)
+            phases.append(np.full(t.size, seg.phase.name, dtype=object))
+            parts.append((cols, mv, qs, qds))
+        names = [c for c in OUTPUT_COLUMNS if sysm.compliant or c not in SUPPORT_COLUMNS]
+        if not parts:
+            empty = {name: np.empty(0) for name in names}
+            empty.update(q=np.empty((0, n)), q_rate=np.empty((0, n)), measuring_velocity=np.empty((0, 0)),
+                         total_energy=np.empty(0))
+            return np.empty(0), np.empty(0, dtype=object), empty
+        out = {name: np.concatenate([p[0][name] for p in parts]) for name in names}
+        out["q"] = np.concatenate([p[2] for p in parts])
+        out["q_rate"] = np.concatenate([p[3] for p in parts])
+        out["measuring_velocity"] = np.concatenate([p[1] for p in parts])
+        out["total_energy"] = total_energy(out)
+        return np.concatenate(times), np.concatenate(phases), out
+
+    # ---------------------------------------------------------------- contact force on the dense output
+    def _contact_segments(self, t0: float, t1: float) -> list[Segment]:
+        return [s for s in self.segments if s.phase.in_contact and s.t1 >= t0 and s.t0 <= t1 and s.t1 > s.t0]
+
+    def force_at(self, t: float) -> float:
+        """Contact force at time t on the dense output (0 outside contact phases)."""
+        for seg in self.segments:
+            if seg.phase.in_contact and seg.t0 <= t <= seg.t1 and seg.t1 > seg.t0:
+                return float(self.evaluate(seg, np.array([t]))[0]["contact_force"][0])
+        return 0.0
+
+    def force_many(self, times: np.ndarray) -> np.ndarray:
+        """Contact force at the ``times`` (within one contact phase each; 0 outside contact phases)."""
+        times = np.asarray(times, float)
+        out = np.zeros(times.size)
+        done = np.zeros(times.size, bool)
+        for seg in self.segments:
+            if not seg.phase.in_contact or seg.t1 <= seg.t0:
+                continue
+            sel = ~done & (times >= seg.t0) & (times <= seg.t1)
+            if sel.any():
+                out[sel] = self.evaluate(seg, times[sel])[0]["contact_force"]
+                done |= sel
+        return out
+
+    def force_profile(self, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
+        """(times, force) at PEAK_POINTS_PER_STEP points of every step of the contact phases in [t0, t1]."""
+        ts, fs = [], []
+        for seg in self._contact_segments(t0, t1):
+            b = seg.breaks()
+            frac = np.linspace(0.0, 1.0, PEAK_POINTS_PER_STEP + 1)[:-1]
+            t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
+            t = t[(t >= t0) & (t <= t1)]
+            if t.size:
+                ts.append(t)
+                fs.append(self.evaluate(seg, t)[0]["contact_force"])
+        if not ts:
+            return np.empty(0), np.empty(0)
+        t, f = np.concatenate(ts), np.concatenate(fs)
+        order = np.argsort(t, kind="stable")
+        return t[order], f[order]
+
+    def impulse(self, t0: float, t1: float) -> float:
+        """int F dt over [t0, t1]: 8-point Gauss-Legendre per step of the contact phases."""
+        x, w = np.polynomial.legendre.leggauss(8)
+        total = 0.0
+        for seg in self._contact_segments(t0, t1):
+            b = np.clip(seg.breaks(), t0, t1)
+            a, c = b[:-1], b[1:]
+            keep = c > a
+            a, c = a[keep], c[keep]
+            if not a.size:
+                continue
+            t = (0.5 * (c - a)[:, None] * (x[None, :] + 1.0) + a[:, None]).ravel()
+            F = self.evaluate(seg, t)[0]["contact_force"].reshape(a.size, x.size)
+            total += float(np.sum(0.5 * (c - a) * (F @ w)))
+        return total
+
+    def state_at(self, t: float, after: bool = False) -> tuple[Segment, np.ndarray] | None:
+        """(segment, state) at time t: the last segment containing t (``after``) or the first."""
+        segs = [s for s in self.segments if s.t0 <= t <= s.t1]
+        if not segs:
+            return None
+        seg = segs[-1] if after else segs[0]
+        return seg, seg.states(np.array([t]))[0]
+
+    def extremes(self, column: str, points_per_step: int = 4) -> tuple[float, float]:
+        """(min, max) of an output column over the run, located on the dense output.
+
+        The column is evaluated at ``points_per_step`` points of every step; the smallest and largest values
+        are refined by golden-section search (to PEAK_XTOL) between their neighbours.
+        """
+        from .solution import PEAK_XTOL, golden_max
+
+        best: dict[int, tuple[float, float, Segment, float, float]] = {}
+        for seg in self.segments:
+            b = seg.breaks()
+            if b.size < 2:
+                continue
+            frac = np.linspace(0.0, 1.0, points_per_step + 1)[:-1]
+            t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
+            v = self.evaluate(seg, t)[0][column]
+            for sign in (-1, 1):
+                i = int(np.argmax(sign * v))
+                if sign not in best or sign * v[i] > sign * best[sign][0]:
+                    lo, hi = t[max(i - 1, 0)], t[min(i + 1, t.size - 1)]
+                    best[sign] = (float(v[i]), float(t[i]), seg, float(lo), float(hi))
+        out = []
+        for sign in (-1, 1):
+            if sign not in best:
+                out.append(math.nan)
+                continue
+            value, _, seg, lo, hi = best[sign]
+            if hi > lo:
+                f = lambda x, seg=seg, sign=sign: sign * float(self.evaluate(seg, np.array([x]))[0][column][0])  # noqa: E731
+                value = max(sign * value, golden_max(f, lo, hi, xtol=PEAK_XTOL)[1]) * sign
+            out.append(value)
+        return out[0], out[1]
+
+    # ---------------------------------------------------------------- energy balance
+    @cached_property
+    def checkpoints(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(times, total energy, kinetic energy) at every step boundary of the run."""
+        ts, Es, Ts = [], [], []
+        for seg in self.segments:
+            t = seg.breaks()
+            cols = self.evaluate(seg, t)[0]
+            ts.append(t)
+            Es.append(total_energy(cols))
+            Ts.append(cols["kinetic_energy"])
+        if not ts:
+            return np.empty(0), np.empty(0), np.empty(0)
+        return np.concatenate(ts), np.concatenate(Es), np.concatenate(Ts)
+
+
+def total_energy(cols: dict[str, np.ndarray]) -> np.ndarray:
+    """T + V_e + V_g + U_c + E_d - W: conserved by the equations (the energy balance)."""
+    return (cols["kinetic_energy"] + cols["elastic_energy"] + cols["gravitational_energy"] + cols["contact_energy"]
+            + cols["dissipated_energy"] - cols["drive_work"])
