@@ -118,10 +118,14 @@ class RunSource:
         return t[order], f[order]
 
     def impulse(self, t0: float, t1: float) -> float:
-        """int F dt over [t0, t1]: 8-point Gauss-Legendre per step of the contact phases."""
+        """int F dt over [t0, t1]: over whole steps of the compiled integrator the Gauss quadrature of its nodal
+        forces (exact for the collocated force), else 8-point Gauss-Legendre per step on the dense output."""
         x, w = np.polynomial.legendre.leggauss(8)
         total = 0.0
         for seg in self._contact_segments(t0, t1):
+            if seg.t0 >= t0 and seg.t1 <= t1 and hasattr(seg.dense, "impulse"):
+                total += seg.dense.impulse()
+                continue
             b = np.clip(seg.breaks(), t0, t1)
             a, c = b[:-1], b[1:]
             keep = c > a
@@ -133,13 +137,15 @@ class RunSource:
             total += float(np.sum(0.5 * (c - a) * (F @ w)))
         return total
 
-    def state_at(self, t: float, after: bool = False) -> tuple[Segment, np.ndarray] | None:
-        """(segment, state) at time t: the last segment containing t (``after``) or the first."""
+    def mechanical_energy(self, t: float, after: bool = False) -> float:
+        """T + V_e + V_g at time t (no contact potential, no bookkeeping): in the last segment containing t
+        (``after``: after a jump there) or the first."""
         segs = [s for s in self.segments if s.t0 <= t <= s.t1]
         if not segs:
-            return None
+            return math.nan
         seg = segs[-1] if after else segs[0]
-        return seg, seg.states(np.array([t]))[0]
+        cols = self.evaluate(seg, np.array([t]))[0]
+        return float(cols["kinetic_energy"][0] + cols["elastic_energy"][0] + cols["gravitational_energy"][0])
 
     def extremes(self, column: str, points_per_step: int = 4) -> tuple[float, float]:
         """(min, max) of an output column over the run, located on the dense output.
@@ -147,7 +153,7 @@ class RunSource:
         The column is evaluated at ``points_per_step`` points of every step; the smallest and largest values
         are refined by golden-section search (to PEAK_XTOL) between their neighbours.
         """
-        from .solution import PEAK_XTOL, golden_max
+        from .solution import PEAK_XTOL, zoom_max
 
         best: dict[int, tuple[float, float, Segment, float, float]] = {}
         for seg in self.segments:
@@ -169,8 +175,8 @@ class RunSource:
                 continue
             value, _, seg, lo, hi = best[sign]
             if hi > lo:
-                f = lambda x, seg=seg, sign=sign: sign * float(self.evaluate(seg, np.array([x]))[0][column][0])  # noqa: E731
-                value = max(sign * value, golden_max(f, lo, hi, xtol=PEAK_XTOL)[1]) * sign
+                f = lambda x, seg=seg, sign=sign: sign * self.evaluate(seg, np.asarray(x))[0][column]  # noqa: E731
+                value = max(sign * value, zoom_max(f, lo, hi, xtol=PEAK_XTOL)[1]) * sign
             out.append(value)
         return out[0], out[1]
 

@@ -181,22 +181,14 @@ def uses_exponential(case: Case, method: str, system: BeamSystem) -> bool:
 
 def collect(run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case, info: dict[str, float],
             stepper=None) -> Solution:
-    """The Solution of a run: contact log completed on the dense output, outputs evaluated on demand."""
-    source = RunSource(run, system)
-    for ev in method.contacts:
-        end = ev.end if math.isfinite(ev.end) else run.t_final
-        if math.isnan(ev.impulse) and end > ev.onset:
-            ev.impulse = source.impulse(ev.onset, end)
-            before, after = source.state_at(ev.onset, after=True), source.state_at(end)
-            if before is not None and after is not None:
-                ev.energy_before = _mechanical(system, *before, ev.onset)
-                ev.energy_after = _mechanical(system, *after, end)
+    """The Solution of a run: the contact log is completed and the outputs evaluated on demand, from the dense
+    output (:class:`~flexbeam.sampling.RunSource`)."""
     exponential = isinstance(stepper, ModalStepper)
     provenance = {
         "flexbeam_version": __version__,
         "python": platform.python_version(),
         "case_name": case.name,
-        "case_toml": dump_case(case),
+        "case_toml": lambda: dump_case(case),
         "method": method.name,
         "integrator": run.integrator,
         "frame": system.beam.frame,
@@ -208,26 +200,15 @@ def collect(run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case
         "compliant_support": int(system.compliant),
         **info,
     }
-    sol = Solution(
+    return Solution(
         contacts=method.contacts,
         status=run.status,
         message=run.message,
         stats={"steps": run.steps, "nfev": run.nfev, "wall_time": run.wall_time},
         provenance=provenance,
         measuring_points=np.asarray(case.output.measuring_points, float),
-        source=source,
+        source=RunSource(run, system),
     )
-    for ev in method.contacts:
-        peaks = sol.force_peaks(ev.index, threshold=0.0)
-        if peaks:
-            ev.peak_time, ev.peak_force = max(peaks, key=lambda p: p[1])
-    return sol
-
-
-def _mechanical(system: BeamSystem, seg, y: np.ndarray, t: float) -> float:
-    """T + V_e + V_g of state y (without the contact potential and the bookkeeping integrals)."""
-    cols = system.outputs(np.array([t]), y[None, :], seg.phase.mode, seg.phase.parameters)[0]
-    return float(cols["kinetic_energy"][0] + cols["elastic_energy"][0] + cols["gravitational_energy"][0])
 
 
 __all__ = ["IMPACT_METHODS", "METHOD_NAMES", "PhaseMethod", "initial_state", "release_state", "simulate",

@@ -172,10 +172,11 @@ class Solution:
         if source is None and (time is None or phase is None or arrays is None):
             raise ValueError("Solution: give time, phase and arrays, or a source")
         self._samples = None if source is not None else (np.asarray(time), np.asarray(phase), arrays)
-        self.contacts = list(contacts or [])
+        self._contacts = list(contacts or [])
+        self._completed: set[int] = set()
         self.status, self.message = status, message
         self.stats = dict(stats or {})
-        self.provenance = dict(provenance or {})
+        self._provenance = dict(provenance or {})
         self.measuring_points = np.empty(0) if measuring_points is None else np.asarray(measuring_points, float)
         self._force_at = _force_at if source is None else source.force_at
         self.source = source
@@ -200,6 +201,39 @@ class Solution:
     def arrays(self) -> dict[str, np.ndarray]:
         return self._loaded()[2]
 
+    @property
+    def provenance(self) -> dict[str, Any]:
+        """Version, case (TOML), method, tolerances, derived parameters (a callable entry is evaluated when the
+        provenance is first read: the case's TOML text is written only for an export)."""
+        for key, value in self._provenance.items():
+            if callable(value):
+                self._provenance[key] = value()
+        return self._provenance
+
+    @property
+    def contacts(self) -> list[ContactEvent]:
+        """The contact log, each record completed (impulse, energies, peak) on first use."""
+        for i in range(len(self._contacts)):
+            self.contact(i)
+        return self._contacts
+
+    def contact(self, i: int) -> ContactEvent:
+        """Contact record ``i``; a run's impulse, energies before/after and peak are found on its dense output
+        the first time it is asked for (a jump's impulse and energies are logged at the jump)."""
+        ev = self._contacts[i]
+        if i in self._completed or self.source is None:
+            return ev
+        self._completed.add(i)
+        src = self.source
+        end = ev.end if math.isfinite(ev.end) else src.run.t_final
+        if math.isnan(ev.impulse) and end > ev.onset:
+            ev.impulse = src.impulse(ev.onset, end)
+            ev.energy_before, ev.energy_after = src.mechanical_energy(ev.onset, after=True), src.mechanical_energy(end)
+        peaks = self.force_peaks(i, threshold=0.0)
+        if peaks:
+            ev.peak_time, ev.peak_force = max(peaks, key=lambda p: p[1])
+        return ev
+
     @cached_property
     def _in_contact(self) -> np.ndarray:
         """Samples of contact, constrained or resting phases (bool per sample)."""
@@ -210,7 +244,7 @@ class Solution:
 
     @property
     def method(self) -> str:
-        return str(self.provenance.get("method", ""))
+        return str(self._provenance.get("method", ""))
 
     def _repr_html_(self) -> str:
         """Notebook display: status, metrics and a small plot (:func:`flexbeam.display.solution_html`)."""
@@ -263,7 +297,7 @@ class Solution:
 
     def force_peaks(self, contact: int = 0, threshold: float = 0.05) -> list[tuple[float, float]]:
         """Local maxima (time [s], force [N]) of one contact's force above ``threshold`` x peak."""
-        if contact >= len(self.contacts):
+        if contact >= len(self._contacts):
             return []
         if contact not in self._peaks:
             self._peaks[contact] = self._all_peaks(contact)
@@ -274,7 +308,7 @@ class Solution:
         return [p for p in peaks if p[1] > threshold * top]
 
     def _all_peaks(self, contact: int) -> list[tuple[float, float]]:
-        ev = self.contacts[contact]
+        ev = self._contacts[contact]
         tt, f = self._force_samples(ev)
         if tt.size < 3:
             return []
@@ -291,10 +325,11 @@ class Solution:
         onset until the sensor force -(k_s s + c_s s') first returns to zero (linear interpolation between
         samples); its peaks are the sampled local maxima above ``threshold`` x its maximum.
         """
-        if "sensor_force" not in self.arrays or not self.contacts:
+        if "sensor_force" not in self.arrays or not self._contacts:
             return [], math.nan
+        onset = self._contacts[0].onset
         t, f = self.time, self.arrays["sensor_force"]
-        i0 = int(np.searchsorted(t, self.contacts[0].onset))
+        i0 = int(np.searchsorted(t, onset))
         pos = np.nonzero(f[i0:] > 0.0)[0]
         if pos.size == 0:
             return [], math.nan
@@ -308,9 +343,9 @@ class Solution:
         ff, tt = f[i0:k], t[i0:k]
         peaks = [(float(tt[i]), float(ff[i])) for i in interior_maxima(ff)]
         if not peaks:
-            return [], end - self.contacts[0].onset
+            return [], end - onset
         top = max(p[1] for p in peaks)
-        return [p for p in peaks if p[1] > threshold * top], end - self.contacts[0].onset
+        return [p for p in peaks if p[1] > threshold * top], end - onset
 
     def metrics(self) -> dict[str, Any]:
         """The run's summary numbers (the ``--json`` contract of ``flexbeam run``).
@@ -327,7 +362,7 @@ class Solution:
             "method": self.method,
             "status": self.status,
             "message": self.message,
-            "contacts": len(self.contacts),
+            "contacts": len(self._contacts),
             "impact_velocity": math.nan,
             "peak_force": math.nan,
             "peak_time": math.nan,
@@ -343,8 +378,8 @@ class Solution:
             "steps": int(self.stats.get("steps", 0)),
             "nfev": int(self.stats.get("nfev", 0)),
         }
-        if self.contacts:
-            ev = self.contacts[0]
+        if self._contacts:
+            ev = self.contact(0)
             out["impact_velocity"] = ev.velocity_before
             out["post_impact_velocity"] = ev.velocity_after
             out["contact_duration"] = ev.duration
@@ -360,7 +395,7 @@ class Solution:
                 out["force_peak_times"] = [p[0] - ev.onset for p in peaks]
                 others = [p[1] for p in peaks if p[0] != tp]
                 out["second_peak_force"] = max(others) if others else math.nan
-        if self.provenance.get("compliant_support") or (self._samples is not None and "sensor_force" in self.arrays):
+        if self._provenance.get("compliant_support") or (self._samples is not None and "sensor_force" in self.arrays):
             peaks, duration = self.sensor_pulse()
             ranked = sorted((p[1] for p in peaks), reverse=True)
             out["sensor_peak_force"] = ranked[0] if ranked else math.nan

@@ -113,7 +113,11 @@ class ModalDense:
 
     def __init__(self, stepper: ModalStepper, records: np.ndarray) -> None:
         self.stepper, self.records = stepper, records
-        self.breaks = np.append(records[:, 0], records[-1, 0] + records[-1, 1])
+
+    @property
+    def breaks(self) -> np.ndarray:
+        """The step boundaries."""
+        return np.append(self.records[:, 0], self.records[-1, 0] + self.records[-1, 1])
 
     def __call__(self, times: np.ndarray) -> np.ndarray:
         times = np.ascontiguousarray(times, float)
@@ -124,6 +128,13 @@ class ModalDense:
                    np.ascontiguousarray(times[order]), Ys)
         Y[order] = Ys
         return Y
+
+    def impulse(self) -> float:
+        """int F dt over the phase: each step's Gauss quadrature of its nodal contact force (or multiplier)."""
+        c, w = gauss_nodes()
+        N = self.stepper.basis.N
+        off = 4 + 2 * N + 4 * N
+        return float(np.sum(self.records[:, 1] * (self.records[:, off : off + 4] @ w)))
 
     def nodal_forces(self) -> tuple[np.ndarray, np.ndarray]:
         """(times, values) of the contact force (or multiplier) at every step's Gauss nodes."""
@@ -155,6 +166,9 @@ class ModalStepper:
         self.kernel = system.kernel
         self.record_size, self.state_size, _, _ = core.sizes(self.basis.N)
         self.h = FIRST_STEP
+        self.omega_rigid = self.basis.omega_rigid
+        self.psi = np.diag(self.basis.Psi).copy() if self.basis.diagonal else None
+        self.to_m = np.diag(self.basis.toM).copy() if self.basis.diagonal else None
 
     # state conversion between the reference layout [z, z', (s, s'), E_d, W] and modal (eta, v)
     def to_modal(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -163,11 +177,16 @@ class ModalStepper:
         z[:nz], zd[:nz] = y[:nz], y[nz : 2 * nz]
         if N > nz:
             z[nz], zd[nz] = y[2 * nz], y[2 * nz + 1]
+        if self.to_m is not None:  # a diagonal basis (the system frame): no matrix product
+            return self.to_m * z, self.to_m * zd
         return self.basis.toM @ z, self.basis.toM @ zd
 
     def from_modal(self, eta: np.ndarray, v: np.ndarray, Ed: float, W: float) -> np.ndarray:
         nz, N = self.system.nz, self.basis.N
-        z, zd = self.basis.Psi @ eta, self.basis.Psi @ v
+        if self.psi is not None:
+            z, zd = self.psi * eta, self.psi * v
+        else:
+            z, zd = self.basis.Psi @ eta, self.basis.Psi @ v
         y = np.empty(self.system.size)
         y[:nz], y[nz : 2 * nz] = z[:nz], zd[:nz]
         if N > nz:
@@ -188,7 +207,7 @@ class ModalStepper:
         ctrl = np.zeros(10)
         ctrl[0] = int(phase.mode)
         ctrl[1:5] = phase.parameters[:4]
-        ctrl[5:10] = self.rtol, self.atol, min(self.max_step, phase.max_step), self.basis.omega_rigid, bits
+        ctrl[5:10] = self.rtol, self.atol, min(self.max_step, phase.max_step), self.omega_rigid, bits
         info = np.zeros(4)
         chunks = []
         capacity = 64

@@ -120,14 +120,13 @@ class ImpactMethod:
         ev.energy_before, ev.energy_after = jump.kinetic_before, jump.kinetic_after
         return ev
 
-    def contact_time(self, t: float, y: np.ndarray, stiffness: float, exponent: float) -> float:
-        """Duration of a rigid-body Hertz impact at the onset's effective mass and approach speed [s]
-        (Johnson 1985, Sec. 11.4), the time scale of a contact; inf when P does not approach."""
-        speed = abs(self.gap_event(t, y)[1])
-        m_eff = self.system.effective_mass(t, y)
-        if speed <= 1e-9 or not math.isfinite(m_eff):
+    @staticmethod
+    def contact_time(speed: float, m_eff: float, stiffness: float, exponent: float) -> float:
+        """Duration of a rigid-body Hertz impact of mass ``m_eff`` at approach ``speed`` [s] (Johnson 1985,
+        Sec. 11.4), the time scale of a contact; inf when P does not approach."""
+        if abs(speed) <= 1e-9 or not math.isfinite(m_eff):
             return math.inf
-        return rigid_hertz_impact(m_eff, speed, stiffness, exponent)[2]
+        return rigid_hertz_impact(m_eff, abs(speed), stiffness, exponent)[2]
 
     # phase machine ----------------------------------------------------------------
     def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:

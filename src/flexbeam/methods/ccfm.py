@@ -22,9 +22,9 @@ class CCFM(ImpactMethod):
 
     def contact_phase(self, t: float, y: np.ndarray) -> Phase:
         ev = self.new_contact(t, y)
-        law = self.system.law
-        p = law.parameters(-ev.velocity_before, self.system.effective_mass(t, y))
-        step = self.contact_time(t, y, float(p[0]), float(p[1])) / CONTACT_STEPS
+        m_eff = self.system.effective_mass(t, y)
+        p = self.system.law.parameters(-ev.velocity_before, m_eff)
+        step = self.contact_time(-ev.velocity_before, m_eff, float(p[0]), float(p[1])) / CONTACT_STEPS
         return Phase("contact", ContactMode.FORCE, (EventKind.SEPARATION,), self.case.solver.contact_sample_step,
                      p, ev, max_step=step)
 

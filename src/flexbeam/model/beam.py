@@ -33,7 +33,7 @@ model sets D = G = H = 0.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -84,6 +84,8 @@ class ModalBeam:
     G: np.ndarray
     #: hub slope d = Psi'(0) [1/m] (zero in the hub frame): hub angle = theta + d q
     d: np.ndarray
+    #: points already built by :meth:`point` (x, offset) -> PointData
+    _points: dict = field(default_factory=dict, compare=False, repr=False)
 
     @property
     def first_order(self) -> bool:
@@ -112,6 +114,12 @@ class ModalBeam:
 
     def point(self, x: float, offset: float = 0.0) -> PointData:
         """Modal data of the material point ``x`` (``offset`` below the centre line)."""
+        key = (float(x), float(offset))
+        if key not in self._points:
+            self._points[key] = self._point(*key)
+        return self._points[key]
+
+    def _point(self, x: float, offset: float) -> PointData:
         phi = self.shapes(np.array([x]), 0)[0]
         dphi = self.shapes(np.array([x]), 1)[0]
         H = np.zeros((self.n, self.n))
@@ -121,6 +129,7 @@ class ModalBeam:
                 xg, wg = _gauss(0.0, x, _auto_points(self.n, 0))
                 d1 = self.shapes(xg, 1)
                 H = H + (d1 * wg[:, None]).T @ d1
+            H = 0.5 * (H + H.T)  # exactly symmetric: the kernels read it by columns
         return PointData(float(x), self.hub_radius + x, phi, dphi, H, float(offset))
 
 
@@ -149,6 +158,21 @@ def case_shapes(case: Case) -> ModeShapes:
 
 
 def build_modal_beam(case: Case) -> ModalBeam:
+    """The modal beam of ``case`` (memoised on the fields it depends on: sweeps over contact or initial
+    parameters reuse it)."""
+    key = (case.beam.model_dump_json(), case.hub.model_dump_json(), case.model.model_dump_json(), case.frame)
+    beam = _BEAMS.get(key)
+    if beam is None:
+        if len(_BEAMS) >= 32:
+            _BEAMS.pop(next(iter(_BEAMS)))
+        beam = _BEAMS[key] = _build_modal_beam(case)
+    return beam
+
+
+_BEAMS: dict[tuple, ModalBeam] = {}
+
+
+def _build_modal_beam(case: Case) -> ModalBeam:
     """Compute the modal integrals of ``case`` by Gauss-Legendre quadrature.
 
     The default number of Gauss points, 8 n + 48, integrates products of the n-th

@@ -158,7 +158,7 @@ def _stable_terms(z: float, xi: np.ndarray):
 
 def _combine(z, a, c, terms, derivative):
     e1, e2, co, si = terms
-    E = math.exp(-z)
+    E = np.exp(-z)
     d, b = a - c * E, 2.0 * c * E - a
     if derivative == 0:
         return c * e1 + d * e2 + a * co + b * si
@@ -205,13 +205,12 @@ class ModeShapes:
     def __call__(self, x: np.ndarray, derivative: int = 0) -> np.ndarray:
         """Shapes (or their x-derivatives) at points ``x`` [m]: ``out[i, k] = psi_k^(derivative)(x_i)``."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        out = np.empty((x.size, self.n))
-        xi = x / self.length
-        for k, z in enumerate(self.roots):
-            out[:, k] = (z / self.length) ** derivative * _combine(
-                z, self.a[k], self.c[k], _stable_terms(z, xi), derivative
-            )
-        return out
+        if self.n == 0:
+            return np.empty((x.size, 0))
+        xi = (x / self.length)[:, None]
+        z = self.roots[None, :]
+        return (z / self.length) ** derivative * _combine(z, self.a[None, :], self.c[None, :],
+                                                         _stable_terms(z, xi), derivative)
 
 
 @functools.cache

@@ -27,6 +27,12 @@
 #define MULTIPLIER_NOISE 1e-7
 
 void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double *v, int want_gap, fb_node *out) {
+    fb_eval_node_acc(ph, t, eta, v, want_gap, 0, out);
+}
+
+/* As fb_eval_node; ``want_acc``: also the gap's velocity-product acceleration gamma (an n x n product more). */
+void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const double *v, int want_gap, int want_acc,
+                      fb_node *out) {
     const fb_model *m = ph->m;
     const fb_basis *b = ph->b;
     int n = m->n, N = b->N, nz = b->nz, pre = m->prescribed, compliant = fb_compliant(m);
@@ -77,7 +83,7 @@ void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double 
     out->gap.delta = INFINITY;
     if (!want_gap || !o) return;
     double dr[2 * FB_MAXN], J[FB_MAXN], Jx[FB_MAXN];
-    fb_kin k;
+    fb_kin k = {.want_acc = want_acc};
     fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &k, dr);
     fb_gap gp = fb_gap_state(o, &k, dr, n + 1, s, sd, J);
     out->gap = gp;
@@ -115,7 +121,7 @@ fb_gap fb_gap_at(const fb_phase *ph, double t, const double *eta, const double *
         th = z[0];
         thd = zd[0];
     }
-    fb_kin k;
+    fb_kin k = {.want_acc = 0};
     fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &k, NULL);
     return fb_gap_state(&m->obstacles[0], &k, NULL, n + 1, compliant ? z[N - 1] : 0.0, compliant ? zd[N - 1] : 0.0,
                         NULL);
@@ -266,7 +272,7 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
      * d min(h^2 / ((p + 1)(p + 2)), 2 / w^2).  The collocation end state itself is superconvergent (order 2p),
      * so this estimate is conservative. */
     fb_node *end = &w->end;
-    fb_eval_node(ph, t0 + h, out->eta1, out->v1, 1, end);
+    fb_eval_node_acc(ph, t0 + h, out->eta1, out->v1, 1, 1, end);
     double Fe = 0.0;
     if (ph->mode == FB_MODE_FORCE) {
         Fe = fb_law_force(ph->p, -end->delta, -end->rate, NULL, NULL, NULL);

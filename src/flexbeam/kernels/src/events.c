@@ -255,8 +255,19 @@ static double safe_spacing(const fb_dense *d, const fb_gap *g, int count) {
     return fmax(0.25 * (o->radius > 0.0 ? o->radius : 1e-3), 0.5 * gap) / (2.0 * speed * d->h);
 }
 
-/* The gap at the points i / m of the step by exact hops between consecutive points. */
-static void sample_hops(const fb_dense *d, const double *A, int m, double *x, fb_gap *g) {
+/* The linearised contribution sum_k j_k eta_k of the modes too fast for samples spaced by T (w_k T > pi/4). */
+static double fast_part(const fb_dense *d, const double *jm, const double *eta, double T) {
+    const fb_basis *b = d->ph->b;
+    double acc = 0.0;
+    for (int k = 0; k < b->N; k++)
+        if (b->omega[k] * T > 0.25 * FB_PI) acc += jm[k] * eta[k];
+    return acc;
+}
+
+/* The gap at the points i / m of the step by exact hops between consecutive points, and the fast modes' part of
+ * it at each (``fast``, for samples spaced by h / m). */
+static void sample_hops(const fb_dense *d, const double *A, const double *jm, int m, double *x, fb_gap *g,
+                        double *fast) {
     const fb_basis *b = d->ph->b;
     int N = b->N;
     fb_hop H[FB_MAXN];
@@ -264,54 +275,71 @@ static void sample_hops(const fb_dense *d, const double *A, int m, double *x, fb
     double eta[FB_MAXN], v[FB_MAXN];
     memcpy(eta, d->eta0, sizeof(double) * N);
     memcpy(v, d->v0, sizeof(double) * N);
+    fast[0] = fast_part(d, jm, eta, d->h / m);
     for (int i = 1; i <= m; i++) {
         fb_hop_advance(b, H, A, (double)(i - 1) / m, 1.0 / m, eta, v);
         x[i] = (double)i / m;
         g[i] = fb_gap_at(d->ph, d->t0 + x[i] * d->h, eta, v);
+        fast[i] = fast_part(d, jm, eta, d->h / m);
     }
 }
 
 /* First crossing of the gap in ``direction`` (-1: closing, +1: opening) inside the step, as a fraction of it:
  * FB_NO_EVENT when the step is provably free of it, FB_UNDECIDED when it is too long to decide.
- * ``known``: the gap at the start, the FB_P nodes and the end (the points kx) that the step's evaluation has
- * already; ``jm``: the modal gap Jacobian near the start (at the first node). */
-double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known, const double *jm) {
+ * ``known``: the gap at the start, the FB_P nodes and the end (the points kx, modal states ``eta_known``, FB_P + 2
+ * rows) that the step's evaluation has already; ``jm``: the modal gap Jacobian near the start (at the first
+ * node).  The gap splits into the part of the modes resolved by the samples, bounded between samples by its
+ * curvature, and that of the faster modes, bounded by their amplitude B; the step is free if the resolved part
+ * stays clear of zero by B.  When undecided, ``*beyond`` is the first sampled fraction found beyond the surface
+ * (1 if none): an event lies before it, so the caller may shorten the step to there. */
+double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known,
+                         const double *eta_known, const double *jm, double *beyond) {
     double sign = direction < 0 ? -1.0 : 1.0;
     double gap0 = known[0].delta, rate0 = known[0].rate;
     if (direction < 0 && far(d, jm, gap0)) return FB_NO_EVENT;
     int leaving = sign < 0.0 ? (gap0 > 0.0 || rate0 > 0.0) : (gap0 < 0.0 || rate0 < 0.0);
     static const int levels[3] = {SAMPLES, 4 * SAMPLES, 16 * SAMPLES};
-    double x[16 * SAMPLES + 1], gv[16 * SAMPLES + 1], r[16 * SAMPLES + 1], A[FB_P * FB_MAXN];
+    int N = d->ph->b->N;
+    double x[16 * SAMPLES + 1], gv[16 * SAMPLES + 1], r[16 * SAMPLES + 1], fast[16 * SAMPLES + 1];
+    double A[FB_P * FB_MAXN];
     fb_gap g[16 * SAMPLES + 1];
-    int m = FB_P + 1, level = 0;
+    int m = FB_P + 1, level = 0, have_A = 0;
+    double dx = 0.0;
     for (int i = 0; i <= m; i++) {
         x[i] = kx[i];
         g[i] = known[i];
+        if (i) dx = fmax(dx, x[i] - x[i - 1]);
     }
-    int have_A = 0;
+    for (int i = 0; i <= m; i++) fast[i] = fast_part(d, jm, eta_known + (size_t)i * N, dx * d->h);
     for (;;) {
-        double dx = 0.0, worst = INFINITY, gam = 0.0;
+        double worst = INFINITY, gam = 0.0;
         for (int i = 0; i <= m; i++) {
             gv[i] = g[i].delta;
             r[i] = g[i].rate * d->h;
             gam = fmax(gam, fabs(g[i].gamma));
-            if (i) {
-                dx = fmax(dx, x[i] - x[i - 1]);
-                worst = fmin(worst, fmin(-sign * gv[i - 1], -sign * gv[i]));
-            }
+            if (i) worst = fmin(worst, fmin(-sign * (gv[i - 1] - fast[i - 1]), -sign * (gv[i] - fast[i])));
         }
         double B, curve = bounds(d, jm, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
         if (dx <= safe) {
-            if (leaving && worst - 2.0 * B - curve > 0.0) return FB_NO_EVENT;
+            if (leaving && worst - B - curve > 0.0) return FB_NO_EVENT;
             if (B == 0.0) return scan(d, x, gv, r, m, sign);
         }
         while (level < 3 && 1.0 / levels[level] > fmin(dx, safe) * (1.0 - 1e-12) && levels[level] <= m) level++;
-        if (level == 3) return FB_UNDECIDED;
-        if (!have_A) fb_monomial(d->f, d->ph->b->N, A), have_A = 1;
+        if (level == 3) {
+            *beyond = 1.0;
+            for (int i = 1; i <= m; i++)
+                if (-sign * gv[i] <= 0.0) {
+                    *beyond = x[i];
+                    break;
+                }
+            return FB_UNDECIDED;
+        }
+        if (!have_A) fb_monomial(d->f, N, A), have_A = 1;
         m = levels[level++];
+        dx = 1.0 / m;
         x[0] = 0.0;
         g[0] = known[0];
-        sample_hops(d, A, m, x, g);
+        sample_hops(d, A, jm, m, x, g, fast);
     }
 }
 

@@ -63,6 +63,7 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf);
 /* ------------------------------------------------------------------ model.c */
 typedef struct {
     double r[2], v[2], a0[2];
+    int want_acc; /* in: compute a0 (its q'^T H q' costs an n x n product; the gap and its rate do not need it) */
 } fb_kin;
 
 typedef struct {
@@ -75,6 +76,7 @@ double fb_drive_torque(const fb_model *m, double t);
 void fb_state_split(const fb_model *m, double t, const double *y, double *th, double *thd, double *thdd,
                     const double **q, const double **qd);
 double fb_quad(const double *A, const double *x, int n);
+void fb_symv(const double *A, const double *x, int n, double *out);
 void fb_matvec(const double *A, const double *x, int n, double *out);
 void fb_mass_matrix(const fb_model *m, const double *q, double *M);
 double fb_forces(const fb_model *m, double th, double thd, const double *q, const double *qd, double tau, int elastic,

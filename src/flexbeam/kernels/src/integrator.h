@@ -30,6 +30,8 @@ typedef struct {
 } fb_node;
 
 void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double *v, int want_gap, fb_node *out);
+void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const double *v, int want_gap, int want_acc,
+                      fb_node *out);
 fb_gap fb_gap_at(const fb_phase *ph, double t, const double *eta, const double *v);
 
 /* Work space of one phase: the step's weights (cached for its length h), the node evaluations. */
@@ -71,7 +73,8 @@ typedef struct { /* a step's dense output, for the event search */
 } fb_dense;
 
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v);
-double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known, const double *jm);
+double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known,
+                         const double *eta_known, const double *jm, double *beyond);
 double fb_find_release(const double *lam);
 double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, int count);
 

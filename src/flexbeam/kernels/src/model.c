@@ -113,13 +113,21 @@ void fb_state_split(const fb_model *m, double t, const double *y, double *th, do
     }
 }
 
-double fb_quad(const double *A, const double *x, int n) {
-    double acc = 0.0;
-    for (int i = 0; i < n; i++) {
-        double row = 0.0;
-        for (int j = 0; j < n; j++) row += A[i * n + j] * x[j];
-        acc += x[i] * row;
+/* out = A x for a symmetric A, by column sweeps (out_i accumulates A_ji x_j over j in order): the inner loop runs
+ * over contiguous memory and independent outputs, so it vectorises without reassociating any sum -- the result is
+ * the row-by-row dot product's, bit for bit, at any vector width. */
+void fb_symv(const double *A, const double *x, int n, double *out) {
+    for (int i = 0; i < n; i++) out[i] = 0.0;
+    for (int j = 0; j < n; j++) {
+        const double xj = x[j], *Aj = A + (size_t)j * n;
+        for (int i = 0; i < n; i++) out[i] += Aj[i] * xj;
     }
+}
+
+double fb_quad(const double *A, const double *x, int n) {
+    double Ax[MAXZ], acc = 0.0;
+    fb_symv(A, x, n, Ax);
+    for (int i = 0; i < n; i++) acc += x[i] * Ax[i];
     return acc;
 }
 
@@ -152,32 +160,26 @@ double fb_forces(const fb_model *m, double th, double thd, const double *q, cons
                  double *Q) {
     int n = m->n;
     double c = cos(th), s = sin(th), g = m->g;
-    double qMcqd = 0.0, qMcq = 0.0, qGq = 0.0, sfq = 0.0;
+    double qMcqd = 0.0, qMcq = 0.0, qGq = 0.0, sfq = 0.0, mcq[MAXZ], gq[MAXZ];
+    fb_symv(m->Mc, q, n, mcq);
     for (int i = 0; i < n; i++) {
-        double mcq = 0.0;
-        const double *Mc = m->Mc + i * n;
-        for (int j = 0; j < n; j++) mcq += Mc[j] * q[j];
-        qMcqd += mcq * qd[i];
-        qMcq += mcq * q[i];
-        Q[i + 1] = thd * thd * mcq + tau * m->d[i];
+        qMcqd += mcq[i] * qd[i];
+        qMcq += mcq[i] * q[i];
+        Q[i + 1] = thd * thd * mcq[i] + tau * m->d[i];
     }
     if (g != 0.0) {
+        fb_symv(m->G, q, n, gq);
         for (int i = 0; i < n; i++) {
-            double gq = 0.0;
-            const double *G = m->G + i * n;
-            for (int j = 0; j < n; j++) gq += G[j] * q[j];
-            qGq += q[i] * gq;
+            qGq += q[i] * gq[i];
             sfq += m->sf[i] * q[i];
-            Q[i + 1] -= g * (c * m->sf[i] - s * gq);
+            Q[i + 1] -= g * (c * m->sf[i] - s * gq[i]);
         }
     }
-    if (elastic)
-        for (int i = 0; i < n; i++) {
-            double kq = 0.0;
-            const double *K = m->K + i * n;
-            for (int j = 0; j < n; j++) kq += K[j] * q[j];
-            Q[i + 1] -= kq;
-        }
+    if (elastic) {
+        double kq[MAXZ];
+        fb_symv(m->K, q, n, kq);
+        for (int i = 0; i < n; i++) Q[i + 1] -= kq[i];
+    }
     Q[0] = tau - 2.0 * thd * qMcqd - g * (c * (m->m1 - 0.5 * qGq) - s * sfq);
     return qMcq;
 }
@@ -197,17 +199,15 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double
     int n = m->n, N = n + 1;
     double ang = dot(P->dphi, q, n), angd = dot(P->dphi, qd, n);
     double sa = sin(ang), ca = cos(ang), ct = cos(th), st = sin(th), c = P->offset;
-    double qHq = 0.0, rhod_x = 0.0, rhod_y = 0.0, qdHqd = 0.0;
+    double qHq = 0.0, rhod_x = 0.0, rhod_y = 0.0, qdHqd = 0.0, hq[MAXZ], hqd[MAXZ];
+    fb_symv(P->H, q, n, hq);
+    if (out->want_acc) {
+        fb_symv(P->H, qd, n, hqd);
+        for (int i = 0; i < n; i++) qdHqd += qd[i] * hqd[i];
+    }
     for (int i = 0; i < n; i++) {
-        const double *H = P->H + i * n;
-        double hq = 0.0, hqd = 0.0;
-        for (int j = 0; j < n; j++) {
-            hq += H[j] * q[j];
-            hqd += H[j] * qd[j];
-        }
-        qHq += q[i] * hq;
-        qdHqd += qd[i] * hqd;
-        double dx = -hq + c * ca * P->dphi[i];
+        qHq += q[i] * hq[i];
+        double dx = -hq[i] + c * ca * P->dphi[i];
         double dy = P->phi[i] + c * sa * P->dphi[i];
         rhod_x += dx * qd[i];
         rhod_y += dy * qd[i];
@@ -348,7 +348,7 @@ int fb_rhs(const fb_model *m, double t, const double *y, int mode, const double 
     double F = 0.0, diss = 0.0, Js = 0.0;
     memset(J, 0, sizeof(double) * N);
     if (mode != FB_MODE_NONE && o) {
-        fb_kin k;
+        fb_kin k = {.want_acc = 1};
         fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &k, dr);
         fb_gap gp = fb_gap_state(o, &k, dr, N, s, sd, J);
         Js = gp.Js;
@@ -439,7 +439,7 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
         double F = 0.0, Uc = 0.0, torque = m->prescribed ? 0.0 : fb_drive_torque(m, t);
         fb_gap gp = {0};
         if (o) {
-            fb_kin kin;
+            fb_kin kin = {.want_acc = 1};
             fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &kin, dr);
             gp = fb_gap_state(o, &kin, dr, N, s, sd, J);
         }
@@ -457,7 +457,7 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
         }
         double phi = th + dot(m->d, q, n), phid = thd + dot(m->d, qd, n);
         double e2x = -sin(phi), e2y = cos(phi); /* the hub's normal */
-        fb_kin tip;
+        fb_kin tip = {.want_acc = 0};
         fb_point_kinematics(m, &m->points[1], th, thd, q, qd, &tip, NULL);
         out[0] = phi;
         out[1] = phid;
@@ -475,7 +475,7 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
         out[13] = s;
         out[14] = compliant ? -(o->ks * s + o->cs * sd) : 0.0;
         for (int j = 0; j < nmeas; j++) {
-            fb_kin kin;
+            fb_kin kin = {.want_acc = 0};
             fb_point_kinematics(m, &m->points[2 + j], th, thd, q, qd, &kin, NULL);
             mv[(size_t)k * nmeas + j] = e2x * kin.v[0] + e2y * kin.v[1];
         }

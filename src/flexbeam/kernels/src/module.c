@@ -133,7 +133,7 @@ static PyObject *py_kinematics(PyObject *self, PyObject *args) {
     double th, thd, thdd, *out = PTR(b[2]);
     const double *q, *qd;
     fb_state_split(&m, t, PTR(b[1]), &th, &thd, &thdd, &q, &qd);
-    fb_kin k;
+    fb_kin k = {.want_acc = 1};
     fb_point_kinematics(&m, &m.points[ip], th, thd, q, qd, &k, out + 6);
     out[0] = k.r[0]; out[1] = k.r[1]; out[2] = k.v[0]; out[3] = k.v[1]; out[4] = k.a0[0]; out[5] = k.a0[1];
     release(b, 3);
@@ -164,7 +164,7 @@ static PyObject *py_gap(PyObject *self, PyObject *args) {
     fb_state_split(&m, t, y, &th, &thd, &thdd, &q, &qd);
     int nb = 2 * fb_nz(&m);
     double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
-    fb_kin k;
+    fb_kin k = {.want_acc = 1};
     fb_point_kinematics(&m, &m.points[0], th, thd, q, qd, &k, dr);
     fb_gap g = fb_gap_state(&m.obstacles[0], &k, dr, N, s, sd, J);
     if (compliant) J[N] = g.Js;

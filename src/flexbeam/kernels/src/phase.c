@@ -40,7 +40,7 @@ static void node_rates(const fb_phase *ph, const fb_node *nd, double F, double F
     double Mtt = m->Jc + fb_quad(m->Mc, q, n), mq = 0.0, Jt = 0.0;
     for (int i = 0; i < n; i++) mq += m->mtq[i] * qd[i];
     if (ph->mode != FB_MODE_NONE && m->nobstacles) {
-        fb_kin k;
+        fb_kin k = {.want_acc = 0};
         fb_point_kinematics(m, &m->points[0], nd->th, nd->thd, q, qd, &k, dr);
         fb_gap_state(&m->obstacles[0], &k, dr, n + 1, 0.0, 0.0, J);
         Jt = J[0];
@@ -157,32 +157,38 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, double 
             continue;
         }
         /* events on the accepted step's dense output */
-        double x = FB_NO_EVENT;
+        double x = FB_NO_EVENT, beyond = 1.0;
         int kind = 0;
         fb_gap known[FB_P + 2];
         double kx[FB_P + 2];
         if (events & (EV_IMPACT | EV_SEPARATION)) {
             if (!have_gap0) gap0 = fb_gap_at(&ph, t, eta, v);
+            double ek[(FB_P + 2) * FB_MAXN];
             kx[0] = 0.0, known[0] = gap0;
+            memcpy(ek, eta, sizeof(double) * N);
             for (int j = 0; j < FB_P; j++) {
-                if (!contact) { /* free flight: the nodes were evaluated without the gap */
-                    double e[FB_MAXN], u[FB_MAXN];
-                    fb_propagate(b, &w->W[0][j], FB_NPTS, eta, v, trial, e, u);
-                    fb_eval_node(&ph, t + tb->c[j] * h, e, u, 1, &w->node[j]);
+                double *e = ek + (size_t)(j + 1) * N, u[FB_MAXN];
+                fb_propagate(b, &w->W[0][j], FB_NPTS, eta, v, trial, e, u);
+                if (!contact) { /* free flight: the nodes were evaluated without the gap (the first fully: jm) */
+                    if (j == 0)
+                        fb_eval_node(&ph, t + tb->c[j] * h, e, u, 1, &w->node[j]);
+                    else
+                        w->node[j].gap = fb_gap_at(&ph, t + tb->c[j] * h, e, u);
                 }
                 kx[j + 1] = tb->c[j], known[j + 1] = w->node[j].gap;
             }
             kx[FB_P + 1] = 1.0, known[FB_P + 1] = w->end.gap;
+            memcpy(ek + (size_t)(FB_P + 1) * N, st.eta1, sizeof(double) * N);
             fb_dense dd = {&ph, t, h, eta, v, trial};
-            x = fb_find_gap_event(&dd, (events & EV_IMPACT) ? -1 : 1, kx, known, w->node[0].jm);
+            x = fb_find_gap_event(&dd, (events & EV_IMPACT) ? -1 : 1, kx, known, ek, w->node[0].jm, &beyond);
             kind = (events & EV_IMPACT) ? FB_EVENT_IMPACT : FB_EVENT_SEPARATION;
         }
         if (x == FB_NO_EVENT && (events & EV_RELEASE)) {
             x = fb_find_release(w->F);
             kind = FB_EVENT_RELEASE;
         }
-        if (x == FB_UNDECIDED) {
-            h *= 0.25;
+        if (x == FB_UNDECIDED) { /* shorten the step, to just past the first sample seen beyond the surface */
+            h *= beyond < 1.0 ? fmax(beyond, 0.0625) : 0.25;
             info[2] += 1;
             continue;
         }

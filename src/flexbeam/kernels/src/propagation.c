@@ -68,11 +68,12 @@ static void osc_moments(double th, double cos_t, double sin_t, double *Cm, doubl
         for (int k = 2; k < m + 2; k++) fact *= k; /* (m + 1)! */
         double mf = fact / (m + 1);                  /* m! */
         double c_term = mf / fact, s_term = c_term / (m + 2), c_acc = c_term, s_acc = s_term;
-        for (int j = 1; j < 12; j++) { /* th^22 / 24! < 2e-24 */
+        for (int j = 1; j < 12; j++) { /* th^22 / 24! < 2e-24: at most 11 terms, fewer for a small th */
             c_term = -c_term * t2 / ((2.0 * j + m) * (2.0 * j + m + 1));
             s_term = -s_term * t2 / ((2.0 * j + m + 1) * (2.0 * j + m + 2));
             c_acc += c_term;
             s_acc += s_term;
+            if (fabs(c_term) <= 1e-17 * fabs(c_acc) && fabs(s_term) <= 1e-17 * fabs(s_acc)) break;
         }
         Cm[m] = c_acc;
         Sm[m] = s_acc;

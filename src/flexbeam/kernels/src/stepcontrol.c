@@ -12,6 +12,8 @@
 #define SAFETY 0.9      /* aim below the tolerance */
 #define FAC_MIN 0.2     /* largest reduction after a rejected step */
 #define FAC_MAX 5.0     /* largest growth after an accepted step */
+#define KEEP_LOW 0.9    /* an accepted step proposing a factor in [KEEP_LOW, KEEP_HIGH] keeps its length, */
+#define KEEP_HIGH 1.25  /* so the next step reuses its propagation weights (a sine and cosine per mode and node) */
 
 double fb_energy_norm(const fb_phase *ph, const double *eta, const double *v) {
     int N = ph->b->N;
@@ -31,11 +33,14 @@ double fb_tolerance(const fb_phase *ph, const double *eta0, const double *v0, co
     return ph->atol + ph->rtol * (a > b ? a : b);
 }
 
-/* The next step length from the error estimate err (in units of the tolerance) of a step of length h. */
+/* The next step length from the error estimate err (in units of the tolerance) of a step of length h: the
+ * elementary controller h (SAFETY / err)^(1/ORDER), its factor bounded to [FAC_MIN, FAC_MAX] (to [0.5, ...] after an
+ * accepted step), and kept at 1 near 1 (hysteresis: unchanged weights are reused). */
 double fb_next_step(double h, double err, int accepted) {
     double fac = err > 0.0 ? SAFETY * pow(err, -1.0 / ORDER) : FAC_MAX;
     if (fac > FAC_MAX) fac = FAC_MAX;
     if (fac < FAC_MIN) fac = FAC_MIN;
     if (accepted && fac < 1.0) fac = fac > 0.5 ? fac : 0.5;
+    if (accepted && fac >= KEEP_LOW && fac <= KEEP_HIGH) fac = 1.0;
     return h * fac;
 }

@@ -11,6 +11,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..report import Section
+from .frames import section_frames
 from .frequencies import section_roots, section_rotating
 from .methods import section_ccm, section_imm, section_support
 from .models import section_energy, section_fem, section_kane
@@ -26,6 +27,7 @@ SECTIONS: dict[str, Callable[[bool, Path | None], Section]] = {
     "ccm": section_ccm,
     "support": section_support,
     "fem": section_fem,
+    "frames": section_frames,
     "kane": section_kane,
     "energy": section_energy,
 }
@@ -36,6 +38,7 @@ __all__ = [
     "section_ccm",
     "section_energy",
     "section_fem",
+    "section_frames",
     "section_hertz",
     "section_imm",
     "section_kane",
