@@ -24,6 +24,7 @@ except ImportError:  # pragma: no cover - older typer with click as a dependency
     from click import exceptions as click_exc
 
 from .errors import FlexbeamError, ParameterError, SolverError
+from .registry import METHOD_NAMES
 
 app = typer.Typer(
     add_completion=False,
@@ -34,7 +35,7 @@ app = typer.Typer(
 cases_app = typer.Typer(add_completion=False, help="List or show the built-in cases.")
 app.add_typer(cases_app, name="cases")
 
-MethodOpt = Annotated[str, typer.Option("--method", "-m", help="impact method: ccfm, ccm, imm or fem")]
+MethodOpt = Annotated[str, typer.Option("--method", "-m", help=f"impact method: {', '.join(METHOD_NAMES)}")]
 SetOpt = Annotated[
     list[str] | None,
     typer.Option("--set", "-s", help="override a case field: KEY=VALUE (dotted key, repeatable)"),
@@ -159,21 +160,21 @@ def compare(
 ) -> None:
     """Run CCFM, CCM and the FE reference on one case; figures and a table against the paper."""
     from .parameters.io import reference_data
-    from .report import _markdown
     from .report import compare as run_compare
+    from .report import markdown_table
 
     c = _load(case, set_)
     chosen = tuple(m.strip() for m in methods.split(",") if m.strip())
     for m in chosen:
-        if m not in ("ccfm", "ccm", "imm", "fem"):
-            raise ParameterError(f"--methods: unknown method '{m}'; allowed: ccfm, ccm, imm, fem")
+        if m not in METHOD_NAMES:
+            raise ParameterError(f"--methods: unknown method '{m}'; allowed: {', '.join(METHOD_NAMES)}")
     solutions, rows = run_compare(c, out, chosen, lambda m: _Progress(c.solver.t_end, f"{c.name} [{m}]"))
     if json_:
-        from .solution import _jsonable
+        from .solution import jsonable
 
-        typer.echo(json.dumps(_jsonable(rows), indent=2))
+        typer.echo(json.dumps(jsonable(rows), indent=2))
     else:
-        typer.echo(_markdown(rows, reference_data(c.name)), nl=False)
+        typer.echo(markdown_table(rows, reference_data(c.name)), nl=False)
     _exit_unless_complete(solutions)
 
 
@@ -315,9 +316,9 @@ def sweep(
     info = summary(ds)
     info["result"] = str(out / "result.nc")
     if json_:
-        from .solution import _jsonable
+        from .solution import jsonable
 
-        typer.echo(json.dumps(_jsonable(info), indent=2))
+        typer.echo(json.dumps(jsonable(info), indent=2))
     else:
         typer.echo(f"{info['cases']} cases: {info['computed']} computed, {info['reused']} reused, "
                    f"{info['failed']} failed, {info['missing']} missing -> {info['result']}")

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from .parameters.case import Case
 from .parameters.io import reference_data
-from .solution import Solution, _jsonable, write_text_atomic
+from .solution import Solution, jsonable, write_text_atomic
 
 
 def write_run_outputs(sol: Solution, case: Case, out: str | Path) -> dict[str, Path]:
@@ -21,7 +21,7 @@ def write_run_outputs(sol: Solution, case: Case, out: str | Path) -> dict[str, P
                "contacts": [vars(ev) for ev in sol.contacts]}
     files = {
         "result": sol.to_netcdf(out / "result.nc"),
-        "summary": write_text_atomic(out / "summary.json", json.dumps(_jsonable(summary), indent=2)),
+        "summary": write_text_atomic(out / "summary.json", json.dumps(jsonable(summary), indent=2)),
         "contact_force": plot_contact_force([sol], out / "contact_force.png", reference,
                                             f"{case.name}: contact force ({sol.method.upper()})"),
         "normal_velocity": plot_normal_velocity([sol], out / "normal_velocity.png", reference,
@@ -58,7 +58,7 @@ def compare_table(solutions: list[Solution], reference: dict) -> list[dict]:
     return rows
 
 
-def _markdown(rows: list[dict], reference: dict) -> str:
+def markdown_table(rows: list[dict], reference: dict) -> str:
     def fmt(v, scale=1.0, digits=4):
         return "-" if v is None or v != v else f"{v * scale:.{digits}g}"
 
@@ -107,7 +107,7 @@ def compare(case: Case, out: str | Path | None = None, methods: tuple[str, ...] 
         plot_contact_force(solutions, out / "contact_force.png", reference, f"{case.name}: contact force")
         plot_normal_velocity(solutions, out / "normal_velocity.png", reference,
                              f"{case.name}: normal velocity of P")
-        write_text_atomic(out / "comparison.md", _markdown(rows, reference))
-        write_text_atomic(out / "comparison.json", json.dumps(_jsonable({"rows": rows, "reference": reference}),
+        write_text_atomic(out / "comparison.md", markdown_table(rows, reference))
+        write_text_atomic(out / "comparison.json", json.dumps(jsonable({"rows": rows, "reference": reference}),
                                                               indent=2))
     return solutions, rows

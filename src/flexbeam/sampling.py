@@ -150,35 +150,56 @@ class RunSource:
     def extremes(self, column: str, points_per_step: int = 4) -> tuple[float, float]:
         """(min, max) of an output column over the run, located on the dense output.
 
-        The column is evaluated at ``points_per_step`` points of every step; the smallest and largest values
-        are refined by golden-section search (to PEAK_XTOL) between their neighbours.
+        The column is evaluated at ``points_per_step`` points of every step; every local extremum of these
+        samples that could exceed the largest sample -- a smooth peak stands above its largest sample by less than
+        that sample stands above its lower neighbour -- is refined by zooming (to PEAK_XTOL) between its
+        neighbours, so that of several nearly equal peaks the largest is found.
         """
-        from .solution import PEAK_XTOL, zoom_max
-
-        best: dict[int, tuple[float, float, Segment, float, float]] = {}
+        grids = []
         for seg in self.segments:
             b = seg.breaks()
             if b.size < 2:
                 continue
             frac = np.linspace(0.0, 1.0, points_per_step + 1)[:-1]
             t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
-            v = self.evaluate(seg, t)[0][column]
-            for sign in (-1, 1):
-                i = int(np.argmax(sign * v))
-                if sign not in best or sign * v[i] > sign * best[sign][0]:
-                    lo, hi = t[max(i - 1, 0)], t[min(i + 1, t.size - 1)]
-                    best[sign] = (float(v[i]), float(t[i]), seg, float(lo), float(hi))
+            grids.append((seg, t, self.evaluate(seg, t)[0][column]))
+        if not grids:
+            return math.nan, math.nan
         out = []
         for sign in (-1, 1):
-            if sign not in best:
-                out.append(math.nan)
-                continue
-            value, _, seg, lo, hi = best[sign]
-            if hi > lo:
-                f = lambda x, seg=seg, sign=sign: sign * self.evaluate(seg, np.asarray(x))[0][column]  # noqa: E731
-                value = max(sign * value, zoom_max(f, lo, hi, xtol=PEAK_XTOL)[1]) * sign
-            out.append(value)
+            top = max(float(np.max(sign * v)) for _, _, v in grids)
+            best = top
+            for seg, t, v in grids:
+                sv = sign * v
+                left, right = np.append(sv[:1], sv[:-1]), np.append(sv[1:], sv[-1:])
+                peak = (sv >= left) & (sv >= right)
+                reach = sv + (sv - np.minimum(left, right))  # bound on the peak between the neighbours
+                idx = np.nonzero(peak & (reach >= top))[0]
+                if idx.size:
+                    lo, hi = t[np.maximum(idx - 1, 0)], t[np.minimum(idx + 1, t.size - 1)]
+                    best = max(best, self._zoom_all(seg, column, sign, lo, hi))
+            out.append(sign * best)
         return out[0], out[1]
+
+    def _zoom_all(self, seg: Segment, column: str, sign: float, lo: np.ndarray, hi: np.ndarray,
+                  points: int = 33) -> float:
+        """Largest sign * column over the brackets [lo_k, hi_k] of one segment: each zoomed on a grid of ``points``
+        until below PEAK_XTOL, all brackets in one evaluation per level."""
+        from .solution import PEAK_XTOL
+
+        lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
+        best = -math.inf
+        frac = np.linspace(0.0, 1.0, points)
+        while True:
+            t = (lo[:, None] + (hi - lo)[:, None] * frac[None, :])
+            v = sign * self.evaluate(seg, t.ravel())[0][column].reshape(t.shape)
+            i = np.argmax(v, axis=1)
+            best = max(best, float(np.max(v)))
+            if np.all(hi - lo <= PEAK_XTOL):
+                return best
+            dt = (hi - lo) / (points - 1)
+            centre = t[np.arange(t.shape[0]), i]
+            lo, hi = np.maximum(lo, centre - dt), np.minimum(hi, centre + dt)
 
     # ---------------------------------------------------------------- energy balance
     @cached_property

@@ -19,6 +19,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .metrics import METRICS
+
 if TYPE_CHECKING:
     from .sampling import RunSource
 
@@ -348,7 +350,8 @@ class Solution:
         return [p for p in peaks if p[1] > threshold * top], end - onset
 
     def metrics(self) -> dict[str, Any]:
-        """The run's summary numbers (the ``--json`` contract of ``flexbeam run``).
+        """The run's summary numbers (the ``--json`` contract of ``flexbeam run``), in the order, units and
+        meaning of the registry :data:`flexbeam.metrics.METRICS` (NaN or an empty list when not defined).
 
         ``peak_force`` [N], ``peak_time`` [s after the first onset], ``contact_duration`` [s], ``force_peaks``
         (list of local maxima [N] above 5 % of the peak) with ``force_peak_times`` [s after onset],
@@ -358,26 +361,11 @@ class Solution:
         [s] of the first sensor-force pulse (:meth:`sensor_pulse`).
         """
         drift, drift_max = self.energy_drift()
-        out: dict[str, Any] = {
-            "method": self.method,
-            "status": self.status,
-            "message": self.message,
-            "contacts": len(self._contacts),
-            "impact_velocity": math.nan,
-            "peak_force": math.nan,
-            "peak_time": math.nan,
-            "contact_duration": math.nan,
-            "force_peaks": [],
-            "force_peak_times": [],
-            "second_peak_force": math.nan,
-            "post_impact_velocity": math.nan,
-            "impulse": math.nan,
-            "energy_drift": drift,
-            "energy_drift_max": drift_max,
-            "wall_time": self.stats.get("wall_time", math.nan),
-            "steps": int(self.stats.get("steps", 0)),
-            "nfev": int(self.stats.get("nfev", 0)),
-        }
+        out: dict[str, Any] = {name: ([] if m.kind == "numbers" else math.nan) for name, m in METRICS.items()
+                               if m.scope != "sensor"}
+        out.update(method=self.method, status=self.status, message=self.message, contacts=len(self._contacts),
+                   energy_drift=drift, energy_drift_max=drift_max, wall_time=self.stats.get("wall_time", math.nan),
+                   steps=int(self.stats.get("steps", 0)), nfev=int(self.stats.get("nfev", 0)))
         if self._contacts:
             ev = self.contact(0)
             out["impact_velocity"] = ev.velocity_before
@@ -530,5 +518,3 @@ def metrics_json(metrics: dict[str, Any]) -> str:
     """JSON text of metrics (NaN -> null)."""
     return json.dumps(jsonable(metrics), indent=2)
 
-
-_jsonable = jsonable  # the former private name, still imported by modules being split (issue 10)

@@ -39,18 +39,10 @@ aftermath for first-contact features, the data's span for histories) unless
 
 from __future__ import annotations
 
+from ..metrics import FEATURES, FIRST_CONTACT_FEATURES, SECOND_PEAKS
 from .fields import Parameter, parse_fit
 from .fitting import calibrate
-from .measured import (
-    FEATURES,
-    FIRST_CONTACT_FEATURES,
-    ROLES,
-    SECOND_PEAKS,
-    Measured,
-    parse_columns,
-    parse_features,
-    read_measured,
-)
+from .measured import ROLES, Measured, parse_columns, parse_features, read_measured
 from .problem import ResidualProblem, covariance
 from .result import Calibration
 

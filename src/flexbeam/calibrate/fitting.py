@@ -8,10 +8,11 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ParameterError, closest
+from ..metrics import FEATURES
 from ..parameters.case import Case
 from ..parameters.io import load_case
 from .fields import Parameter, parse_fit
-from .measured import FEATURES, Measured, read_measured
+from .measured import Measured, read_measured
 from .problem import ResidualProblem, covariance
 from .result import Calibration
 
@@ -57,7 +58,7 @@ def calibrate(
     import numpy as np
     from scipy.optimize import least_squares
 
-    from ..simulation import METHOD_NAMES
+    from ..registry import METHOD_NAMES
 
     if method not in METHOD_NAMES:
         raise ParameterError(f"method: unknown impact method '{method}'; allowed: "

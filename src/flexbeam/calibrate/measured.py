@@ -15,14 +15,6 @@ from ..parameters.io import parse_value
 if TYPE_CHECKING:
     import numpy as np
 
-#: metrics of the first contact alone (the fit may stop the simulation after it)
-FIRST_CONTACT_FEATURES = ("peak_force", "peak_time", "contact_duration", "second_peak_force", "impact_velocity",
-                          "post_impact_velocity", "impulse", "energy_before", "energy_after",
-                          "sensor_peak_force", "sensor_second_peak_force", "sensor_duration")
-#: features that read 0 when a trial's force has a single peak
-SECOND_PEAKS = ("second_peak_force", "sensor_second_peak_force")
-#: metrics that can be fitted as features
-FEATURES = FIRST_CONTACT_FEATURES + ("contacts", "tip_deflection_min", "tip_deflection_max")
 #: CSV column roles and the column names tried when ``columns`` does not name them
 ROLES = {"time": ("time", "t"), "force": ("force", "contact_force", "F"),
          "velocity": ("velocity", "normal_velocity", "v")}

@@ -7,10 +7,11 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from ..errors import ModelError, ParameterError, SolverError
+from ..metrics import FIRST_CONTACT_FEATURES, SECOND_PEAKS
 from ..parameters.case import Case
 from ..parameters.io import load_case
 from .fields import Parameter
-from .measured import FIRST_CONTACT_FEATURES, SECOND_PEAKS, Measured
+from .measured import Measured
 
 if TYPE_CHECKING:
     import numpy as np

@@ -66,7 +66,7 @@ class Calibration:
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON report (``flexbeam calibrate --json``)."""
-        from ..solution import _jsonable
+        from ..solution import jsonable
 
         m_fit, m_init = self.solution.metrics(), self.initial_solution.metrics()
         out: dict[str, Any] = {
@@ -97,7 +97,7 @@ class Calibration:
                                    "residual": (m_fit.get(k, math.nan) - v)}
                                for k, v in self.features.items()}
         out["metrics"] = {k: v for k, v in m_fit.items() if k not in ("force_peaks", "force_peak_times")}
-        return _jsonable(out)
+        return jsonable(out)
 
     def write(self, out: str | Path) -> dict[str, Path]:
         """``calibration.json``, ``fitted.toml`` (runs with ``flexbeam run``), ``overlay.png``

@@ -20,12 +20,13 @@ from typing import ClassVar
 import numpy as np
 
 from ..errors import ParameterError, closest
-from ..kernels import core
 
 
 def law_force(p: np.ndarray, d: float, dd: float) -> tuple[float, float]:
     """Contact force F and its elastic part F_k for parameters p = [K, n, chi/d'_0, C] at penetration d >= 0
     and rate d' (the compiled ``fb_law_force`` the integrators use)."""
+    from ..kernels import core
+
     F, Fk, _, _ = core.law_force(np.ascontiguousarray(p, float), float(d), float(dd))
     return F, Fk
 
@@ -45,6 +46,8 @@ class ContactLaw:
     """
 
     name: ClassVar[str] = ""
+    #: the law's damping is infinite at e = 0 (its chi or C diverges), so e must be > 0
+    needs_restitution: ClassVar[bool] = False
     stiffness: float
     exponent: float = 1.5
     restitution: float = 1.0
@@ -101,6 +104,7 @@ class Flores(ContactLaw):
     """Flores, Machado, Silva & Martins (2011), Multibody Syst. Dyn. 25, 357: chi = 8(1-e)/(5e)."""
 
     name: ClassVar[str] = "flores"
+    needs_restitution: ClassVar[bool] = True
 
     def chi(self) -> float:
         return 8.0 * (1.0 - self.restitution) / (5.0 * self.restitution)
@@ -111,6 +115,7 @@ class Gonthier(ContactLaw):
     """Gonthier, McPhee, Lange & Piedboeuf (2004), Multibody Syst. Dyn. 11, 209: chi = (1-e^2)/e."""
 
     name: ClassVar[str] = "gonthier"
+    needs_restitution: ClassVar[bool] = True
 
     def chi(self) -> float:
         return (1.0 - self.restitution**2) / self.restitution
@@ -152,6 +157,7 @@ class CarvalhoMartins(ContactLaw):
     """Carvalho & Martins (2019): Hunt-Crossley form with chi from the exact 1-DOF restitution."""
 
     name: ClassVar[str] = "carvalho_martins"
+    needs_restitution: ClassVar[bool] = True
 
     def chi(self) -> float:
         return exact_hunt_crossley_chi(self.restitution)
@@ -166,6 +172,7 @@ class KelvinVoigt(ContactLaw):
     """
 
     name: ClassVar[str] = "kelvin_voigt"
+    needs_restitution: ClassVar[bool] = True
 
     def parameters(self, onset_rate: float, effective_mass: float) -> np.ndarray:
         le = math.log(self.restitution)
@@ -174,10 +181,14 @@ class KelvinVoigt(ContactLaw):
         return np.array([self.stiffness, 1.0, 0.0, damping])
 
 
+#: the contact laws by name: the one registry the case schema, the CLI and the documentation read
 LAWS: dict[str, type[ContactLaw]] = {
     cls.name: cls
     for cls in (Hertz, KelvinVoigt, HuntCrossley, LankaraniNikravesh, Flores, Gonthier, CarvalhoMartins)
 }
+LAW_NAMES = tuple(LAWS)
+#: laws whose damping is infinite at e = 0
+NEEDS_RESTITUTION = tuple(name for name, cls in LAWS.items() if cls.needs_restitution)
 
 
 def make_law(name: str, stiffness: float, exponent: float, restitution: float) -> ContactLaw:

@@ -1,8 +1,8 @@
 """flexbeam's compiled kernels (C99, built by pip at install; sources in ``kernels/src``).
 
 * ``model.c`` -- the equations of ``docs/formulation.md`` in physical coordinates: mass matrix, generalised
-  forces, energies, point kinematics, gap and contact Jacobian, the contact laws, the right-hand side of the
-  reference integrator and the output columns;
+  forces, energies, point kinematics, gap and contact Jacobian, the contact laws;
+* ``rhs.c`` -- the right-hand side of the reference integrator and the output columns;
 * ``propagation.c`` -- exact modal propagation for polynomial forcing (variation of constants);
 * ``collocation.c`` -- one Gauss collocation step (fixed point, contact force by Newton);
 * ``stepcontrol.c`` -- the energy-norm error and the step-size controller;

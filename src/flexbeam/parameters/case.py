@@ -16,6 +16,8 @@ from typing import Annotated, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
 
+from ..contact.laws import LAW_NAMES, NEEDS_RESTITUTION
+
 
 def _finite(value: float) -> float:
     if not math.isfinite(value):
@@ -27,15 +29,7 @@ Finite = Annotated[float, AfterValidator(_finite)]
 Positive = Annotated[float, Field(gt=0), AfterValidator(_finite)]
 NonNegative = Annotated[float, Field(ge=0), AfterValidator(_finite)]
 
-CONTACT_LAWS = (
-    "hertz",
-    "kelvin_voigt",
-    "hunt_crossley",
-    "lankarani_nikravesh",
-    "flores",
-    "gonthier",
-    "carvalho_martins",
-)
+CONTACT_LAWS = LAW_NAMES  # the registry of contact laws (flexbeam.contact.laws.LAWS)
 
 
 class _Section(BaseModel):
@@ -256,15 +250,7 @@ class Obstacle(_Section):
 class Contact(_Section):
     """Contact point P on the beam and the continuous contact force law (CCFM)."""
 
-    law: Literal[
-        "hertz",
-        "kelvin_voigt",
-        "hunt_crossley",
-        "lankarani_nikravesh",
-        "flores",
-        "gonthier",
-        "carvalho_martins",
-    ] = Field("lankarani_nikravesh", description="contact force law")
+    law: Literal[LAW_NAMES] = Field("lankarani_nikravesh", description="contact force law")
     position: NonNegative = Field(description="material coordinate x_P of the contact point [m]")
     stiffness: Positive | None = Field(
         None, description="contact stiffness K [N/m^n] (omitted = Hertz theory)"
@@ -415,7 +401,7 @@ class Case(_Section):
                 "contact.stiffness: required for a half-plane obstacle (a cylinder on a plane "
                 "is a line contact, not a Hertzian point contact)"
             )
-        if self.contact.law in ("flores", "gonthier", "carvalho_martins", "kelvin_voigt") and (
+        if self.contact.law in NEEDS_RESTITUTION and (
             self.contact.restitution == 0.0
         ):
             raise ValueError(

@@ -8,31 +8,18 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..errors import ParameterError
+from ..metrics import METRICS as REGISTRY
+from ..metrics import SCALARS
 from .planning import Plan, plain
 from .store import FAILED, Store
 
 if TYPE_CHECKING:
     import xarray as xr
 
-#: scalar metric -> (units, long name); every one is a variable of the result (NaN when absent)
+#: scalar metric -> (units, long name); every one is a variable of the result (NaN when absent): the registry's
+#: scalar metrics, and the case's own elapsed time on its worker
 METRICS: dict[str, tuple[str, str]] = {
-    "peak_force": ("N", "Peak force of the first contact"),
-    "peak_time": ("s", "Time of the peak force after the first onset"),
-    "contact_duration": ("s", "Duration of the first contact"),
-    "second_peak_force": ("N", "Second-largest force peak of the first contact"),
-    "contacts": ("1", "Number of contacts"),
-    "impact_velocity": ("m/s", "Normal velocity of P before the first contact"),
-    "post_impact_velocity": ("m/s", "Normal velocity of P at the end of the first contact"),
-    "impulse": ("N s", "Impulse of the first contact"),
-    "energy_before": ("J", "Mechanical energy before the first contact"),
-    "energy_after": ("J", "Mechanical energy after the first contact"),
-    "energy_drift": ("1", "Relative change of the total energy at the end"),
-    "energy_drift_max": ("1", "Largest relative change of the total energy"),
-    "tip_deflection_min": ("m", "Smallest tip deflection"),
-    "tip_deflection_max": ("m", "Largest tip deflection"),
-    "wall_time": ("s", "Integration wall time"),
-    "steps": ("1", "Integrator steps"),
-    "nfev": ("1", "Right-hand side evaluations"),
+    **{k: (REGISTRY[k].units, REGISTRY[k].long_name) for k in SCALARS},
     "elapsed": ("s", "Wall time of the case on its worker (set-up, integration, metrics)"),
 }
 

@@ -70,7 +70,7 @@ def sweep(
         ``case_key``; attributes ``computed``, ``reused``, ``failed``, ``missing``.
     """
     from .. import __version__
-    from ..simulation import METHOD_NAMES
+    from ..registry import METHOD_NAMES
 
     if method not in METHOD_NAMES:
         raise ParameterError(f"method: unknown impact method '{method}'; allowed: "

@@ -48,18 +48,18 @@ class Store:
 
     def save(self, record: dict[str, Any], history: Any = None) -> None:
         """History first, then the record: the record's presence marks the case finished."""
-        from ..solution import _jsonable, atomic_path, write_text_atomic
+        from ..solution import atomic_path, jsonable, write_text_atomic
 
         key = record["key"]
         if history is not None:
             with atomic_path(self.history_path(key)) as tmp:
                 history.to_netcdf(tmp)
-        write_text_atomic(self.record_path(key), json.dumps(_jsonable(record), indent=1, sort_keys=True))
+        write_text_atomic(self.record_path(key), json.dumps(jsonable(record), indent=1, sort_keys=True))
 
     def write_manifest(self, spec: dict[str, Any]) -> None:
-        from ..solution import _jsonable, write_text_atomic
+        from ..solution import jsonable, write_text_atomic
 
-        write_text_atomic(self.path / "sweep.json", json.dumps(_jsonable(spec), indent=1))
+        write_text_atomic(self.path / "sweep.json", json.dumps(jsonable(spec), indent=1))
 
     def read_manifest(self) -> dict[str, Any]:
         try:
