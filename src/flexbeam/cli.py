@@ -397,6 +397,47 @@ def _print_calibration(report: dict[str, Any], title: str) -> None:
                   f"{report['message']}")
 
 
+@app.command()
+def animate(
+    source: Annotated[str, typer.Argument(help="built-in case name, TOML file (simulated first) or a result.nc")],
+    out: Annotated[Path, typer.Option("--out", "-o", help="output file: .gif or .mp4 (MP4 needs flexbeam[video])")],
+    scale: Annotated[str, typer.Option("--scale", help="deflection magnification: auto or a number")] = "auto",
+    window: Annotated[str | None, typer.Option("--window", help="time window t0,t1 [s] (default: all)")] = None,
+    frames: Annotated[int, typer.Option("--frames", help="number of frames")] = 200,
+    fps: Annotated[float, typer.Option("--fps", help="frames per second of the file")] = 25.0,
+    size: Annotated[str, typer.Option("--size", help="frame size WIDTHxHEIGHT [px]")] = "800x600",
+    method: MethodOpt = "ccfm",
+    set_: SetOpt = None,
+) -> None:
+    """Animate a run: deformed beam (magnified deflection), hub, obstacle and contact force, slow motion in
+    contacts."""
+    import warnings
+
+    from .animation import VideoFallbackWarning, parse_scale, parse_size, parse_window
+    from .animation import animate as render
+
+    options = {"scale": parse_scale(scale), "window": parse_window(window), "frames": frames, "fps": fps,
+               "size": parse_size(size)}
+    if source.endswith(".nc"):
+        if set_:
+            raise ParameterError("--set: only with a case, not with a result file")
+        if not Path(source).is_file():
+            raise ParameterError(f"source: no such result file '{source}'")
+        result: Any = Path(source)
+    else:
+        c = _load(source, set_)
+        result = _simulate(c, method)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", VideoFallbackWarning)
+        path = render(result, out, **options)
+    for w in caught:
+        if issubclass(w.category, VideoFallbackWarning):
+            sys.stderr.write(f"note: {_one_line(w.message)}\n")
+        else:
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    typer.echo(f"wrote {path}")
+
+
 def _one_line(message: object) -> str:
     """``message`` (an exception or text) on one line: a newline, e.g. in a quoted TOML key, is escaped."""
     return str(message).replace("\r", "\\r").replace("\n", "\\n")

@@ -396,6 +396,17 @@ class Solution:
             out["tip_deflection_max"] = float(np.max(self.arrays["tip_deflection"]))
         return out
 
+    def animate(self, path: str | Path, **options: Any) -> Path:
+        """Render an animation of this run to ``path`` (.gif or .mp4): the deformed beam with magnified
+        deflection, the hub, the obstacle and the contact force, in slow motion through the contacts.
+
+        ``options`` as for :func:`flexbeam.animation.animate` (``scale``, ``window``, ``frames``, ``fps``,
+        ``size``, ...); returns the path written.
+        """
+        from .animation import animate
+
+        return animate(self, path, **options)
+
     # ------------------------------------------------------------------ export
     def to_xarray(self):
         """:class:`xarray.Dataset` with dims time, mode, point, contact; units in attrs."""
