@@ -53,7 +53,10 @@ class ContactEvent:
     """One contact (or, for IMM, one instantaneous impact).
 
     Times in s; velocities are P's normal velocity delta' [m/s] (negative = approaching) just before the
-    contact and at its end (IMM: right after the jump).
+    contact and at its end (IMM: right after the jump).  ``impulse`` [N s] is the whole contact's: the jump at
+    onset (IMM, CCM's e = 0 step; also in ``jump_impulse``) plus the integral of the contact force until
+    ``end`` (CCFM's force, CCM's multiplier, a resting contact's reaction).  ``energy_before``/``energy_after``
+    [J] are the mechanical energy T + V_e + V_g just before the onset (before its jump) and at the end.
     """
 
     index: int
@@ -66,6 +69,7 @@ class ContactEvent:
     peak_time: float = float("nan")
     energy_before: float = float("nan")
     energy_after: float = float("nan")
+    jump_impulse: float = float("nan")
 
     @property
     def duration(self) -> float:
@@ -228,9 +232,16 @@ class Solution:
         self._completed.add(i)
         src = self.source
         end = ev.end if math.isfinite(ev.end) else src.run.t_final
-        if math.isnan(ev.impulse) and end > ev.onset:
-            ev.impulse = src.impulse(ev.onset, end)
-            ev.energy_before, ev.energy_after = src.mechanical_energy(ev.onset, after=True), src.mechanical_energy(end)
+        jumped = not math.isnan(ev.jump_impulse)
+        if jumped:  # the jump logged kinetic energies: add the potential, which a jump leaves unchanged
+            potential = src.mechanical_energy(ev.onset, after=True) - ev.energy_after
+            ev.energy_before += potential
+            ev.energy_after += potential
+        if end > ev.onset:
+            ev.impulse = (ev.jump_impulse if jumped else 0.0) + src.impulse(ev.onset, end)
+            if not jumped:
+                ev.energy_before = src.mechanical_energy(ev.onset, after=True)
+            ev.energy_after = src.mechanical_energy(end)
         peaks = self.force_peaks(i, threshold=0.0)
         if peaks:
             ev.peak_time, ev.peak_force = max(peaks, key=lambda p: p[1])

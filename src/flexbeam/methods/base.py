@@ -113,10 +113,11 @@ class ImpactMethod:
         return ev
 
     def log_jump(self, t: float, jump: Jump) -> ContactEvent:
-        """Log an instantaneous impact (IMM, or the e = 0 onset step of CCM)."""
+        """Log an instantaneous impact (IMM, or the e = 0 onset step of CCM): its impulse and kinetic energies (the
+        Solution adds the potential energy and a following phase's force integral when the record is completed)."""
         ev = self.new_contact(t, jump.y)
         ev.velocity_before = jump.velocity_before
-        ev.impulse = jump.impulse
+        ev.impulse = ev.jump_impulse = jump.impulse
         ev.energy_before, ev.energy_after = jump.kinetic_before, jump.kinetic_after
         return ev
 

@@ -123,6 +123,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, double 
     const fb_tables *tb = fb_gauss();
     int contact = ph.mode != FB_MODE_NONE, have_gap0 = 0;
     fb_gap gap0;
+    int retry = 0; /* the step was just cut: it may not stretch back to t_end */
     while (t < t_end) {
         if (*nrec >= capacity) {
             code = ADV_FULL;
@@ -130,7 +131,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, double 
         }
         if (h > hmax) h = hmax;
         int last = 0;
-        if (t + 1.01 * h >= t_end) {
+        if (t + (retry ? 1.0 : 1.01) * h >= t_end) {
             h = t_end - t;
             last = 1;
         }
@@ -149,11 +150,13 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, double 
             }
             h *= 0.25;
             info[2] += 1;
+            retry = 1;
             continue;
         }
         if (st.err > 1.0) {
             h = fb_next_step(h, st.err, 0);
             info[2] += 1;
+            retry = 1;
             continue;
         }
         /* events on the accepted step's dense output */
@@ -190,6 +193,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, double 
         if (x == FB_UNDECIDED) { /* shorten the step, to just past the first sample seen beyond the surface */
             h *= beyond < 1.0 ? fmax(beyond, 0.0625) : 0.25;
             info[2] += 1;
+            retry = 1;
             continue;
         }
         int event = x <= 1.0;
@@ -248,6 +252,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, double 
             info[0] = kind;
             break;
         }
+        retry = 0;
         double hn = fb_next_step(h, st.err, 1);
         extrapolate(N, hn / h, f, F);
         h = hn;
