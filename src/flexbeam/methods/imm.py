@@ -5,8 +5,9 @@ Each impact is instantaneous: M (z'^+ - z'^-) = J^T P with J z'^+ = -e J z'^-, t
 the same way.
 
 Accumulating impacts (e < 1 with gravity pressing P onto the obstacle: a Zeno sequence whose impact speeds
-shrink geometrically) are ended deliberately: once an impact's approach speed falls below
-``solver.rest_velocity`` the velocity is cancelled (e = 0) and P rests on the obstacle -- the contact is then
+shrink geometrically) are ended deliberately: once an impact's rebound speed e |delta'^-| falls below
+``solver.rest_velocity`` (always for e = 0: a plastic impact leaves P on the surface) the velocity is cancelled
+(e = 0) and P rests on the obstacle if the contact would push -- the contact is then
 held by the unilateral constraint of the CCM phase (phase "resting", the force is its multiplier) until that
 force would turn tensile, when free motion resumes.
 """
@@ -27,7 +28,7 @@ class IMM(ImpactMethod):
 
     def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         speed = -self.gap_event(t, y)[1]
-        resting = speed < self.case.solver.rest_velocity
+        resting = self.case.contact.restitution * speed < self.case.solver.rest_velocity
         jump = impulse_jump(self.system, t, y, 0.0 if resting else self.case.contact.restitution)
         ev = self.log_jump(t, jump)
         if resting and self.holds(t, jump.y):

@@ -15,6 +15,7 @@
 
 #define SAMPLES 16      /* gap samples per step when the nodes do not decide (refined x4 up to twice) */
 #define LEBESGUE 3.0    /* > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.0 for p = 4) */
+#define SURFACE_NOISE 1e-9 /* [m] a start on the surface counts as crossing only this far beyond it */
 #define HERMITE_PTS 16  /* sub-intervals on which a Hermite-predicted dip is checked and searched */
 
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
@@ -131,16 +132,16 @@ static double golden_min(const fb_dense *d, double lo, double hi, double sign) {
     return 0.5 * (a + b);
 }
 
-/* A phase that starts on the event surface at rest (P left on the obstacle by a CCM release at lambda = 0)
- * can cross inside an excursion far below round-off: the first point of a geometric grid from a where the gap
- * is beyond the surface by more than 1e-6 |g(b)| and still moving that way is reported (Brent-refined if the
- * gap is seen on the near side just before); FB_NO_EVENT if none. */
-static double leaves_surface(const fb_dense *d, double a, double b, double ga, double gb, double sign) {
-    double noise = 1e-6 * fabs(gb), prev_x = a, prev_g = ga;
+/* A phase that starts on the event surface at rest (P left on the obstacle by a CCM release at lambda = 0, or by
+ * a plastic jump) can cross inside an excursion far below round-off: the first point of a geometric grid from a
+ * where the gap is beyond the surface by more than ``depth`` and still moving that way is reported
+ * (Brent-refined if the gap is seen on the near side just before); FB_NO_EVENT if none. */
+static double leaves_surface(const fb_dense *d, double a, double b, double ga, double depth, double sign) {
+    double prev_x = a, prev_g = ga;
     for (int k = 48; k >= 0; k--) {
         double x = a + (b - a) * ldexp(1.0, -k), rx;
         double gx = gap_x(d, x, &rx);
-        if (sign * gx > noise && sign * rx > 0.0) return -sign * prev_g > 0.0 ? brent(d, prev_x, x, prev_g, gx) : x;
+        if (sign * gx > depth && sign * rx > 0.0) return -sign * prev_g > 0.0 ? brent(d, prev_x, x, prev_g, gx) : x;
         prev_x = x;
         prev_g = gx;
     }
@@ -151,22 +152,31 @@ static int crosses(double a, double b, double sign) {
     return sign < 0.0 ? (a > 0.0 && b <= 0.0) : (a < 0.0 && b >= 0.0);
 }
 
-/* Earliest event in the sampled (x, g, g' h): sign change, excursion from zero, or Hermite-predicted dip. */
+/* Earliest event in the sampled (x, g, g' h): sign change, excursion from zero, or Hermite-predicted dip.  A
+ * phase that starts on the surface (P left there by a plastic jump or a release; a held constraint may leave it
+ * a little beyond) either lifts off -- a hump, whose return is the event -- or sinks in: the event is where it
+ * is first SURFACE_NOISE further beyond than it started (a jump at e = 0 on a flexible beam can leave P pushed
+ * off by one mode and pulled back in by the others a few ns later, a hump far below round-off). */
 static double scan(const fb_dense *d, const double *x, const double *g, const double *rate, int m, double sign) {
+    int resting = 0;                                  /* within SURFACE_NOISE of the depth it started at */
+    double depth = fmax(sign * g[0], 0.0) + SURFACE_NOISE;
     for (int i = 0; i < m; i++) {
         double a = g[i], b = g[i + 1], ra = rate[i], rb = rate[i + 1], hh = x[i + 1] - x[i];
         if (crosses(a, b, sign)) return b == 0.0 ? x[i + 1] : brent(d, x[i], x[i + 1], a, b);
         if (-sign * a <= 0.0 && -sign * b < 0.0) { /* starts on (or just behind) zero, ends beyond it */
-            if (-sign * ra > 0.0) {                 /* leaving at first: a hump */
+            int start = i == 0 || resting;
+            if (start || -sign * ra > 0.0) {          /* a hump: it left, then returns */
                 double xm = golden_min(d, x[i], x[i + 1], sign), gm = gap_x(d, xm, NULL);
                 if (-sign * gm > 0.0) return brent(d, xm, x[i + 1], gm, b);
-                if (i == 0) {
-                    double xl = leaves_surface(d, x[i], x[i + 1], a, b, sign);
-                    if (xl <= 1.0) return xl;
-                }
+            }
+            if (start) {
+                double xl = leaves_surface(d, x[i], x[i + 1], a, fmax(depth, 1e-6 * fabs(b)), sign);
+                if (xl <= 1.0) return xl;
+                resting = 1;
             }
             continue;
         }
+        resting = 0;
         int same = sign < 0.0 ? (a > 0.0 && b > 0.0) : (a < 0.0 && b < 0.0);
         if (!same) continue;
         int dip = 0;
