@@ -40,21 +40,24 @@ def _effective_mass() -> float:
 
 
 def test_rigid_limit_of_hertz_is_johnsons_closed_form(ex):
-    """Johnson (1985) Sec. 11.4; t_c factor 2 sqrt(pi) Gamma(7/5) / Gamma(9/10).  Measured 1e-7 (peak)
-    and 1e-7 (duration); bound 1e-5 (the integrator's tolerance 1e-6, 10x)."""
+    """Johnson (1985) Sec. 11.4; t_c factor 2 sqrt(pi) Gamma(7/5) / Gamma(9/10).  The closed form is for a point
+    mass on a line; P moves on an arc of radius x_P and slides over the sphere: corrections of relative order
+    delta_max / x_P (1e-4 here) at most, plus the integrator's ~1e-6.  Measured 8.7e-8 (peak) and 3.9e-6
+    (duration, the same at fast_rtol 1e-10: geometric)."""
     sol = ex.rigid["hertz"]
     m = sol.metrics()
     K, v = sol.provenance["contact_stiffness"], abs(m["impact_velocity"])
     d_max = (5 * _effective_mass() * v**2 / (4 * K)) ** 0.4
     t_c = 2 * math.sqrt(math.pi) * math.gamma(1.4) / math.gamma(0.9) * d_max / v
-    assert m["peak_force"] == pytest.approx(K * d_max**1.5, rel=1e-5)
-    assert m["contact_duration"] == pytest.approx(t_c, rel=1e-5)
+    bound = d_max / fb.load_case("seed-experiment").contact.position + 1e-6
+    assert m["peak_force"] == pytest.approx(K * d_max**1.5, rel=bound)
+    assert m["contact_duration"] == pytest.approx(t_c, rel=bound)
     assert ex.effective_restitution["hertz"] == pytest.approx(1.0, rel=1e-5)  # elastic
 
 
 @pytest.mark.parametrize("law", [*CHI, "carvalho_martins"])
 def test_rigid_limit_restitution_is_the_exact_hunt_crossley_value(law, ex):
-    """Measured agreement 1e-6 (relative); bound 1e-5 (10x)."""
+    """Measured agreement 8.6e-7 (relative); bound 1e-5 (11.6x)."""
     e = ex.rigid[law].metrics()
     nominal = 0.8
     exact = nominal if law == "carvalho_martins" else restitution_of(CHI[law](nominal))

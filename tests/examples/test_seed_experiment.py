@@ -24,14 +24,14 @@ def test_every_method_ran_the_whole_experiment(ex):
 @pytest.mark.parametrize("method", ["ccfm", "ccm", "imm"])
 def test_energy_balance(method, ex):
     """Kinetic + elastic + gravitational + contact energy + dissipated energy is constant (free joint,
-    no drive work).  Measured |drift| <= 3.3e-7 for all three; bound 3e-6 (10x margin over that)."""
-    assert abs(ex.metrics[method]["energy_drift_max"]) < 3e-6
+    no drive work).  Measured |drift| <= 8.1e-7 for all three at fast_rtol 1e-6; bound 1e-5 (12x)."""
+    assert abs(ex.metrics[method]["energy_drift_max"]) < 1e-5
 
 
 def test_imm_impacts_follow_newtons_restitution_law(ex):
     """v+ = -e v- at every impact faster than the resting threshold (slower ones are ended with
     e = 0 on purpose: the end of a Zeno sequence).  The impulse map is one linear solve: measured
-    1.4e-9 relative, bound 1e-8 (7x margin; round-off of a solve with the mass matrix's condition)."""
+    9e-16 relative, bound 1e-8 (round-off of a solve with the mass matrix's condition)."""
     sol, e = ex.solutions["imm"], ex.case.contact.restitution
     impacts = [c for c in sol.contacts if abs(c.velocity_before) >= ex.case.solver.rest_velocity]
     assert len(impacts) > 10
@@ -41,13 +41,13 @@ def test_imm_impacts_follow_newtons_restitution_law(ex):
 
 def test_ccm_stops_p_and_holds_the_constraint(ex):
     """CCM: the e = 0 impulse zeroes P's normal velocity at the onset; then the gap stays closed
-    (Baumgarte-stabilised) -- measured 5e-12 m, bound 1e-10 m, against CCFM's 3.7e-5 m penetration."""
+    (Baumgarte-stabilised) -- measured 3.9e-11 m, bound 1e-9 m (26x), against CCFM's 3.6e-5 m penetration."""
     sol = ex.solutions["ccm"]
     first = np.nonzero(sol.time == sol.contacts[0].onset)[0]
     assert sol["normal_velocity"][first[0]] == pytest.approx(ex.case.initial.impact_velocity)
     assert sol["normal_velocity"][first[-1]] == pytest.approx(0.0, abs=1e-12)
     constrained = sol.phase == "constrained"
     assert constrained.any()
-    assert np.max(np.abs(sol["gap"][constrained])) < 1e-10
+    assert np.max(np.abs(sol["gap"][constrained])) < 1e-9
     ccfm = ex.solutions["ccfm"]
-    assert -np.min(ccfm["gap"]) > 1e4 * 1e-10  # CCFM penetrates: the constraint is a real difference
+    assert -np.min(ccfm["gap"]) > 1e3 * 1e-9  # CCFM penetrates: the constraint is a real difference

@@ -24,13 +24,14 @@ def test_grid_is_complete(ex):
 def test_peak_force_and_duration_scale_like_hertz(ex):
     """F_max ~ K^(2/5) |v|^(6/5), t_c ~ K^(-2/5) |v|^(-1/5) for any law F = K d^n (1 + chi d'/d'_0)
     with n = 3/2 (dimensional analysis of m d'' = -F).  Both grids double K and v.  Measured: peaks
-    4e-8 (bound 1e-6, 25x), durations 2.1e-6 (the separation event at the integrator's tolerance 1e-6;
-    bound 2e-5, 10x)."""
+    7.8e-8 (bound 1e-6, 12.8x), durations 2.1e-6 (P's arc and its sliding over the sphere add relative
+    corrections of order delta_max / x_P that differ between the runs, see tests/examples/test_contact_laws.py;
+    bound 5e-5, 24x)."""
     peak = ex.ds["peak_force"].transpose("contact.stiffness", "initial.impact_velocity").values
     duration = ex.ds["contact_duration"].transpose("contact.stiffness", "initial.impact_velocity").values
     K, v = ex.ds["contact.stiffness"].values, np.abs(ex.ds["initial.impact_velocity"].values)
     assert K[1] / K[0] == 2 and v[1] / v[0] == 2
     np.testing.assert_allclose(peak[1] / peak[0], 2**0.4, rtol=1e-6)
     np.testing.assert_allclose(peak[:, 1] / peak[:, 0], 2**1.2, rtol=1e-6)
-    np.testing.assert_allclose(duration[1] / duration[0], 2**-0.4, rtol=2e-5)
-    np.testing.assert_allclose(duration[:, 1] / duration[:, 0], 2**-0.2, rtol=2e-5)
+    np.testing.assert_allclose(duration[1] / duration[0], 2**-0.4, rtol=5e-5)
+    np.testing.assert_allclose(duration[:, 1] / duration[:, 0], 2**-0.2, rtol=5e-5)

@@ -7,7 +7,18 @@ omega_k = (beta_k L)^2 sqrt(EI / (mu L^4)) with
 
 (e.g. Blevins, *Formulas for Natural Frequency and Mode Shape*, 1979, Table 8-1).
 Pinned-free is the free joint with no hub (r_h = J_h = 0): theta is then the root
-rotation.  Consistent-mass Hermite elements converge as h^4 from above.
+rotation.
+
+Consistent-mass Hermite elements converge as h^4 from above (Rayleigh-Ritz).  The size of the
+error follows from their dispersion relation: a bending wave of wavenumber k on a uniform mesh of
+element length h has omega_h / omega - 1 = (k h)^4 / 1440 + O((k h)^6), the next term negative
+(the acoustic branch of the two-node Bloch eigenproblem of the element's stiffness and mass
+matrices, expanded in k h; it is (kh)^4/1440 less 0.03 % of that at kh = 0.1 and 0.45 % at
+kh = 0.4).  With k = beta_k, each frequency's error lies in (0, (beta_k h)^4 / 1440]: measured
+0.90-1.0 of that bound for every mode at 8-64 elements, except where round-off dominates (the
+first mode at 40 and 64 elements, errors of 5e-9 and 3e-9).  Round-off adds at most eps lambda_max /
+lambda_k to omega^2 (a backward-stable generalized eigensolver; the axial modes make lambda_max
+7e8 lambda_1 at 40 elements), so the tests allow five times that, halved for omega.
 """
 
 from __future__ import annotations
@@ -40,8 +51,9 @@ def pinned_free_roots(n: int) -> np.ndarray:
     )
 
 
-def bending_frequencies(case, pinned: bool, count: int) -> np.ndarray:
-    """Lowest non-zero bending frequencies (axial modes removed by their shape)."""
+def bending_frequencies(case, pinned: bool, count: int, largest: list | None = None) -> np.ndarray:
+    """Lowest non-zero bending frequencies (axial modes removed by their shape); ``largest`` receives the
+    largest eigenvalue omega^2 of the mesh."""
     beam = FemBeam.from_case(case)
     z, _ = beam.straight(0.0, 0.0)
     M, K = beam.matrices(z)
@@ -50,6 +62,8 @@ def bending_frequencies(case, pinned: bool, count: int) -> np.ndarray:
     from scipy.linalg import eigh
 
     w2, vec = eigh(K, M)
+    if largest is not None:
+        largest.append(float(w2.max()))
     out = []
     axial = np.zeros(M.shape[0], bool)
     axial[(1 if pinned else 0) :: 3] = True  # X components (the beam lies along X)
@@ -71,31 +85,42 @@ def _scale(case) -> float:
 
 
 def test_roots():
-    # published 10-digit values (Blevins 1979, Table 8-1)
-    assert_allclose(
-        clamped_free_roots(4), [1.8751040687, 4.6940911330, 7.8547574382, 10.9955407349], rtol=1e-9
-    )
-    assert_allclose(pinned_free_roots(3), [3.9266023120, 7.0685827457, 10.2101761242], rtol=1e-9)
+    """Blevins (1979), Table 8-1, eight decimals: the table rounds to half a unit of the eighth decimal, the roots
+    here are found to ~1e-15 (measured 4.9e-9 off at most, the table's rounding of 10.99554073)."""
+    assert_allclose(clamped_free_roots(5)[:4], [1.87510407, 4.69409113, 7.85475744, 10.99554073], rtol=0,
+                    atol=5e-9 + 1e-12)
+    assert_allclose(pinned_free_roots(3), [3.92660231, 7.06858275, 10.21017612], rtol=0, atol=5e-9 + 1e-12)
 
 
-@pytest.mark.parametrize("elements, rtol", [(10, 1.5e-3), (40, 5e-6)])
-def test_clamped_free(elements, rtol):
+def _check_against_dispersion(case, pinned: bool, roots: np.ndarray, elements: int) -> None:
+    largest: list[float] = []
+    w = bending_frequencies(case, pinned=pinned, count=roots.size, largest=largest) / _scale(case)
+    error = w / roots**2 - 1.0
+    lead = (roots / elements) ** 4 / 1440.0  # (beta_k h)^4 / 1440 with h = L / elements, L = 1 in beta_k L
+    roundoff = 5.0 * np.finfo(float).eps * largest[0] / (_scale(case) ** 2 * roots**4) / 2.0
+    assert np.all(error > -roundoff), error
+    assert np.all(error <= lead + roundoff), (error, lead)
+
+
+@pytest.mark.parametrize("elements", [10, 40])
+def test_clamped_free(elements):
+    """Within the dispersion bound (module notes): 2.5e-4 and 9.5e-4 for modes 3, 4 at 10 elements."""
     case = seed(fem__elements=elements, drive__kind="prescribed", model__gravity=0.0, contact__position=0.7)
-    w = bending_frequencies(case, pinned=False, count=4) / _scale(case)
-    assert_allclose(w, clamped_free_roots(4) ** 2, rtol=rtol)
+    _check_against_dispersion(case, False, clamped_free_roots(4), elements)
 
 
-@pytest.mark.parametrize("elements, rtol", [(10, 1.5e-3), (40, 5e-6)])
-def test_pinned_free(elements, rtol):
+@pytest.mark.parametrize("elements", [10, 40])
+def test_pinned_free(elements):
     case = seed(
         fem__elements=elements, model__gravity=0.0, hub__radius=0.0, hub__inertia=0.0, contact__position=0.7
     )
-    w = bending_frequencies(case, pinned=True, count=3) / _scale(case)
-    assert_allclose(w, pinned_free_roots(3) ** 2, rtol=rtol)
+    _check_against_dispersion(case, True, pinned_free_roots(3), elements)
 
 
 def test_convergence_order_is_four():
-    """Halving h divides the clamped-free error by ~16 (Hermite cubics, consistent mass)."""
+    """Halving h divides the clamped-free error by ~16 (Hermite cubics, consistent mass).  Measured orders 3.94
+    and 3.98 (8-16-32 elements, mode 3); within 0.7 of 4 they tell h^4 from the neighbouring even orders h^2
+    (a lumped mass or a wrong shape function) and h^6."""
     exact = clamped_free_roots(3)[2] ** 2
     errors = []
     for n in (8, 16, 32):
@@ -103,4 +128,4 @@ def test_convergence_order_is_four():
         errors.append(bending_frequencies(case, False, 3)[2] / _scale(case) - exact)
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert np.all(np.array(errors) > 0.0)  # from above (Rayleigh-Ritz)
-    assert_allclose(orders, 4.0, atol=0.15)
+    assert_allclose(orders, 4.0, atol=0.7)

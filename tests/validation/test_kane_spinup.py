@@ -90,13 +90,17 @@ def _check_first_order_run(case: fb.Case) -> None:
     rates = np.array([hub_rates(tt, W, Ts)[0] for tt in t])
     np.testing.assert_allclose(sol["theta_rate"], rates, atol=1e-12 * W)
 
-    # the tip follows the quasi-static deflection during the spin-up
+    # the tip follows the quasi-static deflection during the spin-up: the load -mu theta'' (r_h + x) varies at
+    # 2 pi / T_s = 0.42 rad/s, far below omega_1, so the dynamic response exceeds the static one by the slowly
+    # forced oscillator's 1 / (1 - r^2) - 1 ~ r^2 = (2 pi / (T_s omega_1))^2 = 1.2 %; bound 2 r^2 = 2.4 %
+    # (measured on the minimum: 0.90 % at W = 6 rad/s with 2 modes; 0.68, 1.05, 1.46 % at W = 4, 6, 10 with 5)
+    r2 = (2.0 * math.pi / (Ts * OMEGA_1)) ** 2
     idx = np.unique(np.searchsorted(t, np.linspace(0.0, Ts, 31)).clip(0, t.size - 1))
     qs = np.array([quasi_static_tip(*hub_rates(t[i], W, Ts)) for i in idx])
     peak = np.max(np.abs(qs))
     assert peak > 0.02 * L  # a real deflection, not a vanishing one (0.57 m at W = 6 rad/s)
-    np.testing.assert_allclose(tip[idx], qs, atol=0.025 * peak)
-    assert tip.min() == pytest.approx(qs.min(), rel=0.025)
+    np.testing.assert_allclose(tip[idx], qs, atol=2 * r2 * peak)
+    assert tip.min() == pytest.approx(qs.min(), rel=2 * r2)
     # the metrics are the extremes over the run (on the dense output): beyond the sampled ones, by at most what
     # the deflection can change within one sample interval
     m = sol.metrics()
@@ -125,24 +129,34 @@ def test_first_order_stays_bounded(W):
 
 
 # -------------------------------------------------------------------------- zeroth order
-def _diverges(case: fb.Case) -> bool:
-    try:
-        sol = fb.simulate(case)
-    except (ArithmeticError, np.linalg.LinAlgError):
-        return True
-    tip = sol["tip_deflection"]
-    return sol.status == "failed" or not np.all(np.isfinite(tip)) or np.max(np.abs(tip)) > L
+def _check_zeroth_order_divergence(case: fb.Case) -> None:
+    """After the spin-up (theta' = W, theta'' = 0) the zeroth-order modal equations are q'' = (W^2 - omega_k^2) q
+    with the modes mass-orthonormal, so the first mode grows as exp(sigma t), sigma = sqrt(W^2 - omega_1^2), and
+    everything else stays bounded or decays.  The run must show that growth itself: past the beam's length by the
+    end, at the rate sigma.  Fitting ln|tip| from T_s + 2 s on, the decaying solution exp(-sigma t) and the
+    bounded modes bias the slope by a relative O(exp(-2 sigma 2 s)) ~ 1e-2 of their amplitude ratio to the
+    growing mode: measured 3.1e-6 at W = 4 rad/s (1 and 5 modes), 2e-11 at W = 6; bound 1e-3 (320x)."""
+    sol = fb.simulate(case)
+    W, Ts = case.drive.spin_rate, case.drive.spin_up_time
+    assert W > OMEGA_1
+    assert sol.status == "success", sol.message
+    t, tip = sol.time, sol["tip_deflection"]
+    assert np.all(np.isfinite(tip))
+    assert abs(tip[-1]) > L  # far past the linear range: the model has no bound
+    late = t >= Ts + 2.0
+    assert np.count_nonzero(late) > 100
+    rate = np.polyfit(t[late], np.log(np.abs(tip[late])), 1)[0]
+    assert rate == pytest.approx(math.sqrt(W**2 - OMEGA_1**2), rel=1e-3)
 
 
 def test_zeroth_order_diverges_above_first_frequency_reduced():
-    assert _diverges(kane(model__coupling="zeroth-order", model__modes=1, drive__spin_rate=4.0))
+    _check_zeroth_order_divergence(kane(model__coupling="zeroth-order", model__modes=1, drive__spin_rate=4.0))
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("W", [4.0, 6.0])
 def test_zeroth_order_diverges_above_first_frequency(W):
-    assert W > OMEGA_1
-    assert _diverges(kane(model__coupling="zeroth-order", drive__spin_rate=W))
+    _check_zeroth_order_divergence(kane(model__coupling="zeroth-order", drive__spin_rate=W))
 
 
 @pytest.mark.slow

@@ -27,8 +27,10 @@ def _both(case, method="ccfm"):
     return fb.simulate(_with(case, "reference"), method), fb.simulate(_with(case, "exponential"), method)
 
 
-def _agree(ref, fast, peak=1e-6, duration=1e-6, drift=1e-6):
-    """First-contact metrics: within 1e-6 of the reference (measured <= 4e-8 on these cases)."""
+def _agree(ref, fast, peak=5e-6, duration=1e-6, drift=2e-6):
+    """First-contact metrics against the reference at the default fast_rtol 1e-6.  Measured on the cases below:
+    peak force <= 3.3e-7 (the rigid rod; bound 5e-6), duration <= 1.6e-8 (1e-6), post-impact velocity <= 1.9e-7
+    (1e-5), energy drift <= 1.5e-7 (2e-6); the bounds are >= 10x those (the cases that need more say so)."""
     a, b = ref.metrics(), fast.metrics()
     assert b["status"] == "success"
     assert "exponential" in fast.provenance["integrator"] and "DOP853" in ref.provenance["integrator"]
@@ -53,7 +55,7 @@ def test_seed_damped_law_agrees_and_books_dissipation():
 def test_kinked_law_agrees():
     """Kelvin-Voigt at e = 0.3: the clipped force has a kink while the gap is still closed, which the
     integrator locates and ends a step at (a polynomial cannot follow it): restitution and duration to 1e-6;
-    the force jumps to C d'_0 at the onset, its peak to 1e-4 (measured 6.2e-6)."""
+    the force jumps to C d'_0 at the onset, its peak to 1e-4 (measured 6.2e-6, 16x)."""
     ref, fast = _both(seed(model__modes=0, model__gravity=0.0, contact__law="kelvin_voigt",
                            contact__restitution=0.3, solver__t_end=2e-3))
     _agree(ref, fast, peak=1e-4)
@@ -75,7 +77,7 @@ def test_high_spin_prescribed_impact_agrees():
     case = seed(model__modes=4, drive__kind="prescribed", drive__profile="constant-rate",
                 drive__spin_rate=-30.0, initial__kind="state", initial__angle=0.02, solver__t_end=2e-3)
     ref, fast = _both(case)
-    _agree(ref, fast, peak=5e-5)  # measured 5.1e-6 (a 124 kN peak at 30 rad/s)
+    _agree(ref, fast, peak=1e-4)  # measured 5.1e-6 (a 124 kN peak at 30 rad/s), 19x
     assert fast.provenance["frame"] == "hub"
 
 
@@ -128,8 +130,9 @@ def test_compliant_support_first_contact_and_sensor_agree():
 
 def test_compliant_support_multi_contact_onsets_agree_and_converge():
     """Nine contacts in 30 ms on the sensor (gravity x 10).  Onsets within 5e-8 s at the default tolerance
-    (measured <= 4.1e-9 s) and 5e-10 s at fast_rtol 1e-10 (measured <= 4.8e-11 s); peaks within 2e-3 of the
-    first peak (measured 1.8e-3 relative to each, the largest on a small late peak)."""
+    (measured <= 3.2e-9 s) and 1e-9 s at fast_rtol 1e-10 (measured <= 9.9e-11 s); peaks within 1e-6 of the first
+    peak (measured 9.8e-8 of it, 1.4e-3 relative to a small late peak of its own); energy drift measured 4.1e-7,
+    bound 5e-6."""
     ref, fast = _both(_calibrated(model__modes=4, model__gravity=98.1, solver__t_end=0.03))
     tight = fb.simulate(_with(_calibrated(model__modes=4, model__gravity=98.1, solver__t_end=0.03,
                                           solver__fast_rtol=1e-10, solver__fast_atol=1e-13), "exponential"))
@@ -137,9 +140,9 @@ def test_compliant_support_multi_contact_onsets_agree_and_converge():
     top = ref.contacts[0].peak_force
     for a, b, c in zip(ref.contacts, fast.contacts, tight.contacts, strict=True):
         assert_allclose(b.onset, a.onset, rtol=0, atol=5e-8)
-        assert_allclose(c.onset, a.onset, rtol=0, atol=5e-10)
-        assert_allclose(b.peak_force, a.peak_force, rtol=0, atol=2e-3 * top)
-    assert abs(fast.metrics()["energy_drift_max"]) < 1e-6
+        assert_allclose(c.onset, a.onset, rtol=0, atol=1e-9)
+        assert_allclose(b.peak_force, a.peak_force, rtol=0, atol=1e-6 * top)
+    assert abs(fast.metrics()["energy_drift_max"]) < 5e-6
 
 
 @pytest.mark.parametrize("method", ["ccm", "imm"])
@@ -192,15 +195,16 @@ def test_seed_experiment_full_run_agrees():
 
 @pytest.mark.slow
 def test_seed_experiment_ccm_full_run_agrees():
-    """CCM on the seed case as published (12 modes, 0.1 s): the first contacts and the energy balance."""
+    """CCM on the seed case as published (12 modes, 0.1 s): the first contacts and the energy balance.  Measured:
+    peak 2.6e-8, duration 3.1e-6 (bound 5e-5), onsets 4e-9 s (bound 5e-8 s), drift 8.1e-7 (bound 1e-5)."""
     ref, fast = _both(seed(), "ccm")
     assert fast.status == "success"
     a, b = ref.metrics(), fast.metrics()
     assert_allclose(b["peak_force"], a["peak_force"], rtol=1e-5)
-    assert_allclose(b["contact_duration"], a["contact_duration"], rtol=1e-5)
+    assert_allclose(b["contact_duration"], a["contact_duration"], rtol=5e-5)
     assert abs(b["energy_drift_max"]) < 1e-5
     for x, y in zip(ref.contacts[:4], fast.contacts[:4], strict=True):
-        assert_allclose(y.onset, x.onset, rtol=0, atol=1e-8)
+        assert_allclose(y.onset, x.onset, rtol=0, atol=5e-8)
 
 
 @pytest.mark.slow

@@ -1,15 +1,16 @@
 """The validation report (``python -m flexbeam.validation``) cannot drift from the code.
 
 The reduced report is regenerated into a temporary directory: every section must be present,
-every compared quantity within its stated tolerance (checked on the structured result and on
-the written Markdown), every figure written.  The full page kept in the tree,
-``docs/validation.md``, must have the same sections and only passing rows.
+every compared quantity within its stated tolerance, every figure written, and the Markdown must
+print exactly the structured result.  The full page kept in the tree, ``docs/validation.md``, must
+have the same sections and only passing rows.  (How long the report takes is measured in
+``benchmarks/``, not asserted here.)
 """
 
 from __future__ import annotations
 
+import math
 import re
-import time
 from pathlib import Path
 
 import pytest
@@ -17,15 +18,12 @@ import pytest
 from flexbeam.validation import SECTIONS, main, run_validation
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
-BUDGET = 60.0  # s, the reduced report's time budget
 
 
 @pytest.fixture(scope="module")
 def reduced(tmp_path_factory):
     out = tmp_path_factory.mktemp("report")
-    t0 = time.perf_counter()
-    sections = run_validation(reduced=True, out=out)
-    return out, sections, time.perf_counter() - t0
+    return out, run_validation(reduced=True, out=out)
 
 
 def _split(line: str) -> list[str]:
@@ -50,13 +48,8 @@ def _tables(text: str) -> dict[str, list[dict[str, str]]]:
     return out
 
 
-def test_reduced_report_is_fast(reduced):
-    _, _, seconds = reduced
-    assert seconds < 1.5 * BUDGET  # margin for a loaded machine; typically ~25 s
-
-
 def test_every_section_is_present_and_passes(reduced):
-    out, sections, _ = reduced
+    out, sections = reduced
     assert [s.key for s in sections] == list(SECTIONS)
     for s in sections:
         assert s.rows, f"{s.key}: no compared quantities"
@@ -66,24 +59,38 @@ def test_every_section_is_present_and_passes(reduced):
             assert (out / "figures" / name).stat().st_size > 1000
 
 
-def test_written_page_matches_the_results(reduced):
-    out, sections, _ = reduced
+def _printed(cell: str, value: float, digits: int) -> bool:
+    """A printed cell is ``value`` to ``digits`` significant figures (half a unit of the last one)."""
+    x = float(cell)
+    if not math.isfinite(value) or value == 0.0:
+        return x == value
+    return abs(x - value) <= 0.5 * 10.0 ** (math.floor(math.log10(abs(value))) - digits + 1) * (1 + 1e-9)
+
+
+def test_written_page_prints_the_results(reduced):
+    """Row for row, the Markdown holds the structured result: quantity, reference and value (9 significant
+    figures, 7 in exponent form), error and tolerance (4 and 3), the check and the verdict."""
+    out, sections = reduced
     text = (out / "validation.md").read_text("utf-8")
     tables = _tables(text)
     assert list(tables) == [s.title for s in sections]
     for s in sections:
         rows = tables[s.title]
         assert len(rows) == len(s.rows)
-        for row in rows:
-            assert float(row["error"]) <= float(row["tolerance"]), (s.key, row)
-            assert row["status"] == "pass", (s.key, row)
+        for row, r in zip(rows, s.rows, strict=True):
+            assert row["quantity"] == r.quantity.replace("|", "\\|"), (s.key, row)
+            for name, x in (("reference", r.reference), ("flexbeam", r.value)):
+                assert _printed(row[name], x, 7 if "e" in row[name] else 9), (s.key, name, row, x)
+            assert _printed(row["error"], r.error, 4) and _printed(row["tolerance"], r.tolerance, 3), (s.key, row)
+            assert row["check"] == {"rel": "relative", "abs": "absolute", "upper": "value <= reference",
+                                    "lower": "value >= reference"}[r.kind], (s.key, row)
+            assert row["status"] == ("pass" if r.passed else "FAIL"), (s.key, row)
         for name, _ in s.figures:
             assert f"](figures/{name})" in text
-    assert "FAIL" not in text
 
 
 def test_committed_page_is_a_full_run_with_the_same_sections(reduced):
-    _, sections, _ = reduced
+    _, sections = reduced
     page = DOCS / "validation.md"
     assert page.is_file(), "docs/validation.md missing: run `python -m flexbeam.validation`"
     text = page.read_text("utf-8")
