@@ -108,3 +108,31 @@ def test_command_line_runs_a_subset(tmp_path):
     assert main(["--reduced", "--only", "roots", "pendulum", "--out", str(tmp_path)]) == 0
     text = (tmp_path / "validation.md").read_text("utf-8")
     assert list(_tables(text)) == [SECTIONS["roots"](True, None).title, SECTIONS["pendulum"](True, None).title]
+
+
+@pytest.mark.slow
+def test_committed_page_matches_a_fresh_full_run(tmp_path):
+    """docs/validation.md cannot go stale: a full run now gives, row for row, the committed quantities, and each
+    committed value is the fresh one to within the row's own tolerance (relative or absolute) plus half a unit of
+    its last printed digit.  Bound rows (energy drifts and the like, which only have to stay below their bound)
+    must agree to a factor 2."""
+    sections = run_validation(reduced=False, out=tmp_path)
+    tables = _tables((DOCS / "validation.md").read_text("utf-8"))
+    assert list(tables) == [s.title for s in sections]
+    for s in sections:
+        rows = tables[s.title]
+        assert len(rows) == len(s.rows), s.title
+        for row, r in zip(rows, s.rows, strict=True):
+            assert row["quantity"] == r.quantity.replace("|", "\\|"), (s.title, row)
+            for key, val in r.extra.items():
+                assert row[key] == str(val).replace("|", "\\|"), (s.title, row, key)
+            old, new = float(row["flexbeam"]), float(r.value)
+            where = (s.title, r.quantity, r.extra, old, new)
+            digits = 7 if "e" in row["flexbeam"] else 9
+            printed = 0.5 * 10.0 ** (math.floor(math.log10(abs(new))) - digits + 1) if new else 0.0
+            if r.kind == "rel":
+                assert abs(old - new) <= r.tolerance * abs(r.reference) + printed, where
+            elif r.kind == "abs":
+                assert abs(old - new) <= r.tolerance + printed, where
+            else:
+                assert 0.5 * abs(new) <= abs(old) <= 2.0 * abs(new), where
