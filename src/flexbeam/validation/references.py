@@ -137,7 +137,10 @@ def hunt_crossley_restitution(chi: float) -> float:
     if chi == 0.0:
         return 1.0
     f = lambda e: (1.0 + e) * chi - math.log1p(chi) + math.log1p(-e * chi)  # noqa: E731
-    return brentq(f, 1e-12, min(1.0, (1.0 - 1e-15) / chi), xtol=1e-15, rtol=1e-15)
+    hi = min(1.0, (1.0 - 1e-15) / chi)
+    if f(hi) > 0.0:  # chi >~ 35 (e <~ 0.05): 1 - e chi = (1 + chi) exp(-(1 + e) chi) is below round-off
+        return hi
+    return brentq(f, 1e-12, hi, xtol=1e-15, rtol=1e-15)
 
 
 def kelvin_voigt_restitution(e: float) -> float:

@@ -197,10 +197,13 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, double 
             continue;
         }
         int event = x <= 1.0;
-        if (!event && ph.mode == FB_MODE_FORCE) { /* a kink of the law's force: end the step there */
-            fb_dense dd = {&ph, t, h, eta, v, trial};
-            double xk = fb_find_kink(&dd, kx, known, FB_P + 2);
-            if (xk > 1e-6 && xk < 1.0 - 1e-6) x = xk;
+        if (ph.mode == FB_MODE_FORCE && (!event || x > 1e-6)) { /* a kink of the law's force before any event: */
+            fb_dense dd = {&ph, t, h, eta, v, trial};         /* end the step there (the collocation polynomial */
+            double xk = fb_find_kink(&dd, kx, known, FB_P + 2); /* cannot follow it, nor see it from its end) */
+            if (xk > 1e-6 && xk < 1.0 - 1e-6 && (!event || xk < x)) {
+                x = xk;
+                event = 0;
+            }
         }
         if (x < 1.0 && x > 0.0) { /* retake the step to end at the event (or kink) */
             double hx = x * h;
