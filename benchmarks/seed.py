@@ -76,8 +76,24 @@ from flexbeam.simulation import initial_state
 CASE = "seed-experiment"
 METHODS = ("ccfm", "ccm")
 INTEGRATORS = ("reference", "exponential")
-COLUMNS = ("method", "n", "integrator", "ran", "runs", "wall [ms]", "simulate [ms]", "metrics [ms]", "steps",
-           "free max", "contact med/max", "peak [N]", "d ref(n)", "d conv", "scipy [ms]", "scipy/x")
+COLUMNS = (
+    "method",
+    "n",
+    "integrator",
+    "ran",
+    "runs",
+    "wall [ms]",
+    "simulate [ms]",
+    "metrics [ms]",
+    "steps",
+    "free max",
+    "contact med/max",
+    "peak [N]",
+    "d ref(n)",
+    "d conv",
+    "scipy [ms]",
+    "scipy/x",
+)
 
 
 # ---------------------------------------------------------------------------- helpers
@@ -129,10 +145,17 @@ def environment() -> dict[str, Any]:
             cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), cpu)
     except OSError:
         pass
-    return {"machine": f"{platform.machine()} {cpu}".strip(), "cores": cores, "python": platform.python_version(),
-            "flexbeam": fb.__version__, "numpy": np.__version__, "scipy": scipy.__version__,
-            "numba": numba.__version__, "exudyn": _exudyn_version(),
-            "load_average": os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan}
+    return {
+        "machine": f"{platform.machine()} {cpu}".strip(),
+        "cores": cores,
+        "python": platform.python_version(),
+        "flexbeam": fb.__version__,
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "numba": numba.__version__,
+        "exudyn": _exudyn_version(),
+        "load_average": os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan,
+    }
 
 
 def _exudyn_version() -> str | None:
@@ -165,11 +188,19 @@ def flexbeam_row(method: str, n: int, integrator: str, args) -> dict[str, Any]:
     free = [k for name, k in phase_steps if name == "free"]
     contact = [k for name, k in phase_steps if name != "free"]
     row.update(
-        ran=integrator_ran(sols[-1]), runs=len(runs), status=m["status"],
-        wall=median([x["wall_time"] for x in metrics]), simulate=median([t for t, _ in runs]),
-        metrics=median(metric_times), steps=m["steps"], nfev=m["nfev"], peak=m["peak_force"],
-        contacts=m["contacts"], duration=m["contact_duration"],
-        free_max=max(free) if free else None, contact_median=statistics.median(contact) if contact else None,
+        ran=integrator_ran(sols[-1]),
+        runs=len(runs),
+        status=m["status"],
+        wall=median([x["wall_time"] for x in metrics]),
+        simulate=median([t for t, _ in runs]),
+        metrics=median(metric_times),
+        steps=m["steps"],
+        nfev=m["nfev"],
+        peak=m["peak_force"],
+        contacts=m["contacts"],
+        duration=m["contact_duration"],
+        free_max=max(free) if free else None,
+        contact_median=statistics.median(contact) if contact else None,
         contact_max=max(contact) if contact else None,
     )
     return row
@@ -207,8 +238,16 @@ def scipy_ccfm(case, rtol: float, atol: float) -> dict[str, Any]:
             contacts += 1
         else:
             fun, event = free, onset
-        sol = solve_ivp(fun, (t, t_end), y, method="DOP853", rtol=rtol, atol=atol, events=[event],
-                        dense_output=in_contact and contacts == 1)
+        sol = solve_ivp(
+            fun,
+            (t, t_end),
+            y,
+            method="DOP853",
+            rtol=rtol,
+            atol=atol,
+            events=[event],
+            dense_output=in_contact and contacts == 1,
+        )
         if sol.status < 0:
             raise RuntimeError(f"solve_ivp failed at t = {sol.t[-1]}: {sol.message}")
         steps += sol.t.size - 1
@@ -242,8 +281,15 @@ def scipy_row(n: int, args) -> dict[str, Any]:
     except Exception as exc:
         return {"n": n, "error": f"{type(exc).__name__}: {exc}"}
     last = runs[-1][1]
-    return {"n": n, "runs": len(runs), "wall": median([r["wall"] for _, r in runs]), "steps": last["steps"],
-            "nfev": last["nfev"], "peak": last["peak"], "contacts": last["contacts"]}
+    return {
+        "n": n,
+        "runs": len(runs),
+        "wall": median([r["wall"] for _, r in runs]),
+        "steps": last["steps"],
+        "nfev": last["nfev"],
+        "peak": last["peak"],
+        "contacts": last["contacts"],
+    }
 
 
 # ------------------------------------------------------------------------ start-up
@@ -328,10 +374,18 @@ def kane(args) -> list[dict[str, Any]]:
             rows.append({"integrator": integrator, "error": f"{type(exc).__name__}: {exc}"})
             continue
         metrics = [s.metrics() for _, s in runs]
-        rows.append({"integrator": integrator, "ran": integrator_ran(runs[-1][1]), "t_end": t_end,
-                     "runs": len(runs), "wall": median([m["wall_time"] for m in metrics]),
-                     "simulate": median([t for t, _ in runs]), "steps": metrics[-1]["steps"],
-                     "tip_deflection_min": metrics[-1].get("tip_deflection_min", math.nan)})
+        rows.append(
+            {
+                "integrator": integrator,
+                "ran": integrator_ran(runs[-1][1]),
+                "t_end": t_end,
+                "runs": len(runs),
+                "wall": median([m["wall_time"] for m in metrics]),
+                "simulate": median([t for t, _ in runs]),
+                "steps": metrics[-1]["steps"],
+                "tip_deflection_min": metrics[-1].get("tip_deflection_min", math.nan),
+            }
+        )
     return rows
 
 
@@ -369,15 +423,27 @@ def exudyn_seed(t_end: float, elements: int = 32, step: float = 1e-5) -> dict[st
     mbs = SC.AddSystem()
     ground = mbs.AddObject(ObjectGround(referencePosition=[0, 0, 0]))
     h = L / elements
-    nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[i * h, 0.0, 1.0, 0.0],
-                                           initialVelocities=[0.0, omega * i * h, 0.0, omega]))
-             for i in range(elements + 1)]
+    nodes = [
+        mbs.AddNode(
+            NodePoint2DSlope1(
+                referenceCoordinates=[i * h, 0.0, 1.0, 0.0], initialVelocities=[0.0, omega * i * h, 0.0, omega]
+            )
+        )
+        for i in range(elements + 1)
+    ]
     elems = []
     for i in range(elements):
-        elems.append(mbs.AddObject(Cable2D(physicsLength=h, physicsMassPerLength=rho * area,
-                                           physicsBendingStiffness=E * second_moment,
-                                           physicsAxialStiffness=E * area,
-                                           nodeNumbers=[nodes[i], nodes[i + 1]])))
+        elems.append(
+            mbs.AddObject(
+                Cable2D(
+                    physicsLength=h,
+                    physicsMassPerLength=rho * area,
+                    physicsBendingStiffness=E * second_moment,
+                    physicsAxialStiffness=E * area,
+                    nodeNumbers=[nodes[i], nodes[i + 1]],
+                )
+            )
+        )
         if g:
             mm = mbs.AddMarker(MarkerBodyMass(bodyNumber=elems[-1]))
             mbs.AddLoad(LoadMassProportional(markerNumber=mm, loadVector=[0.0, -g, 0.0]))
@@ -400,10 +466,14 @@ def exudyn_seed(t_end: float, elements: int = 32, step: float = 1e-5) -> dict[st
         f = K * (-deltaL) ** expo * (1.0 - chi * deltaL_t / rate0)
         return -f if f > 0.0 else 0.0  # negative spring force = compression: pushes P off the sphere
 
-    conn = mbs.AddObject(ObjectConnectorSpringDamper(markerNumbers=[mC, mP], referenceLength=R + c,
-                                                     springForceUserFunction=contact_force))
-    sensor = mbs.AddSensor(SensorObject(objectNumber=conn, storeInternal=True,
-                                            outputVariableType=exu.OutputVariableType.Force))
+    conn = mbs.AddObject(
+        ObjectConnectorSpringDamper(
+            markerNumbers=[mC, mP], referenceLength=R + c, springForceUserFunction=contact_force
+        )
+    )
+    sensor = mbs.AddSensor(
+        SensorObject(objectNumber=conn, storeInternal=True, outputVariableType=exu.OutputVariableType.Force)
+    )
     mbs.Assemble()
     settings = exu.SimulationSettings()
     settings.timeIntegration.numberOfSteps = int(round(t_end / step))
@@ -429,8 +499,14 @@ def exudyn_row(args) -> dict[str, Any]:
         runs = timed(lambda: exudyn_seed(args.t_end), args.repeats, args.budget)
     except Exception as exc:
         return {"error": f"{type(exc).__name__}: {exc}", "version": version}
-    return {"version": version, "runs": len(runs), "wall": median([r["wall"] for _, r in runs]),
-            "build+solve": median([t for t, _ in runs]), "peak": runs[-1][1]["peak"], "steps": runs[-1][1]["steps"]}
+    return {
+        "version": version,
+        "runs": len(runs),
+        "wall": median([r["wall"] for _, r in runs]),
+        "build+solve": median([t for t, _ in runs]),
+        "peak": runs[-1][1]["peak"],
+        "steps": runs[-1][1]["steps"],
+    }
 
 
 # ---------------------------------------------------------------------------- report
@@ -462,12 +538,21 @@ def run(args) -> dict[str, Any]:
     conv_n = args.converged_modes or modes[-1]
     converged: dict[str, dict[str, Any]] = {}
     for method in args.methods:
-        ref = next((r for r in rows if r["method"] == method and r["n"] == conv_n and r["integrator"] == "reference"
-                    and "error" not in r), None)
+        ref = next(
+            (
+                r
+                for r in rows
+                if r["method"] == method and r["n"] == conv_n and r["integrator"] == "reference" and "error" not in r
+            ),
+            None,
+        )
         if ref is None:
             ref = flexbeam_row(method, conv_n, "reference", argparse.Namespace(**{**vars(args), "repeats": 1}))
-        converged[method] = {"n": conv_n, "peak": ref.get("peak", math.nan),
-                             "source": f"reference integrator (DOP853, rtol 1e-9, atol 1e-12), {conv_n} modes"}
+        converged[method] = {
+            "n": conv_n,
+            "peak": ref.get("peak", math.nan),
+            "source": f"reference integrator (DOP853, rtol 1e-9, atol 1e-12), {conv_n} modes",
+        }
     scipy_rows = {}
     if args.scipy and "ccfm" in args.methods:
         for n in modes:
@@ -476,8 +561,17 @@ def run(args) -> dict[str, Any]:
     for r in rows:
         if "error" in r:
             continue
-        ref = next((x for x in rows if x["method"] == r["method"] and x["n"] == r["n"]
-                    and x["integrator"] == "reference" and "error" not in x), None)
+        ref = next(
+            (
+                x
+                for x in rows
+                if x["method"] == r["method"]
+                and x["n"] == r["n"]
+                and x["integrator"] == "reference"
+                and "error" not in x
+            ),
+            None,
+        )
         r["d_ref"] = rel(r["peak"], ref["peak"]) if ref else math.nan
         r["d_conv"] = rel(r["peak"], converged[r["method"]]["peak"])
         s = scipy_rows.get(r["n"]) if r["method"] == "ccfm" else None
@@ -487,16 +581,28 @@ def run(args) -> dict[str, Any]:
     for s in scipy_rows.values():
         if "error" not in s:
             s["d_conv"] = rel(s["peak"], converged["ccfm"]["peak"])
-    result = {"environment": env, "case": CASE, "t_end": args.t_end, "repeats": args.repeats,
-              "budget": args.budget, "rows": rows, "converged": converged,
-              "scipy": {"rtol": args.scipy_rtol, "atol": args.scipy_atol, "rows": list(scipy_rows.values())}}
+    result = {
+        "environment": env,
+        "case": CASE,
+        "t_end": args.t_end,
+        "repeats": args.repeats,
+        "budget": args.budget,
+        "rows": rows,
+        "converged": converged,
+        "scipy": {"rtol": args.scipy_rtol, "atol": args.scipy_atol, "rows": list(scipy_rows.values())},
+    }
     result["startup"] = startup(args) if args.startup else {"skipped": "--no-startup"}
     result["kane"] = kane(args) if args.kane else []
     result["exudyn"] = exudyn_row(args) if args.exudyn else {"skipped": "--no-exudyn"}
     ex = result["exudyn"]
-    base = next((r for r in rows if r["method"] == "ccfm" and r["n"] == 16 and "error" not in r
-                 and r["integrator"] == "exponential"), None) or next(
-        (r for r in rows if r["method"] == "ccfm" and "error" not in r), None)
+    base = next(
+        (
+            r
+            for r in rows
+            if r["method"] == "ccfm" and r["n"] == 16 and "error" not in r and r["integrator"] == "exponential"
+        ),
+        None,
+    ) or next((r for r in rows if r["method"] == "ccfm" and "error" not in r), None)
     if "wall" in ex and base:
         ex["ratio_against"] = f"ccfm n={base['n']} {base['integrator']}"
         ex["ratio"] = ex["wall"] / base["wall"] if base["wall"] > 0 else math.nan
@@ -506,40 +612,66 @@ def run(args) -> dict[str, Any]:
 
 def markdown(res: dict[str, Any]) -> str:
     env = res["environment"]
-    lines = [f"machine: {env['machine']}, {env['cores']} cores, load {env['load_average']:.2f}; python "
-             f"{env['python']}, flexbeam {env['flexbeam']}, numpy {env['numpy']}, scipy {env['scipy']}, "
-             f"numba {env['numba']}, exudyn {env['exudyn'] or 'not installed'}",
-             f"case: {res['case']}, t_end = {res['t_end']} s; median of up to {res['repeats']} runs "
-             f"(fewer past {res['budget']} s per row), after a warm-up run", ""]
+    lines = [
+        f"machine: {env['machine']}, {env['cores']} cores, load {env['load_average']:.2f}; python "
+        f"{env['python']}, flexbeam {env['flexbeam']}, numpy {env['numpy']}, scipy {env['scipy']}, "
+        f"numba {env['numba']}, exudyn {env['exudyn'] or 'not installed'}",
+        f"case: {res['case']}, t_end = {res['t_end']} s; median of up to {res['repeats']} runs "
+        f"(fewer past {res['budget']} s per row), after a warm-up run",
+        "",
+    ]
     lines.append("| " + " | ".join(COLUMNS) + " |")
     lines.append("|" + "---|" * len(COLUMNS))
     for r in res["rows"]:
         if "error" in r:
-            lines.append(f"| {r['method']} | {r['n']} | {r['integrator']} | error: {r['error'][:120]} |"
-                         + " |" * (len(COLUMNS) - 4))
+            lines.append(
+                f"| {r['method']} | {r['n']} | {r['integrator']} | error: {r['error'][:120]} |"
+                + " |" * (len(COLUMNS) - 4)
+            )
             continue
-        contact = (f"{fmt(r.get('contact_median'))}/{fmt(r.get('contact_max'))}"
-                   if r.get("contact_max") is not None else "-")
-        cells = [r["method"], r["n"], r["integrator"], r["ran"], r["runs"], ms(r["wall"]), ms(r["simulate"]),
-                 ms(r.get("metrics")), r["steps"], fmt(r.get("free_max")), contact, fmt(r["peak"], ".6g"),
-                 pct(r.get("d_ref", math.nan)), pct(r.get("d_conv", math.nan)), ms(r.get("scipy_wall")),
-                 fmt(r.get("scipy_ratio"), ".3g")]
+        contact = (
+            f"{fmt(r.get('contact_median'))}/{fmt(r.get('contact_max'))}" if r.get("contact_max") is not None else "-"
+        )
+        cells = [
+            r["method"],
+            r["n"],
+            r["integrator"],
+            r["ran"],
+            r["runs"],
+            ms(r["wall"]),
+            ms(r["simulate"]),
+            ms(r.get("metrics")),
+            r["steps"],
+            fmt(r.get("free_max")),
+            contact,
+            fmt(r["peak"], ".6g"),
+            pct(r.get("d_ref", math.nan)),
+            pct(r.get("d_conv", math.nan)),
+            ms(r.get("scipy_wall")),
+            fmt(r.get("scipy_ratio"), ".3g"),
+        ]
         lines.append("| " + " | ".join(str(c) for c in cells) + " |")
     lines.append("")
     for method, c in res["converged"].items():
         lines.append(f"converged peak ({method}): {fmt(c['peak'], '.7g')} N -- {c['source']}")
     sc = res["scipy"]
     if sc["rows"]:
-        lines += ["", f"scipy solve_ivp DOP853 on the CCFM model (rtol {sc['rtol']:g}, atol {sc['atol']:g}), "
-                  "terminal gap events:", "",
-                  "| n | runs | wall [ms] | steps | nfev | contacts | peak [N] | d conv |",
-                  "|---|---|---|---|---|---|---|---|"]
+        lines += [
+            "",
+            f"scipy solve_ivp DOP853 on the CCFM model (rtol {sc['rtol']:g}, atol {sc['atol']:g}), "
+            "terminal gap events:",
+            "",
+            "| n | runs | wall [ms] | steps | nfev | contacts | peak [N] | d conv |",
+            "|---|---|---|---|---|---|---|---|",
+        ]
         for s in sc["rows"]:
             if "error" in s:
                 lines.append(f"| {s['n']} | error: {s['error'][:120]} | | | | | | |")
             else:
-                lines.append(f"| {s['n']} | {s['runs']} | {ms(s['wall'])} | {s['steps']} | {s['nfev']} | "
-                             f"{s['contacts']} | {fmt(s['peak'], '.6g')} | {pct(s.get('d_conv', math.nan))} |")
+                lines.append(
+                    f"| {s['n']} | {s['runs']} | {ms(s['wall'])} | {s['steps']} | {s['nfev']} | "
+                    f"{s['contacts']} | {fmt(s['peak'], '.6g')} | {pct(s.get('d_conv', math.nan))} |"
+                )
     st = res["startup"]
     lines += ["", "start-up:"]
     if "skipped" in st:
@@ -554,30 +686,39 @@ def markdown(res: dict[str, Any]) -> str:
                 lines.append(f"  {label}: error {d['error']}")
                 continue
             what = "first call, empty NUMBA_CACHE_DIR" if label == "cold" else "first call, warm"
-            lines.append(f"  {label}: import flexbeam {ms(d['import'])} ms, then flexbeam.simulation and the "
-                         f"integrators {ms(d['import_simulation'])} ms; first simulate() minus second = {what}: "
-                         f"reference {ms(d['reference_first_call'])} ms, exponential "
-                         f"{ms(d['exponential_first_call'])} ms; whole process {d['process']:.3g} s")
+            lines.append(
+                f"  {label}: import flexbeam {ms(d['import'])} ms, then flexbeam.simulation and the "
+                f"integrators {ms(d['import_simulation'])} ms; first simulate() minus second = {what}: "
+                f"reference {ms(d['reference_first_call'])} ms, exponential "
+                f"{ms(d['exponential_first_call'])} ms; whole process {d['process']:.3g} s"
+            )
         if "cli_cold" in st:
             c = st["cli_cold"]
-            lines.append(f"  `{c['command']}` with an empty Numba cache (the first run after installing): "
-                         + (f"error {c['error']}" if "error" in c else f"{c['median']:.3g} s"))
+            lines.append(
+                f"  `{c['command']}` with an empty Numba cache (the first run after installing): "
+                + (f"error {c['error']}" if "error" in c else f"{c['median']:.3g} s")
+            )
         for c in st["cli"]:
             if "error" in c:
                 lines.append(f"  `{c['command']}`: error {c['error']}")
             else:
-                lines.append(f"  `{c['command']}`: {c['median']:.3g} s from process start to exit "
-                             f"(median of {c['runs']})")
+                lines.append(
+                    f"  `{c['command']}`: {c['median']:.3g} s from process start to exit (median of {c['runs']})"
+                )
     if res["kane"]:
         lines += ["", "kane-spinup:", ""]
-        lines += ["| integrator | ran | t_end [s] | runs | wall [ms] | simulate [ms] | steps |",
-                  "|---|---|---|---|---|---|---|"]
+        lines += [
+            "| integrator | ran | t_end [s] | runs | wall [ms] | simulate [ms] | steps |",
+            "|---|---|---|---|---|---|---|",
+        ]
         for k in res["kane"]:
             if "error" in k:
                 lines.append(f"| {k['integrator']} | error: {k['error'][:120]} | | | | | |")
             else:
-                lines.append(f"| {k['integrator']} | {k['ran']} | {k['t_end']:g} | {k['runs']} | {ms(k['wall'])} | "
-                             f"{ms(k['simulate'])} | {k['steps']} |")
+                lines.append(
+                    f"| {k['integrator']} | {k['ran']} | {k['t_end']:g} | {k['runs']} | {ms(k['wall'])} | "
+                    f"{ms(k['simulate'])} | {k['steps']} |"
+                )
     ex = res["exudyn"]
     lines += [""]
     if "skipped" in ex:
@@ -585,10 +726,12 @@ def markdown(res: dict[str, Any]) -> str:
     elif "error" in ex:
         lines.append(f"exudyn {ex.get('version')}: error {ex['error']}")
     else:
-        lines.append(f"exudyn {ex['version']}: 32 ANCF cable elements, 1e-5 s step, {ex['steps']} steps: solve "
-                     f"{ms(ex['wall'])} ms (build + solve {ms(ex['build+solve'])} ms, median of {ex['runs']}), "
-                     f"peak {fmt(ex['peak'], '.6g')} N (d conv {pct(ex.get('d_conv', math.nan))}); "
-                     f"exudyn/x = {fmt(ex.get('ratio'), '.3g')} against {ex.get('ratio_against', '-')}")
+        lines.append(
+            f"exudyn {ex['version']}: 32 ANCF cable elements, 1e-5 s step, {ex['steps']} steps: solve "
+            f"{ms(ex['wall'])} ms (build + solve {ms(ex['build+solve'])} ms, median of {ex['runs']}), "
+            f"peak {fmt(ex['peak'], '.6g')} N (d conv {pct(ex.get('d_conv', math.nan))}); "
+            f"exudyn/x = {fmt(ex.get('ratio'), '.3g')} against {ex.get('ratio_against', '-')}"
+        )
     return "\n".join(lines) + "\n"
 
 
@@ -606,9 +749,12 @@ def jsonable(obj: Any) -> Any:
 
 def parse(argv: list[str] | None = None) -> argparse.Namespace:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--quick", action="store_true",
-                   help="smoke run: 2 modes, 2 ms, 1 repeat, one CLI start-up, no compile/cache-load subprocesses, "
-                   "no Exudyn, 0.5 s of Kane")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="smoke run: 2 modes, 2 ms, 1 repeat, one CLI start-up, no compile/cache-load subprocesses, "
+        "no Exudyn, 0.5 s of Kane",
+    )
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the tables")
     p.add_argument("--modes", type=int, nargs="+", default=[4, 8, 12, 16, 32])
     p.add_argument("--methods", nargs="+", default=list(METHODS), choices=METHODS)
@@ -616,8 +762,12 @@ def parse(argv: list[str] | None = None) -> argparse.Namespace:
     p.add_argument("--t-end", type=float, default=0.1, help="simulated time [s]")
     p.add_argument("--repeats", type=int, default=5, help="timed runs per row (median)")
     p.add_argument("--budget", type=float, default=30.0, help="stop repeating a row after this many seconds")
-    p.add_argument("--converged-modes", type=int, default=None,
-                   help="modes of the converged reference run (default: the highest of --modes)")
+    p.add_argument(
+        "--converged-modes",
+        type=int,
+        default=None,
+        help="modes of the converged reference run (default: the highest of --modes)",
+    )
     p.add_argument("--scipy-rtol", type=float, default=1e-8)
     p.add_argument("--scipy-atol", type=float, default=1e-11)
     p.add_argument("--no-scipy", dest="scipy", action="store_false")

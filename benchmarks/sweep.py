@@ -49,15 +49,24 @@ def on_cluster(workers: int, n: int, runs: int, root: Path) -> tuple[float, list
     from dask.distributed import Client, LocalCluster
 
     t0 = time.perf_counter()
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
-                      scheduler_kwargs={"dashboard_address": "127.0.0.1:0"}) as cluster, Client(cluster) as client:
+    with (
+        LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+        ) as cluster,
+        Client(cluster) as client,
+    ):
         client.run(_warm)
         startup = time.perf_counter() - t0
         times = []
         for r in range(runs):
             t0 = time.perf_counter()
-            ds = fb.sweep("seed-experiment", grid=grid(n), overrides=BASE, scheduler=client,
-                          out=root / f"w{workers}-run{r}")
+            ds = fb.sweep(
+                "seed-experiment", grid=grid(n), overrides=BASE, scheduler=client, out=root / f"w{workers}-run{r}"
+            )
             times.append(time.perf_counter() - t0)
             assert ds.attrs["computed"] == n and ds.attrs["failed"] == 0
     return startup, times
@@ -71,8 +80,10 @@ def main() -> None:
     import dask
 
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    print(f"machine: {platform.machine()} {platform.processor() or ''}, {cores} cores, "
-          f"python {platform.python_version()}, dask {dask.__version__}, load {os.getloadavg()[0]:.2f}")
+    print(
+        f"machine: {platform.machine()} {platform.processor() or ''}, {cores} cores, "
+        f"python {platform.python_version()}, dask {dask.__version__}, load {os.getloadavg()[0]:.2f}"
+    )
     print(f"{args.cases} cases per sweep (seed experiment, 4 modes, 20 ms), median of {args.runs} runs\n")
     base = statistics.median(serial(args.cases, args.runs))
     rows = [("serial, in process", args.cases / base, base, float("nan"))]

@@ -30,8 +30,7 @@ truth = fb.simulate(fb.load_case(case, TRUE))
 t = np.arange(-1e-4, 1.2e-3, 1e-6)  # 1 MHz from 0.1 ms before the contact
 force = np.interp(t, truth.time, truth["contact_force"], left=0.0)
 rng = np.random.default_rng(1)
-measured = Measured(time=t + 3.7e-4, force=force + rng.normal(0.0, NOISE * force.max(), t.size),
-                    source="synthetic")
+measured = Measured(time=t + 3.7e-4, force=force + rng.normal(0.0, NOISE * force.max(), t.size), source="synthetic")
 
 # %%
 # Fit
@@ -57,8 +56,10 @@ if __name__ == "__main__":
     # the data on the fitted model's clock: its alignment instant plus the fitted time shift
     t_data = fit.aligned_time + fit.model_reference[1] + fit.time_shift - fit.solution.contacts[0].onset
     ax.plot(t_data * 1e3, measured.force[fit.data_mask], ".", ms=1.5, c="0.6", label="synthetic measurement")
-    for sol, style, label in ((fit.initial_solution, "--", "start (K = 4.43e9, e = 0.8)"),
-                              (fit.solution, "-", "fitted")):
+    for sol, style, label in (
+        (fit.initial_solution, "--", "start (K = 4.43e9, e = 0.8)"),
+        (fit.solution, "-", "fitted"),
+    ):
         t0 = sol.contacts[0].onset
         sel = (sol.time >= t0) & (sol.time <= t0 + 1e-3)
         ax.plot((sol.time[sel] - t0) * 1e3, sol["contact_force"][sel], style, label=label)

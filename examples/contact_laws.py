@@ -30,8 +30,12 @@ LAWS = ("hertz", "hunt_crossley", "lankarani_nikravesh", "flores", "gonthier", "
 SHORT = {"solver.t_end": 2e-3}
 
 flexible = {law: fb.simulate(fb.load_case("seed-experiment", {**SHORT, "contact.law": law})) for law in LAWS}
-rigid = {law: fb.simulate(fb.load_case("seed-experiment", {**SHORT, "contact.law": law, "model.modes": 0,
-                                                            "model.gravity": 0.0})) for law in LAWS}
+rigid = {
+    law: fb.simulate(
+        fb.load_case("seed-experiment", {**SHORT, "contact.law": law, "model.modes": 0, "model.gravity": 0.0})
+    )
+    for law in LAWS
+}
 
 #: effective restitution of each law in the rigid limit, -v+/v- of the first contact
 effective_restitution = {
@@ -46,8 +50,10 @@ peak_force = {law: sol.metrics()["peak_force"] for law, sol in flexible.items()}
 if __name__ == "__main__":
     print(f"{'law':22}{'e_eff (rigid)':>14}{'peak, rigid [N]':>17}{'peak, flexible [N]':>20}")
     for law in LAWS:
-        print(f"{law:22}{effective_restitution[law]:14.4f}{rigid[law].metrics()['peak_force']:17.1f}"
-              f"{peak_force[law]:20.1f}")
+        print(
+            f"{law:22}{effective_restitution[law]:14.4f}{rigid[law].metrics()['peak_force']:17.1f}"
+            f"{peak_force[law]:20.1f}"
+        )
 
 # %%
 # Force histories of the flexible beam's first contact
@@ -59,9 +65,11 @@ if __name__ == "__main__":
     for law, sol in flexible.items():
         t0 = sol.contacts[0].onset
         window = (sol.time >= t0) & (sol.time <= t0 + 0.8e-3)
-        ax.plot((sol.time[window] - t0) * 1e3, sol["contact_force"][window],
-                label=f"{law} (e_eff = {effective_restitution[law]:.3f})")
-    ax.set(xlabel="Time after first contact [ms]", ylabel="Contact force [N]",
-           title="Seed case, CCFM, nominal e = 0.8")
+        ax.plot(
+            (sol.time[window] - t0) * 1e3,
+            sol["contact_force"][window],
+            label=f"{law} (e_eff = {effective_restitution[law]:.3f})",
+        )
+    ax.set(xlabel="Time after first contact [ms]", ylabel="Contact force [N]", title="Seed case, CCFM, nominal e = 0.8")
     ax.legend(fontsize=8)
     plt.show()

@@ -43,16 +43,19 @@ def hub_rates(t: float) -> tuple[float, float]:
 
 #: the quasi-static tip deflection during the spin-up (scipy's solve_bvp on the spinning beam)
 t_quasi = np.linspace(0.0, Ts, 31)
-tip_quasi = np.array([quasi_static_tip(case.beam.line_density, case.beam.bending_stiffness, case.beam.length,
-                                       *hub_rates(t)) for t in t_quasi])
+tip_quasi = np.array(
+    [
+        quasi_static_tip(case.beam.line_density, case.beam.bending_stiffness, case.beam.length, *hub_rates(t))
+        for t in t_quasi
+    ]
+)
 tip_first = np.interp(t_quasi, first.time, first["tip_deflection"])
 
 # %%
 # The first-order tip stays within centimetres of the quasi-static curve; the
 # zeroth-order one runs away.
 if __name__ == "__main__":
-    print(f"first-order:  min tip {first.metrics()['tip_deflection_min']:.4f} m "
-          f"(quasi-static {tip_quasi.min():.4f} m)")
+    print(f"first-order:  min tip {first.metrics()['tip_deflection_min']:.4f} m (quasi-static {tip_quasi.min():.4f} m)")
     print(f"zeroth-order: largest |tip| {np.nanmax(np.abs(zeroth['tip_deflection'])):.3g} m")
 
 # %%

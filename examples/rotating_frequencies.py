@@ -53,7 +53,10 @@ if __name__ == "__main__":
         ax.plot(spins, zeroth_order[:, k], c=f"C{k}", ls="--", label=f"mode {k + 1}, zeroth-order")
     ax.axvline(buckling_spin, c="0.5", lw=0.8, ls=":")
     ax.axhline(0.0, c="0.5", lw=0.5)
-    ax.set(xlabel="Spin rate Omega [rad/s]", ylabel="Chordwise frequency [rad/s]",
-           title="Kane beam (L = 10 m), 6 modes; negative = unstable")
+    ax.set(
+        xlabel="Spin rate Omega [rad/s]",
+        ylabel="Chordwise frequency [rad/s]",
+        title="Kane beam (L = 10 m), 6 modes; negative = unstable",
+    )
     ax.legend(fontsize=7, ncol=2)
     plt.show()

@@ -32,8 +32,10 @@ metrics = {method: sol.metrics() for method, sol in solutions.items()}
 if __name__ == "__main__":
     print(f"{'method':8}{'peak [N]':>10}{'duration [ms]':>15}{'impulse [N s]':>15}{'contacts':>10}")
     for method, m in metrics.items():
-        print(f"{method:8}{m['peak_force']:10.1f}{m['contact_duration'] * 1e3:15.4f}"
-              f"{m['impulse']:15.5f}{m['contacts']:10d}")
+        print(
+            f"{method:8}{m['peak_force']:10.1f}{m['contact_duration'] * 1e3:15.4f}"
+            f"{m['impulse']:15.5f}{m['contacts']:10d}"
+        )
 
 # %%
 # Contact force and the contact point's normal velocity

@@ -55,8 +55,10 @@ def test_beam_shape_is_the_kernels_tip_and_contact_point(frame, coupling):
 
     Both evaluate r = A(theta) rho with H(x) by Gauss-Legendre quadrature (the kernel over [0, x] at once, beam_shape
     over sub-intervals), which agree to round-off: |r| ~ 1 m, so 1e-12 m is a 10^3 margin over double precision."""
-    case = fb.load_case("seed-experiment", {"model.modes": 4, "model.frame": frame, "model.coupling": coupling,
-                                            "hub.radius": 0.05, "hub.inertia": 0.01})
+    case = fb.load_case(
+        "seed-experiment",
+        {"model.modes": 4, "model.frame": frame, "model.coupling": coupling, "hub.radius": 0.05, "hub.inertia": 0.01},
+    )
     system = BeamSystem.from_case(case)
     rng = np.random.default_rng(1)
     L, xP, c = system.beam.length, system.contact.position, system.contact.offset
@@ -78,8 +80,9 @@ def test_beam_shape_is_the_kernels_tip_and_contact_point(frame, coupling):
 @pytest.mark.parametrize("frame", ["system", "hub"])
 def test_beam_shape_of_the_undeformed_beam_is_the_hubs_radial_line(frame):
     """q = 0: r(x) = (r_h + x) (cos phi, sin phi), exactly, with the shapes vectorised over times."""
-    case = fb.load_case("seed-experiment", {"model.modes": 3, "model.frame": frame, "hub.radius": 0.05,
-                                            "hub.inertia": 0.01})
+    case = fb.load_case(
+        "seed-experiment", {"model.modes": 3, "model.frame": frame, "hub.radius": 0.05, "hub.inertia": 0.01}
+    )
     system = BeamSystem.from_case(case)
     x = np.linspace(0.0, system.beam.length, 7)
     phi = np.array([0.0, 0.3, -2.0])
@@ -219,8 +222,22 @@ def test_cli_from_a_result_file(small_run, tmp_path):
     _, sol = small_run
     nc = sol.to_netcdf(tmp_path / "result.nc")
     out = tmp_path / "beam.gif"
-    main(["animate", str(nc), "--out", str(out), "--frames", "7", "--size", "120x90", "--window", "0,1e-3",
-          "--scale", "500"])
+    main(
+        [
+            "animate",
+            str(nc),
+            "--out",
+            str(out),
+            "--frames",
+            "7",
+            "--size",
+            "120x90",
+            "--window",
+            "0,1e-3",
+            "--scale",
+            "500",
+        ]
+    )
     assert frames_and_size(out)[:2] == (7, (120, 90))
 
 

@@ -11,26 +11,52 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_seed_benchmark_quick_prints_the_table():
-    r = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "seed.py"), "--quick"], capture_output=True,
-                       text=True, timeout=600, cwd=ROOT)
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "seed.py"), "--quick"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        cwd=ROOT,
+    )
     assert r.returncode == 0, r.stderr
     out = r.stdout
     header = next(line for line in out.splitlines() if line.startswith("| method |"))
     columns = [c.strip() for c in header.strip("|").split("|")]
-    assert columns == ["method", "n", "integrator", "ran", "runs", "wall [ms]", "simulate [ms]", "metrics [ms]",
-                       "steps", "free max", "contact med/max", "peak [N]", "d ref(n)", "d conv", "scipy [ms]",
-                       "scipy/x"]
+    assert columns == [
+        "method",
+        "n",
+        "integrator",
+        "ran",
+        "runs",
+        "wall [ms]",
+        "simulate [ms]",
+        "metrics [ms]",
+        "steps",
+        "free max",
+        "contact med/max",
+        "peak [N]",
+        "d ref(n)",
+        "d conv",
+        "scipy [ms]",
+        "scipy/x",
+    ]
     rows = [line for line in out.splitlines() if line.startswith(("| ccfm |", "| ccm |"))]
     assert len(rows) == 4  # two methods x two integrators at 2 modes
     assert not any("error" in row for row in rows), out
-    for part in ("converged peak (ccfm)", "scipy solve_ivp DOP853", "flexbeam run seed-experiment --json",
-                 "kane-spinup"):
+    for part in (
+        "converged peak (ccfm)",
+        "scipy solve_ivp DOP853",
+        "flexbeam run seed-experiment --json",
+        "kane-spinup",
+    ):
         assert part in out
 
 
 def test_import_cli_does_not_import_heavy_libraries():
-    code = ("import json, sys, flexbeam.cli; print(json.dumps(sorted({m.split('.')[0] for m in sys.modules} & "
-            "{'xarray', 'matplotlib', 'dask', 'distributed', 'pandas', 'netCDF4', 'rich', 'scipy', 'numba'})))")
+    code = (
+        "import json, sys, flexbeam.cli; print(json.dumps(sorted({m.split('.')[0] for m in sys.modules} & "
+        "{'xarray', 'matplotlib', 'dask', 'distributed', 'pandas', 'netCDF4', 'rich', 'scipy', 'numba'})))"
+    )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout) == []

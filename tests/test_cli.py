@@ -12,18 +12,35 @@ import pytest
 
 import flexbeam as fb
 
-CONTRACT = ["peak_force", "peak_time", "contact_duration", "force_peaks", "contacts",
-            "post_impact_velocity", "energy_drift", "wall_time", "steps"]
+CONTRACT = [
+    "peak_force",
+    "peak_time",
+    "contact_duration",
+    "force_peaks",
+    "contacts",
+    "post_impact_velocity",
+    "energy_drift",
+    "wall_time",
+    "steps",
+]
 
 
 def flexbeam(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True,
-                          timeout=600)
+    return subprocess.run([sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True, timeout=600)
 
 
 def test_run_json_has_the_contract_keys(tmp_path):
-    r = flexbeam("run", "seed-experiment", "--json", "--set", "model.modes=2", "--set", "solver.t_end=0.002",
-                 "--out", str(tmp_path / "out"))
+    r = flexbeam(
+        "run",
+        "seed-experiment",
+        "--json",
+        "--set",
+        "model.modes=2",
+        "--set",
+        "solver.t_end=0.002",
+        "--out",
+        str(tmp_path / "out"),
+    )
     assert r.returncode == 0, r.stderr
     data = json.loads(r.stdout)
     for key in CONTRACT:

@@ -20,8 +20,15 @@ from tests.conftest import seed
 SHORT = {"model.modes": 2, "solver.t_end": 0.002}
 COMPLIANT = {"obstacle.support.stiffness": 3e7, "obstacle.support.mass": 0.02, "obstacle.support.damping": 50.0}
 #: the README's "--json prints ..." keys with their documented types
-FLOAT_KEYS = ["peak_force", "peak_time", "contact_duration", "post_impact_velocity", "impulse", "energy_drift",
-              "wall_time"]
+FLOAT_KEYS = [
+    "peak_force",
+    "peak_time",
+    "contact_duration",
+    "post_impact_velocity",
+    "impulse",
+    "energy_drift",
+    "wall_time",
+]
 INT_KEYS = ["contacts", "steps"]
 LIST_KEYS = ["force_peaks", "force_peak_times"]
 STR_KEYS = ["method", "status", "message"]
@@ -32,8 +39,9 @@ REL = 1e-12
 
 
 def flexbeam(*args: str, env: dict[str, str] | None = None, timeout: float = 600) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True,
-                          timeout=timeout, env=env)
+    return subprocess.run(
+        [sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True, timeout=timeout, env=env
+    )
 
 
 def sets(overrides: dict[str, Any]) -> list[str]:
@@ -111,8 +119,7 @@ def test_json_is_strict_and_equals_the_api_metrics(method, overrides):
 
 def test_run_that_stops_at_max_contacts_exits_1_and_still_prints_its_metrics():
     # modes = 2: the second contact comes at t ~ 31 ms, past solver.max_contacts = 1
-    r = flexbeam("run", "seed-experiment", "--json", *sets({**SHORT, "solver.t_end": 0.035,
-                                                              "solver.max_contacts": 1}))
+    r = flexbeam("run", "seed-experiment", "--json", *sets({**SHORT, "solver.t_end": 0.035, "solver.max_contacts": 1}))
     assert r.returncode == 1, r.stderr
     data = strict_json(r.stdout)
     assert data["status"] == "max-contacts" and data["contacts"] == 1
@@ -162,13 +169,27 @@ setattr(home, _run_case.__name__, run_case)
 def test_sweep_with_missing_cases_exits_1(tmp_path):
     preload = tmp_path / "killer.py"
     preload.write_text(KILLER)
-    env = {**os.environ,
-           "DASK_DISTRIBUTED__WORKER__PRELOAD": json.dumps([str(preload)]),
-           "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0"}  # lost at the first death, no retry
+    env = {
+        **os.environ,
+        "DASK_DISTRIBUTED__WORKER__PRELOAD": json.dumps([str(preload)]),
+        "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0",
+    }  # lost at the first death, no retry
     store = tmp_path / "store"
     # one case only, the one that is lost (a complete sweep exiting 0 is in tests/sweep/test_sweep.py)
-    r = flexbeam("sweep", "seed-experiment", *sets(SHORT), "--grid", "contact.restitution=0.6",
-                 "--workers", "1", "--out", str(store), "--json", env=env, timeout=300)
+    r = flexbeam(
+        "sweep",
+        "seed-experiment",
+        *sets(SHORT),
+        "--grid",
+        "contact.restitution=0.6",
+        "--workers",
+        "1",
+        "--out",
+        str(store),
+        "--json",
+        env=env,
+        timeout=300,
+    )
     assert r.returncode == 1, r.stderr
     info = strict_json(r.stdout)
     assert info["missing"] == 1 and info["cases"] == 1 and info["failed"] == 0

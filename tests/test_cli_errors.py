@@ -19,8 +19,7 @@ import flexbeam as fb
 
 
 def flexbeam(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True,
-                          timeout=600)
+    return subprocess.run([sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True, timeout=600)
 
 
 def assert_one_line_error(r: subprocess.CompletedProcess, field: str, *fragments: str) -> str:
@@ -92,8 +91,10 @@ def test_bad_value_on_the_command_line(assignment, field, allowed):
     assert_one_line_error(r, field, allowed)
 
 
-@pytest.mark.parametrize(("key", "value"), [("obstacle.support.stiffness", 0.0), ("obstacle.support.mass", 0.0),
-                                            ("obstacle.support.damping", -1.0)])
+@pytest.mark.parametrize(
+    ("key", "value"),
+    [("obstacle.support.stiffness", 0.0), ("obstacle.support.mass", 0.0), ("obstacle.support.damping", -1.0)],
+)
 def test_bad_compliant_support(key, value):
     support = {"obstacle.support.stiffness": "3e7", "obstacle.support.mass": "0.02", "obstacle.support.damping": "50"}
     support[key] = repr(value)
@@ -154,8 +155,11 @@ def test_misspelt_key_on_the_command_line_has_the_same_form():
     ("edit", "field", "hint"),
     [
         (lambda d: d.__setitem__("bem", d.pop("beam")), "bem", "unknown section, did you mean beam?"),
-        (lambda d: d["obstacle"].__setitem__("suport", d["obstacle"].pop("support")), "obstacle.suport",
-         "unknown section, did you mean support?"),
+        (
+            lambda d: d["obstacle"].__setitem__("suport", d["obstacle"].pop("support")),
+            "obstacle.suport",
+            "unknown section, did you mean support?",
+        ),
         (lambda d: d.__setitem__("solvr", {"t_end": 0.01}), "solvr", "did you mean solver?"),
         # no close match: the known names of the section are listed instead
         (lambda d: d["contact"].__setitem__("zzz", 1.0), "contact.zzz", "contact has: law, position"),

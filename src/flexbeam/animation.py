@@ -119,8 +119,13 @@ def beam_shape(system: BeamSystem, phi, q, x) -> tuple[np.ndarray, np.ndarray]:
 
 
 # ------------------------------------------------------------------------------------------------ frame plan
-def frame_times(window: tuple[float, float], contacts: Sequence[tuple[float, float]], frames: int,
-                contact_share: float = 0.5, pad: float = 0.25) -> tuple[np.ndarray, np.ndarray]:
+def frame_times(
+    window: tuple[float, float],
+    contacts: Sequence[tuple[float, float]],
+    frames: int,
+    contact_share: float = 0.5,
+    pad: float = 0.25,
+) -> tuple[np.ndarray, np.ndarray]:
     """Frame times [s] and the frame density [frames per simulated second] at each.
 
     The frame density is piecewise constant: inside the contacts (each widened by ``pad`` times its duration on
@@ -209,9 +214,16 @@ class History:
         """The arrays and contact log of a :class:`~flexbeam.solution.Solution`."""
         case = case if case is not None else _case_from_toml(sol.provenance.get("case_toml"))
         support = sol.arrays.get("support_displacement")
-        return cls(np.asarray(sol.time, float), np.asarray(sol["theta"], float), np.asarray(sol["q"], float),
-                   np.asarray(sol["contact_force"], float), None if support is None else np.asarray(support, float),
-                   [(c.onset, c.end) for c in sol.contacts], case, f"{case.name} [{sol.method}]")
+        return cls(
+            np.asarray(sol.time, float),
+            np.asarray(sol["theta"], float),
+            np.asarray(sol["q"], float),
+            np.asarray(sol["contact_force"], float),
+            None if support is None else np.asarray(support, float),
+            [(c.onset, c.end) for c in sol.contacts],
+            case,
+            f"{case.name} [{sol.method}]",
+        )
 
     @classmethod
     def from_dataset(cls, ds: Any, case: Case | None = None) -> History:
@@ -221,14 +233,23 @@ class History:
                 raise ParameterError(f"result: the dataset has no variable '{name}' (not a flexbeam result)")
         case = case if case is not None else _case_from_toml(ds.attrs.get("case_toml"))
         onset = np.asarray(ds["contact_onset"].values, float) if "contact_onset" in ds.variables else np.empty(0)
-        end = np.asarray(ds["contact_end"].values, float) if "contact_end" in ds.variables else np.full_like(onset,
-                                                                                                           np.nan)
+        end = (
+            np.asarray(ds["contact_end"].values, float)
+            if "contact_end" in ds.variables
+            else np.full_like(onset, np.nan)
+        )
         support = np.asarray(ds["support_displacement"].values, float) if "support_displacement" in ds else None
         method = str(ds.attrs.get("method", ""))
-        return cls(np.asarray(ds["time"].values, float), np.asarray(ds["theta"].values, float),
-                   np.asarray(ds["q"].values, float).reshape(ds["time"].size, -1),
-                   np.asarray(ds["contact_force"].values, float), support,
-                   [(float(a), float(b)) for a, b in zip(onset, end)], case, f"{case.name} [{method}]")
+        return cls(
+            np.asarray(ds["time"].values, float),
+            np.asarray(ds["theta"].values, float),
+            np.asarray(ds["q"].values, float).reshape(ds["time"].size, -1),
+            np.asarray(ds["contact_force"].values, float),
+            support,
+            [(float(a), float(b)) for a, b in zip(onset, end)],
+            case,
+            f"{case.name} [{method}]",
+        )
 
     @classmethod
     def load(cls, result: Solution | Any | str | Path, case: Case | None = None) -> History:
@@ -406,8 +427,11 @@ def animate(
             import imageio_ffmpeg
         except ImportError:
             gif = out.with_suffix(".gif")
-            warnings.warn(f"imageio-ffmpeg is not installed (pip install 'flexbeam[video]'): writing {gif} "
-                          f"instead of {out}", VideoFallbackWarning, stacklevel=2)
+            warnings.warn(
+                f"imageio-ffmpeg is not installed (pip install 'flexbeam[video]'): writing {gif} instead of {out}",
+                VideoFallbackWarning,
+                stacklevel=2,
+            )
             out = gif
         else:
             if width % 2 or height % 2:
@@ -452,8 +476,15 @@ class Scene:
     system: BeamSystem
 
     @classmethod
-    def build(cls, history: History, window: tuple[float, float] | None, frames: int, contact_share: float,
-              reference: str, scale: float | str) -> Scene:
+    def build(
+        cls,
+        history: History,
+        window: tuple[float, float] | None,
+        frames: int,
+        contact_share: float,
+        reference: str,
+        scale: float | str,
+    ) -> Scene:
         from .model.system import BeamSystem
 
         t = history.time
@@ -462,14 +493,17 @@ class Scene:
         system = BeamSystem.from_case(history.case)
         beam = system.beam
         if history.q.shape[1] != beam.n:
-            raise ModelError(f"animate: the result has {history.q.shape[1]} modal coordinates, its case "
-                             f"{beam.n} (a finite-element result has none: animate a modal run)")
+            raise ModelError(
+                f"animate: the result has {history.q.shape[1]} modal coordinates, its case "
+                f"{beam.n} (a finite-element result has none: animate a modal run)"
+            )
         ta, tb = float(t[0]), float(t[-1])
         t0, t1 = (ta, tb) if window is None else (float(window[0]), float(window[1]))
         slack = 1e-9 * max(abs(ta), abs(tb), tb - ta)
         if not (math.isfinite(t0) and math.isfinite(t1) and ta - slack <= t0 < t1 <= tb + slack):
-            raise ParameterError(f"window: must satisfy {ta:g} <= t0 < t1 <= {tb:g} s, the simulated time "
-                                 f"(got {t0:g},{t1:g})")
+            raise ParameterError(
+                f"window: must satisfy {ta:g} <= t0 < t1 <= {tb:g} s, the simulated time (got {t0:g},{t1:g})"
+            )
         t0, t1 = max(t0, ta), min(t1, tb)
         times, density = frame_times((t0, t1), history.contacts, frames, contact_share)
 
@@ -499,8 +533,22 @@ class Scene:
         if history.support is not None and obstacle.compliant:
             shift = np.interp(times, t, history.support)[:, None] * np.asarray(obstacle.support[3:5])[None, :]
         force = np.interp(times, t, history.force)
-        return cls(history, times, density, k, reference, centre, upper, lower, lower[:, iP], chord, hub_angle,
-                   shift, force, system)
+        return cls(
+            history,
+            times,
+            density,
+            k,
+            reference,
+            centre,
+            upper,
+            lower,
+            lower[:, iP],
+            chord,
+            hub_angle,
+            shift,
+            force,
+            system,
+        )
 
 
 def _wrap(a: np.ndarray) -> np.ndarray:
@@ -523,8 +571,16 @@ def speed_label(density: float, fps: float) -> str:
     return f"{1.0 / slow:.2g}x real time"
 
 
-def _render(scene: Scene, out: Path, width: int, height: int, fps: float, kind: str,
-            progress: Callable[[int, int], None] | None, ffmpeg: Any = None) -> None:
+def _render(
+    scene: Scene,
+    out: Path,
+    width: int,
+    height: int,
+    fps: float,
+    kind: str,
+    progress: Callable[[int, int], None] | None,
+    ffmpeg: Any = None,
+) -> None:
     """Render every frame of ``scene`` and encode them to ``out`` atomically."""
     from .solution import atomic_path
 
@@ -566,8 +622,13 @@ class FrameRenderer:
 
         self.scene, self.size = scene, (width, height)
         font = float(np.clip(height / 55.0, 3.0, 11.0))
-        rc = {"font.size": font, "axes.linewidth": 0.6, "lines.linewidth": max(0.6, height / 600.0),
-              "xtick.labelsize": font * 0.9, "ytick.labelsize": font * 0.9}
+        rc = {
+            "font.size": font,
+            "axes.linewidth": 0.6,
+            "lines.linewidth": max(0.6, height / 600.0),
+            "xtick.labelsize": font * 0.9,
+            "ytick.labelsize": font * 0.9,
+        }
         with mpl.rc_context(rc):
             self._build(width / dpi, height / dpi, dpi, fps, font)
             self.canvas.draw()
@@ -595,15 +656,15 @@ class FrameRenderer:
         L, rh = system.beam.length, system.beam.hub_radius
         fig = self.fig = Figure(figsize=(w_in, h_in), dpi=dpi, facecolor="white")
         self.canvas = FigureCanvasAgg(fig)
-        gs = fig.add_gridspec(2, 1, height_ratios=(3, 1), left=0.13, right=0.97, top=0.9, bottom=0.11,
-                              hspace=0.38)
+        gs = fig.add_gridspec(2, 1, height_ratios=(3, 1), left=0.13, right=0.97, top=0.9, bottom=0.11, hspace=0.38)
         ax = fig.add_subplot(gs[0])
         axf = fig.add_subplot(gs[1])
 
         # -- a fixed view of everything the frames draw, equal scales in x and y
         centre = np.asarray(obstacle.centre, float)
-        beam_pts = np.concatenate([scene.upper.reshape(-1, 2), scene.lower.reshape(-1, 2),
-                                   np.array([[-rh, -rh], [rh, rh]])])
+        beam_pts = np.concatenate(
+            [scene.upper.reshape(-1, 2), scene.lower.reshape(-1, 2), np.array([[-rh, -rh], [rh, rh]])]
+        )
         lo, hi = beam_pts.min(axis=0), beam_pts.max(axis=0)
         r_ob = obstacle.radius if obstacle.kind == 0 else 0.0
         ob_lo = np.min(centre + scene.obstacle_shift, axis=0) - r_ob
@@ -626,33 +687,47 @@ class FrameRenderer:
         moves = bool(np.any(scene.obstacle_shift))
         self.obstacle = None
         if obstacle.kind == 0 and obstacle.radius > 0:
-            self.obstacle = ax.add_patch(Circle(centre, obstacle.radius, facecolor="0.75", edgecolor="0.3",
-                                                zorder=1, animated=moves))
+            self.obstacle = ax.add_patch(
+                Circle(centre, obstacle.radius, facecolor="0.75", edgecolor="0.3", zorder=1, animated=moves)
+            )
         elif obstacle.kind == 0:
             ax.plot([centre[0]], [centre[1]], "x", color="0.3", zorder=1)
         else:
             nrm = np.asarray(obstacle.normal, float)
             tan = np.array([-nrm[1], nrm[0]])
             big = 20.0 * (span + L)
-            corners = np.array([centre - big * tan, centre + big * tan, centre + big * tan - big * nrm,
-                                centre - big * tan - big * nrm])
+            corners = np.array(
+                [centre - big * tan, centre + big * tan, centre + big * tan - big * nrm, centre - big * tan - big * nrm]
+            )
             ax.add_patch(Polygon(corners, closed=True, facecolor="0.85", edgecolor="0.3", hatch="///", zorder=1))
 
         # -- the beam (a band of its thickness about the magnified centre line), the reference line, P, the hub
         (chord,) = ax.plot([], [], ls="--", lw=0.6, color="0.55", zorder=2, animated=True)
-        band = ax.add_patch(Polygon(np.zeros((3, 2)), closed=True, facecolor="C0", edgecolor="C0", alpha=0.85,
-                                    zorder=3, animated=True))
+        band = ax.add_patch(
+            Polygon(np.zeros((3, 2)), closed=True, facecolor="C0", edgecolor="C0", alpha=0.85, zorder=3, animated=True)
+        )
         (line,) = ax.plot([], [], color="navy", lw=0.5, zorder=4, animated=True)
         (pmark,) = ax.plot([], [], "o", ms=max(1.5, font * 0.45), zorder=5, animated=True)
         hub_r = rh if rh > 0 else 0.015 * L
-        hub = ax.add_patch(Circle((0.0, 0.0), hub_r, facecolor="white" if rh == 0 else "0.85", edgecolor="k",
-                                  zorder=6, animated=True))
+        hub = ax.add_patch(
+            Circle((0.0, 0.0), hub_r, facecolor="white" if rh == 0 else "0.85", edgecolor="k", zorder=6, animated=True)
+        )
         (hub_line,) = ax.plot([], [], color="k", lw=1.0, zorder=7, animated=True)
         how = "line O-P" if scene.reference == "contact" else "hub's radial line"
         fig.text(0.5, 0.965, h.label, ha="center", va="center", fontsize=font * 1.1)
         ax.set_title(f"deflection from the {how} magnified x{scene.scale:.4g}", fontsize=font * 0.9, pad=2)
-        clock = ax.text(0.01, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=font, zorder=8,
-                        family="monospace", animated=True)
+        clock = ax.text(
+            0.01,
+            0.97,
+            "",
+            transform=ax.transAxes,
+            ha="left",
+            va="top",
+            fontsize=font,
+            zorder=8,
+            family="monospace",
+            animated=True,
+        )
 
         # -- the contact force with a cursor
         mult, unit = _time_unit(scene.times[-1] - scene.times[0])
@@ -684,14 +759,18 @@ class FrameRenderer:
             if moves and self.obstacle is not None:
                 self.obstacle.set_center(centre + scene.obstacle_shift[i])
             t = scene.times[i] * mult
-            clock.set_text(f"t = {t:.{decimals}f} {unit}\n{speed_label(scene.density[i], fps)}"
-                           + ("\ncontact" if touching else ""))
+            clock.set_text(
+                f"t = {t:.{decimals}f} {unit}\n{speed_label(scene.density[i], fps)}" + ("\ncontact" if touching else "")
+            )
             cursor.set_xdata([t, t])
             fdot.set_data([t], [scene.force[i]])
 
         self.update = update
-        self.moving = [a for a in (self.obstacle if moves else None, chord, band, line, pmark, hub, hub_line, clock,
-                                   cursor, fdot) if a is not None]
+        self.moving = [
+            a
+            for a in (self.obstacle if moves else None, chord, band, line, pmark, hub, hub_line, clock, cursor, fdot)
+            if a is not None
+        ]
 
 
 class GifSink:
@@ -726,8 +805,14 @@ class GifSink:
         self.frames.append(frame)
 
     def close(self) -> None:
-        self.frames[0].save(self.path, format="GIF", save_all=True, append_images=self.frames[1:],
-                            duration=round(1000.0 / self.fps), loop=0)
+        self.frames[0].save(
+            self.path,
+            format="GIF",
+            save_all=True,
+            append_images=self.frames[1:],
+            duration=round(1000.0 / self.fps),
+            loop=0,
+        )
         self.frames = []
 
     def abort(self) -> None:
@@ -744,8 +829,9 @@ class Mp4Sink:
     """Frames to an H.264 MP4 through ``imageio_ffmpeg.write_frames`` (its bundled ffmpeg binary)."""
 
     def __init__(self, path: Path, size: tuple[int, int], fps: float, imageio_ffmpeg: Any) -> None:
-        self.writer = imageio_ffmpeg.write_frames(str(path), size, pix_fmt_in="rgba", fps=fps, codec="libx264",
-                                                  quality=7, macro_block_size=2)
+        self.writer = imageio_ffmpeg.write_frames(
+            str(path), size, pix_fmt_in="rgba", fps=fps, codec="libx264", quality=7, macro_block_size=2
+        )
         self.writer.send(None)
 
     def write(self, rgba: np.ndarray) -> None:
@@ -758,6 +844,20 @@ class Mp4Sink:
         self.writer.close()
 
 
-__all__ = ["FrameRenderer", "GifSink", "History", "Mp4Sink", "Scene", "VideoFallbackWarning", "animate",
-           "auto_scale", "beam_shape", "coupling_matrices", "frame_times", "parse_scale", "parse_size",
-           "parse_window", "speed_label"]
+__all__ = [
+    "FrameRenderer",
+    "GifSink",
+    "History",
+    "Mp4Sink",
+    "Scene",
+    "VideoFallbackWarning",
+    "animate",
+    "auto_scale",
+    "beam_shape",
+    "coupling_matrices",
+    "frame_times",
+    "parse_scale",
+    "parse_size",
+    "parse_window",
+    "speed_label",
+]

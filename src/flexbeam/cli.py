@@ -272,22 +272,35 @@ class _SweepProgress:
 @app.command()
 def sweep(
     case: Annotated[str, typer.Argument(help="built-in case name or TOML file")],
-    out: Annotated[Path, typer.Option("--out", "-o", help="store directory (cases/KEY.json, result.nc); a re-run "
-                                      "computes only the missing cases")],
-    grid: Annotated[list[str] | None, typer.Option(
-        "--grid", "-g", help="KEY=v1,v2,... or KEY=linspace(a,b,n) / geomspace(a,b,n); repeated: their product"
-    )] = None,
-    sample: Annotated[list[str] | None, typer.Option(
-        "--sample", help="KEY=DIST: uniform(a,b), normal(mu,sigma), loguniform(a,b), choice(v1,...)")] = None,
+    out: Annotated[
+        Path,
+        typer.Option(
+            "--out", "-o", help="store directory (cases/KEY.json, result.nc); a re-run computes only the missing cases"
+        ),
+    ],
+    grid: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--grid", "-g", help="KEY=v1,v2,... or KEY=linspace(a,b,n) / geomspace(a,b,n); repeated: their product"
+        ),
+    ] = None,
+    sample: Annotated[
+        list[str] | None,
+        typer.Option("--sample", help="KEY=DIST: uniform(a,b), normal(mu,sigma), loguniform(a,b), choice(v1,...)"),
+    ] = None,
     count: Annotated[int | None, typer.Option("-n", help="number of random samples (with --sample)")] = None,
     seed: Annotated[int, typer.Option("--seed", help="random seed of the samples")] = 0,
     method: MethodOpt = "ccfm",
-    scheduler: Annotated[str | None, typer.Option(
-        "--scheduler", help="Dask scheduler address, e.g. tcp://host:8786 (default: a local cluster)")] = None,
-    workers: Annotated[int | None, typer.Option(
-        "--workers", "-w", help="worker processes of the local cluster (default: all cores)")] = None,
-    histories: Annotated[bool, typer.Option(
-        "--histories", help="also keep each case's history (cases/KEY.nc)")] = False,
+    scheduler: Annotated[
+        str | None,
+        typer.Option("--scheduler", help="Dask scheduler address, e.g. tcp://host:8786 (default: a local cluster)"),
+    ] = None,
+    workers: Annotated[
+        int | None, typer.Option("--workers", "-w", help="worker processes of the local cluster (default: all cores)")
+    ] = None,
+    histories: Annotated[
+        bool, typer.Option("--histories", help="also keep each case's history (cases/KEY.nc)")
+    ] = False,
     set_: SetOpt = None,
     json_: Annotated[bool, typer.Option("--json", help="print the summary as one JSON object")] = False,
 ) -> None:
@@ -304,9 +317,19 @@ def sweep(
     # sys.exit rather than typer.Exit: main() runs the app with standalone_mode=False, where
     # typer turns Exit and Ctrl-C into a returned code instead of raising them
     try:
-        ds = run_sweep(c, grid=parse_grid(grid) if grid else None, samples=parse_samples(sample) if sample else None,
-                       n=count, seed=seed, method=method, scheduler=scheduler, workers=workers, out=out,
-                       histories=histories, progress=progress)
+        ds = run_sweep(
+            c,
+            grid=parse_grid(grid) if grid else None,
+            samples=parse_samples(sample) if sample else None,
+            n=count,
+            seed=seed,
+            method=method,
+            scheduler=scheduler,
+            workers=workers,
+            out=out,
+            histories=histories,
+            progress=progress,
+        )
     except KeyboardInterrupt:
         progress.close()
         sys.stderr.write(f"interrupted: the finished cases are kept in {out}; the same command resumes\n")
@@ -320,8 +343,10 @@ def sweep(
 
         typer.echo(json.dumps(jsonable(info), indent=2))
     else:
-        typer.echo(f"{info['cases']} cases: {info['computed']} computed, {info['reused']} reused, "
-                   f"{info['failed']} failed, {info['missing']} missing -> {info['result']}")
+        typer.echo(
+            f"{info['cases']} cases: {info['computed']} computed, {info['reused']} reused, "
+            f"{info['failed']} failed, {info['missing']} missing -> {info['result']}"
+        )
         for f in info["failures"][:20]:
             where = ", ".join(f"{k}={v}" for k, v in f["parameters"].items())
             typer.echo(f"  {f['status']}: {where}: {f['error']}")
@@ -332,18 +357,28 @@ def sweep(
 @app.command()
 def calibrate(
     case: Annotated[str, typer.Argument(help="built-in case name or TOML file (starting values)")],
-    fit: Annotated[str, typer.Option("--fit", help="case fields to fit, comma-separated, e.g. "
-                                     "contact.stiffness,contact.restitution")],
-    data: Annotated[Path | None, typer.Option(
-        "--data", help="CSV with a time column and force and/or velocity columns [s, N, m/s]")] = None,
-    columns: Annotated[str | None, typer.Option(
-        "--columns", help="CSV column names by role: time=t,force=F,velocity=v")] = None,
-    features: Annotated[str | None, typer.Option(
-        "--features", help="measured metrics: peak_force=584,second_peak_force=297,contact_duration=0.6e-3")] = None,
+    fit: Annotated[
+        str,
+        typer.Option("--fit", help="case fields to fit, comma-separated, e.g. contact.stiffness,contact.restitution"),
+    ],
+    data: Annotated[
+        Path | None, typer.Option("--data", help="CSV with a time column and force and/or velocity columns [s, N, m/s]")
+    ] = None,
+    columns: Annotated[
+        str | None, typer.Option("--columns", help="CSV column names by role: time=t,force=F,velocity=v")
+    ] = None,
+    features: Annotated[
+        str | None,
+        typer.Option(
+            "--features", help="measured metrics: peak_force=584,second_peak_force=297,contact_duration=0.6e-3"
+        ),
+    ] = None,
     method: MethodOpt = "ccfm",
     set_: SetOpt = None,
-    out: Annotated[Path | None, typer.Option(
-        "--out", "-o", help="directory for calibration.json, fitted.toml, overlay.png, residuals.csv")] = None,
+    out: Annotated[
+        Path | None,
+        typer.Option("--out", "-o", help="directory for calibration.json, fitted.toml, overlay.png, residuals.csv"),
+    ] = None,
     json_: Annotated[bool, typer.Option("--json", help="print the report as one JSON object")] = False,
 ) -> None:
     """Fit case fields (e.g. contact stiffness and restitution) to measured histories or features."""
@@ -351,8 +386,9 @@ def calibrate(
     from .calibrate import parse_columns, parse_features
 
     c = _load(case, set_)
-    result = run_calibrate(c, fit=fit, data=data, features=parse_features(features), method=method,
-                           columns=parse_columns(columns), out=out)
+    result = run_calibrate(
+        c, fit=fit, data=data, features=parse_features(features), method=method, columns=parse_columns(columns), out=out
+    )
     report = result.to_dict()
     if json_:
         typer.echo(json.dumps(report, indent=2))
@@ -375,8 +411,13 @@ def _print_calibration(report: dict[str, Any], title: str) -> None:
     for col in ("parameter", "initial", "fitted", "std. uncertainty", "units"):
         table.add_column(col, justify="left" if col in ("parameter", "units") else "right")
     for key, p in report["parameters"].items():
-        table.add_row(key + (" (at bound)" if p["at_bound"] else ""), num(p["initial"]), num(p["value"]),
-                      num(p["uncertainty"]), p["units"])
+        table.add_row(
+            key + (" (at bound)" if p["at_bound"] else ""),
+            num(p["initial"]),
+            num(p["value"]),
+            num(p["uncertainty"]),
+            p["units"],
+        )
     console = Console()
     console.print(table)
     if "features" in report:
@@ -390,11 +431,14 @@ def _print_calibration(report: dict[str, Any], title: str) -> None:
         d = report["data"]
         for chan, rms in d["rms"].items():
             console.print(f"{chan} residual rms: {num(rms)} (initial {num(d['rms_initial'][chan])})")
-        console.print(f"time shift: {num(d['time_shift'])} s +- {num(d['time_shift_uncertainty'])} s, "
-                      f"{d['samples']} samples of {d['file']}")
+        console.print(
+            f"time shift: {num(d['time_shift'])} s +- {num(d['time_shift_uncertainty'])} s, "
+            f"{d['samples']} samples of {d['file']}"
+        )
     r = report["residuals"]
-    console.print(f"residual sigma {num(r['sigma'])} (dof {r['dof']}), {report['nfev']} evaluations: "
-                  f"{report['message']}")
+    console.print(
+        f"residual sigma {num(r['sigma'])} (dof {r['dof']}), {report['nfev']} evaluations: {report['message']}"
+    )
 
 
 @app.command()
@@ -416,8 +460,13 @@ def animate(
     from .animation import VideoFallbackWarning, parse_scale, parse_size, parse_window
     from .animation import animate as render
 
-    options = {"scale": parse_scale(scale), "window": parse_window(window), "frames": frames, "fps": fps,
-               "size": parse_size(size)}
+    options = {
+        "scale": parse_scale(scale),
+        "window": parse_window(window),
+        "frames": frames,
+        "fps": fps,
+        "size": parse_size(size),
+    }
     if source.endswith(".nc"):
         if set_:
             raise ParameterError("--set: only with a case, not with a result file")

@@ -30,15 +30,28 @@ if TYPE_CHECKING:
 
 #: metrics shown in a solution's table, in this order (when present and not NaN)
 SOLUTION_METRICS = (
-    "peak_force", "second_peak_force", "peak_time", "contact_duration", "contacts", "impact_velocity",
-    "post_impact_velocity", "impulse", "sensor_peak_force", "sensor_second_peak_force", "sensor_duration",
-    "tip_deflection_min", "tip_deflection_max", "energy_drift", "energy_drift_max", "wall_time", "steps",
+    "peak_force",
+    "second_peak_force",
+    "peak_time",
+    "contact_duration",
+    "contacts",
+    "impact_velocity",
+    "post_impact_velocity",
+    "impulse",
+    "sensor_peak_force",
+    "sensor_second_peak_force",
+    "sensor_duration",
+    "tip_deflection_min",
+    "tip_deflection_max",
+    "energy_drift",
+    "energy_drift_max",
+    "wall_time",
+    "steps",
 )
 #: status -> colour of the status badge
 _COLOURS = {"success": "#1a7f37", "failed": "#cf222e"}
 _FLEX = '<div style="display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start">'
-_STYLE = ("font-family: sans-serif; font-size: 13px; border-collapse: collapse; "
-          "margin: 4px 0 8px 0; text-align: right")
+_STYLE = "font-family: sans-serif; font-size: 13px; border-collapse: collapse; margin: 4px 0 8px 0; text-align: right"
 
 
 def _number(value: Any) -> str:
@@ -65,9 +78,11 @@ def _table(header: Sequence[str], rows: Iterable[Sequence[Any]]) -> str:
 
 def _status(title: str, status: str, message: str) -> str:
     colour = _COLOURS.get(status, "#9a6700")
-    return (f'<div style="font-family: sans-serif; font-size: 13px"><b>{escape(title)}</b> '
-            f'<span style="color: white; background: {colour}; border-radius: 3px; padding: 0 5px">'
-            f'{escape(status)}</span> <span style="color: #57606a">{escape(message)}</span></div>')
+    return (
+        f'<div style="font-family: sans-serif; font-size: 13px"><b>{escape(title)}</b> '
+        f'<span style="color: white; background: {colour}; border-radius: 3px; padding: 0 5px">'
+        f'{escape(status)}</span> <span style="color: #57606a">{escape(message)}</span></div>'
+    )
 
 
 def _png(draw, size: tuple[float, float] = (4.2, 1.9), dpi: int = 90) -> str:
@@ -158,16 +173,24 @@ def calibration_html(cal: Any) -> str:
     """
     report = cal.to_dict()
     status = "success" if report["success"] else "failed"
-    parts = [_status(f"flexbeam Calibration: {report['case']}, {report['method'].upper()}", status,
-                     str(report["message"])), _FLEX]
+    parts = [
+        _status(f"flexbeam Calibration: {report['case']}, {report['method'].upper()}", status, str(report["message"])),
+        _FLEX,
+    ]
     params = report["parameters"]
-    parts.append(_table(
-        ("parameter", "initial", "fitted", "uncertainty", "units", "at bound"),
-        ((k, p["initial"], p["value"], p["uncertainty"], p["units"], p["at_bound"]) for k, p in params.items()),
-    ))
+    parts.append(
+        _table(
+            ("parameter", "initial", "fitted", "uncertainty", "units", "at bound"),
+            ((k, p["initial"], p["value"], p["uncertainty"], p["units"], p["at_bound"]) for k, p in params.items()),
+        )
+    )
     if "features" in report:
-        parts.append(_table(("feature", "measured", "initial", "fitted"),
-                            ((k, f["measured"], f["initial"], f["fitted"]) for k, f in report["features"].items())))
+        parts.append(
+            _table(
+                ("feature", "measured", "initial", "fitted"),
+                ((k, f["measured"], f["initial"], f["fitted"]) for k, f in report["features"].items()),
+            )
+        )
     res = report["residuals"]
     rows = [("residual sigma", res["sigma"]), ("residual rms", res["rms"]), ("simulations", report["nfev"])]
     if "data" in report and report["data"]["time_shift"] is not None:

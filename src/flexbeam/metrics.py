@@ -32,8 +32,9 @@ METRICS: dict[str, Metric] = {
     "peak_force": Metric("N", "Peak force of the first contact"),
     "peak_time": Metric("s", "Time of the peak force after the first onset"),
     "contact_duration": Metric("s", "Duration of the first contact"),
-    "force_peaks": Metric("N", "Local force maxima of the first contact above 5 % of its peak", "numbers",
-                          fittable=False),
+    "force_peaks": Metric(
+        "N", "Local force maxima of the first contact above 5 % of its peak", "numbers", fittable=False
+    ),
     "force_peak_times": Metric("s", "Times of those maxima after the first onset", "numbers", fittable=False),
     "second_peak_force": Metric("N", "Second-largest force peak of the first contact", second_peak=True),
     "post_impact_velocity": Metric("m/s", "Normal velocity of P at the end of the first contact"),
@@ -46,8 +47,9 @@ METRICS: dict[str, Metric] = {
     "energy_before": Metric("J", "Mechanical energy before the first contact"),
     "energy_after": Metric("J", "Mechanical energy after the first contact"),
     "sensor_peak_force": Metric("N", "Peak force of the first sensor pulse", scope="sensor"),
-    "sensor_second_peak_force": Metric("N", "Second-largest peak of the first sensor pulse", scope="sensor",
-                                       second_peak=True),
+    "sensor_second_peak_force": Metric(
+        "N", "Second-largest peak of the first sensor pulse", scope="sensor", second_peak=True
+    ),
     "sensor_duration": Metric("s", "Duration of the first sensor pulse (force > 0)", scope="sensor"),
     "tip_deflection_min": Metric("m", "Smallest tip deflection", scope="run"),
     "tip_deflection_max": Metric("m", "Largest tip deflection", scope="run"),

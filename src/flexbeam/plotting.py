@@ -40,34 +40,63 @@ def _mark_references(ax, reference: dict[str, Any], method: str, quantity: str) 
         if "peak_force" in exp:
             ax.axhline(exp["peak_force"], ls="--", c="k", lw=0.8, label=f"experiment peak {exp['peak_force']:g} N")
         if "second_peak_force" in exp:
-            ax.axhline(exp["second_peak_force"], ls=":", c="k", lw=0.8,
-                       label=f"experiment 2nd peak {exp['second_peak_force']:g} N")
+            ax.axhline(
+                exp["second_peak_force"],
+                ls=":",
+                c="k",
+                lw=0.8,
+                label=f"experiment 2nd peak {exp['second_peak_force']:g} N",
+            )
         if "contact_duration" in exp:
-            ax.axvline(exp["contact_duration"] * 1e3, ls="-.", c="0.5", lw=0.8,
-                       label=f"experiment duration ~{exp['contact_duration'] * 1e3:g} ms")
+            ax.axvline(
+                exp["contact_duration"] * 1e3,
+                ls="-.",
+                c="0.5",
+                lw=0.8,
+                label=f"experiment duration ~{exp['contact_duration'] * 1e3:g} ms",
+            )
         paper = reference.get(method, {})
         if "peak_force" in paper:
-            ax.axhline(paper["peak_force"], ls="--", c=_STYLE.get(method, "C4"), lw=0.8, alpha=0.6,
-                       label=f"paper {method.upper()} peak {paper['peak_force']:g} N")
+            ax.axhline(
+                paper["peak_force"],
+                ls="--",
+                c=_STYLE.get(method, "C4"),
+                lw=0.8,
+                alpha=0.6,
+                label=f"paper {method.upper()} peak {paper['peak_force']:g} N",
+            )
     elif quantity == "velocity" and "impact_velocity" in exp:
-        ax.axhline(exp["impact_velocity"], ls="--", c="k", lw=0.8,
-                   label=f"experiment v0 = {exp['impact_velocity']:g} m/s")
+        ax.axhline(
+            exp["impact_velocity"], ls="--", c="k", lw=0.8, label=f"experiment v0 = {exp['impact_velocity']:g} m/s"
+        )
 
 
-def plot_contact_force(solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None,
-                       title: str = "") -> Path:
+def plot_contact_force(
+    solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None, title: str = ""
+) -> Path:
     """Contact force [N] against time after the first contact [ms], methods overlaid."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
-    span = max((s.contacts[0].duration for s in solutions if s.contacts and math.isfinite(s.contacts[0].duration)),
-               default=1e-3)
+    span = max(
+        (s.contacts[0].duration for s in solutions if s.contacts and math.isfinite(s.contacts[0].duration)),
+        default=1e-3,
+    )
     for sol in solutions:
         t0, sel = _window(sol, 0.1 * span, 1.6 * span)
-        ax.plot((sol.time[sel] - t0) * 1e3, sol["contact_force"][sel], c=_STYLE.get(sol.method, None),
-                label=f"flexbeam {sol.method.upper()}")
+        ax.plot(
+            (sol.time[sel] - t0) * 1e3,
+            sol["contact_force"][sel],
+            c=_STYLE.get(sol.method, None),
+            label=f"flexbeam {sol.method.upper()}",
+        )
         if "sensor_force" in sol.arrays:  # compliant support: what the sensor under it reads
-            ax.plot((sol.time[sel] - t0) * 1e3, sol["sensor_force"][sel], c=_STYLE.get(sol.method, None),
-                    ls=":", label=f"flexbeam {sol.method.upper()}, sensor force")
+            ax.plot(
+                (sol.time[sel] - t0) * 1e3,
+                sol["sensor_force"][sel],
+                c=_STYLE.get(sol.method, None),
+                ls=":",
+                label=f"flexbeam {sol.method.upper()}, sensor force",
+            )
     if reference:
         _mark_references(ax, reference, solutions[0].method if len(solutions) == 1 else "", "force")
     ax.set_xlabel("Time after first contact [ms]")
@@ -78,15 +107,20 @@ def plot_contact_force(solutions: list[Solution], path: str | Path, reference: d
     return save_figure(fig, path)
 
 
-def plot_normal_velocity(solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None,
-                         title: str = "") -> Path:
+def plot_normal_velocity(
+    solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None, title: str = ""
+) -> Path:
     """Normal velocity of the contact point (measuring point 1) [m/s] against time [ms]."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     for sol in solutions:
         t0, sel = _window(sol, 0.5e-3, 4e-3)
-        ax.plot((sol.time[sel] - t0) * 1e3, sol["normal_velocity"][sel], c=_STYLE.get(sol.method, None),
-                label=f"flexbeam {sol.method.upper()}")
+        ax.plot(
+            (sol.time[sel] - t0) * 1e3,
+            sol["normal_velocity"][sel],
+            c=_STYLE.get(sol.method, None),
+            label=f"flexbeam {sol.method.upper()}",
+        )
     if reference:
         _mark_references(ax, reference, "", "velocity")
     ax.axhline(0.0, c="0.7", lw=0.5)
@@ -122,9 +156,15 @@ def _run_label(sol: Solution) -> str:
         return f"flexbeam {sol.method.upper()}"
 
 
-def plot_tip_deflection(solutions: list[Solution], path: str | Path, labels: list[str] | None = None,
-                        reference: tuple[np.ndarray, np.ndarray] | None = None, reference_label: str = "reference",
-                        title: str = "", ylim: tuple[float, float] | None = None) -> Path:
+def plot_tip_deflection(
+    solutions: list[Solution],
+    path: str | Path,
+    labels: list[str] | None = None,
+    reference: tuple[np.ndarray, np.ndarray] | None = None,
+    reference_label: str = "reference",
+    title: str = "",
+    ylim: tuple[float, float] | None = None,
+) -> Path:
     """Tip deflection in the rotating frame [m] against time [s] (e.g. the Kane spin-up).
 
     ``labels`` default to the coupling model, number of modes and spin rate of each run;

@@ -17,15 +17,21 @@ def write_run_outputs(sol: Solution, case: Case, out: str | Path) -> dict[str, P
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     reference = reference_data(case.name)
-    summary = {"metrics": sol.metrics(), "provenance": sol.provenance, "reference": reference,
-               "contacts": [vars(ev) for ev in sol.contacts]}
+    summary = {
+        "metrics": sol.metrics(),
+        "provenance": sol.provenance,
+        "reference": reference,
+        "contacts": [vars(ev) for ev in sol.contacts],
+    }
     files = {
         "result": sol.to_netcdf(out / "result.nc"),
         "summary": write_text_atomic(out / "summary.json", json.dumps(jsonable(summary), indent=2)),
-        "contact_force": plot_contact_force([sol], out / "contact_force.png", reference,
-                                            f"{case.name}: contact force ({sol.method.upper()})"),
-        "normal_velocity": plot_normal_velocity([sol], out / "normal_velocity.png", reference,
-                                                f"{case.name}: normal velocity of P ({sol.method.upper()})"),
+        "contact_force": plot_contact_force(
+            [sol], out / "contact_force.png", reference, f"{case.name}: contact force ({sol.method.upper()})"
+        ),
+        "normal_velocity": plot_normal_velocity(
+            [sol], out / "normal_velocity.png", reference, f"{case.name}: normal velocity of P ({sol.method.upper()})"
+        ),
     }
     return files
 
@@ -84,8 +90,9 @@ def markdown_table(rows: list[dict], reference: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def compare(case: Case, out: str | Path | None = None, methods: tuple[str, ...] = COMPARE_METHODS,
-            progress_factory=None) -> tuple[list[Solution], list[dict]]:
+def compare(
+    case: Case, out: str | Path | None = None, methods: tuple[str, ...] = COMPARE_METHODS, progress_factory=None
+) -> tuple[list[Solution], list[dict]]:
     """Run ``case`` with several methods; write overlaid figures and the comparison table."""
     from .simulation import simulate
 
@@ -105,9 +112,9 @@ def compare(case: Case, out: str | Path | None = None, methods: tuple[str, ...] 
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
         plot_contact_force(solutions, out / "contact_force.png", reference, f"{case.name}: contact force")
-        plot_normal_velocity(solutions, out / "normal_velocity.png", reference,
-                             f"{case.name}: normal velocity of P")
+        plot_normal_velocity(solutions, out / "normal_velocity.png", reference, f"{case.name}: normal velocity of P")
         write_text_atomic(out / "comparison.md", markdown_table(rows, reference))
-        write_text_atomic(out / "comparison.json", json.dumps(jsonable({"rows": rows, "reference": reference}),
-                                                              indent=2))
+        write_text_atomic(
+            out / "comparison.json", json.dumps(jsonable({"rows": rows, "reference": reference}), indent=2)
+        )
     return solutions, rows

@@ -65,8 +65,12 @@ class RunSource:
         names = [c for c in OUTPUT_COLUMNS if sysm.compliant or c not in SUPPORT_COLUMNS]
         if not parts:
             empty = {name: np.empty(0) for name in names}
-            empty.update(q=np.empty((0, n)), q_rate=np.empty((0, n)), measuring_velocity=np.empty((0, 0)),
-                         total_energy=np.empty(0))
+            empty.update(
+                q=np.empty((0, n)),
+                q_rate=np.empty((0, n)),
+                measuring_velocity=np.empty((0, 0)),
+                total_energy=np.empty(0),
+            )
             return np.empty(0), np.empty(0, dtype=object), empty
         out = {name: np.concatenate([p[0][name] for p in parts]) for name in names}
         out["q"] = np.concatenate([p[2] for p in parts])
@@ -181,8 +185,9 @@ class RunSource:
             out.append(sign * best)
         return out[0], out[1]
 
-    def _zoom_all(self, seg: Segment, column: str, sign: float, lo: np.ndarray, hi: np.ndarray,
-                  points: int = 33) -> float:
+    def _zoom_all(
+        self, seg: Segment, column: str, sign: float, lo: np.ndarray, hi: np.ndarray, points: int = 33
+    ) -> float:
         """Largest sign * column over the brackets [lo_k, hi_k] of one segment: each zoomed on a grid of ``points``
         until below PEAK_XTOL, all brackets in one evaluation per level."""
         from .solution import PEAK_XTOL
@@ -191,7 +196,7 @@ class RunSource:
         best = -math.inf
         frac = np.linspace(0.0, 1.0, points)
         while True:
-            t = (lo[:, None] + (hi - lo)[:, None] * frac[None, :])
+            t = lo[:, None] + (hi - lo)[:, None] * frac[None, :]
             v = sign * self.evaluate(seg, t.ravel())[0][column].reshape(t.shape)
             i = np.argmax(v, axis=1)
             best = max(best, float(np.max(v)))
@@ -219,5 +224,11 @@ class RunSource:
 
 def total_energy(cols: dict[str, np.ndarray]) -> np.ndarray:
     """T + V_e + V_g + U_c + E_d - W: conserved by the equations (the energy balance)."""
-    return (cols["kinetic_energy"] + cols["elastic_energy"] + cols["gravitational_energy"] + cols["contact_energy"]
-            + cols["dissipated_energy"] - cols["drive_work"])
+    return (
+        cols["kinetic_energy"]
+        + cols["elastic_energy"]
+        + cols["gravitational_energy"]
+        + cols["contact_energy"]
+        + cols["dissipated_energy"]
+        - cols["drive_work"]
+    )

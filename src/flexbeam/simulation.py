@@ -72,8 +72,9 @@ def release_state(system: BeamSystem, angle: float) -> np.ndarray:
             rhs = -g * c * b.sf + g * c * (b.m1 - 0.5 * q @ b.G @ q) * b.d
             q_new = np.linalg.solve(A, rhs)
             theta_new = angle - float(b.d @ q_new)
-            done = abs(theta_new - theta) <= 1e-15 * max(1.0, abs(angle)) and np.allclose(q_new, q, rtol=1e-14,
-                                                                                          atol=0.0)
+            done = abs(theta_new - theta) <= 1e-15 * max(1.0, abs(angle)) and np.allclose(
+                q_new, q, rtol=1e-14, atol=0.0
+            )
             q, theta = q_new, theta_new
             if done:
                 break
@@ -91,9 +92,7 @@ def _first_impact_velocity(system: BeamSystem, case: Case, angle: float) -> floa
     stepper = ModalStepper(system, rtol=1e-10, atol=1e-13)
     run = run_phases(_UntilImpact(system, case), stepper, release_state(system, angle), 10.0)
     if run.status != "impact":
-        raise ParameterError(
-            f"initial.release_angle: released at {angle:.6g} rad the beam does not reach the obstacle"
-        )
+        raise ParameterError(f"initial.release_angle: released at {angle:.6g} rad the beam does not reach the obstacle")
     return float(run.message)
 
 
@@ -140,8 +139,10 @@ def simulate(
     """Run ``case`` with an impact method and return the :class:`Solution`."""
     if method == "fem":
         if case.obstacle.support.compliant:
-            raise ParameterError("obstacle.support: the finite-element reference (method 'fem') takes a rigidly "
-                                 "fixed obstacle only; omit obstacle.support.stiffness")
+            raise ParameterError(
+                "obstacle.support: the finite-element reference (method 'fem') takes a rigidly "
+                "fixed obstacle only; omit obstacle.support.stiffness"
+            )
         from .fem import simulate_fem
 
         return simulate_fem(case, progress=progress)
@@ -179,8 +180,9 @@ def uses_exponential(case: Case, method: str, system: BeamSystem) -> bool:
     return not system.compliant or (method == "ccfm" and not system.prescribed)
 
 
-def collect(run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case, info: dict[str, float],
-            stepper=None) -> Solution:
+def collect(
+    run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case, info: dict[str, float], stepper=None
+) -> Solution:
     """The Solution of a run: the contact log is completed and the outputs evaluated on demand, from the dense
     output (:class:`~flexbeam.sampling.RunSource`)."""
     exponential = isinstance(stepper, ModalStepper)
@@ -211,5 +213,12 @@ def collect(run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case
     )
 
 
-__all__ = ["IMPACT_METHODS", "METHOD_NAMES", "PhaseMethod", "initial_state", "release_state", "simulate",
-           "solve_release_angle"]
+__all__ = [
+    "IMPACT_METHODS",
+    "METHOD_NAMES",
+    "PhaseMethod",
+    "initial_state",
+    "release_state",
+    "simulate",
+    "solve_release_angle",
+]

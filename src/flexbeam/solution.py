@@ -372,11 +372,20 @@ class Solution:
         [s] of the first sensor-force pulse (:meth:`sensor_pulse`).
         """
         drift, drift_max = self.energy_drift()
-        out: dict[str, Any] = {name: ([] if m.kind == "numbers" else math.nan) for name, m in METRICS.items()
-                               if m.scope != "sensor"}
-        out.update(method=self.method, status=self.status, message=self.message, contacts=len(self._contacts),
-                   energy_drift=drift, energy_drift_max=drift_max, wall_time=self.stats.get("wall_time", math.nan),
-                   steps=int(self.stats.get("steps", 0)), nfev=int(self.stats.get("nfev", 0)))
+        out: dict[str, Any] = {
+            name: ([] if m.kind == "numbers" else math.nan) for name, m in METRICS.items() if m.scope != "sensor"
+        }
+        out.update(
+            method=self.method,
+            status=self.status,
+            message=self.message,
+            contacts=len(self._contacts),
+            energy_drift=drift,
+            energy_drift_max=drift_max,
+            wall_time=self.stats.get("wall_time", math.nan),
+            steps=int(self.stats.get("steps", 0)),
+            nfev=int(self.stats.get("nfev", 0)),
+        )
         if self._contacts:
             ev = self.contact(0)
             out["impact_velocity"] = ev.velocity_before
@@ -439,10 +448,8 @@ class Solution:
         contact_fields = {
             "contact_onset": ("s", "Contact onset time", [e.onset for e in c]),
             "contact_end": ("s", "Contact end time", [e.end for e in c]),
-            "contact_velocity_before": ("m/s", "Normal velocity of P before contact",
-                                        [e.velocity_before for e in c]),
-            "contact_velocity_after": ("m/s", "Normal velocity of P after contact",
-                                       [e.velocity_after for e in c]),
+            "contact_velocity_before": ("m/s", "Normal velocity of P before contact", [e.velocity_before for e in c]),
+            "contact_velocity_after": ("m/s", "Normal velocity of P after contact", [e.velocity_after for e in c]),
             "contact_impulse": ("N s", "Contact impulse", [e.impulse for e in c]),
             "contact_peak_force": ("N", "Peak contact force", [e.peak_force for e in c]),
         }
@@ -459,8 +466,10 @@ class Solution:
             "status": self.status,
             "message": self.message,
             "metrics": json.dumps(jsonable(self.metrics())),
-            **{k: (v if isinstance(v, (str, int, float)) else json.dumps(jsonable(v)))
-               for k, v in self.provenance.items()},
+            **{
+                k: (v if isinstance(v, (str, int, float)) else json.dumps(jsonable(v)))
+                for k, v in self.provenance.items()
+            },
         }
         return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
@@ -539,4 +548,3 @@ def jsonable(obj: Any) -> Any:
 def metrics_json(metrics: dict[str, Any]) -> str:
     """JSON text of metrics (NaN -> null)."""
     return json.dumps(jsonable(metrics), indent=2)
-

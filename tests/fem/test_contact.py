@@ -132,9 +132,7 @@ def test_time_step_convergence_of_the_first_contact():
     """
     peaks, durations = [], []
     for dt in (4e-6, 2e-6, 1e-6, 5e-7):
-        m = simulate_fem(
-            seed(solver__t_end=7e-4, fem__elements=8, fem__time_step=dt, fem__rho_inf=1.0)
-        ).metrics()
+        m = simulate_fem(seed(solver__t_end=7e-4, fem__elements=8, fem__time_step=dt, fem__rho_inf=1.0)).metrics()
         peaks.append(m["peak_force"])
         durations.append(m["contact_duration"])
     for values in (peaks, durations):

@@ -53,8 +53,15 @@ RTOL_FORMULA = 1e-12
 
 
 @settings(max_examples=60, deadline=None)
-@given(name=st.sampled_from(sorted(PUBLISHED_CHI)), K=stiffness, n=exponent, e=restitution, d=penetration,
-       v0=onset_rate, frac=rate_fraction)
+@given(
+    name=st.sampled_from(sorted(PUBLISHED_CHI)),
+    K=stiffness,
+    n=exponent,
+    e=restitution,
+    d=penetration,
+    v0=onset_rate,
+    frac=rate_fraction,
+)
 def test_hysteresis_laws_give_the_published_force(name, K, n, e, d, v0, frac):
     dd = frac * v0
     p = make_law(name, K, n, e).parameters(v0, 1.0)
@@ -71,8 +78,9 @@ def test_hysteresis_laws_give_the_published_force(name, K, n, e, d, v0, frac):
 def test_hertz_is_k_d_to_three_halves_whatever_the_rate(K, e, d, v0, frac):
     p = make_law("hertz", K, 1.5, e).parameters(v0, 1.0)
     F, Fk, dFd, dFdd = law_force(p, d, frac * v0)
-    assert_allclose([F, Fk, dFd], [K * d * math.sqrt(d), K * d * math.sqrt(d), 1.5 * K * math.sqrt(d)],
-                    rtol=RTOL_FORMULA)
+    assert_allclose(
+        [F, Fk, dFd], [K * d * math.sqrt(d), K * d * math.sqrt(d), 1.5 * K * math.sqrt(d)], rtol=RTOL_FORMULA
+    )
     assert dFdd == 0.0
 
 
@@ -97,8 +105,15 @@ def test_no_force_when_apart(K, n, e, v0, dd):
 
 
 @settings(max_examples=60, deadline=None)
-@given(name=st.sampled_from(sorted(PUBLISHED_CHI)), K=stiffness, n=exponent, e=st.floats(0.5, 0.99),
-       d=penetration, v0=onset_rate, frac=st.floats(-0.5, 1.0))
+@given(
+    name=st.sampled_from(sorted(PUBLISHED_CHI)),
+    K=stiffness,
+    n=exponent,
+    e=st.floats(0.5, 0.99),
+    d=penetration,
+    v0=onset_rate,
+    frac=st.floats(-0.5, 1.0),
+)
 def test_derivatives_are_central_differences(name, K, n, e, d, v0, frac):
     """dF/dd and dF/dd' (Newton's tangent) against central differences of F.
 
@@ -138,8 +153,16 @@ def _rebound(p: np.ndarray, m: float, v0: float) -> float:
         return y[0]
 
     leaves.terminal, leaves.direction = True, -1.0
-    sol = solve_ivp(rhs, (0.0, 50.0 * d_max / v0), [0.0, v0], method="DOP853", events=leaves,
-                    rtol=1e-11, atol=1e-14 * d_max, first_step=1e-4 * d_max / v0)
+    sol = solve_ivp(
+        rhs,
+        (0.0, 50.0 * d_max / v0),
+        [0.0, v0],
+        method="DOP853",
+        events=leaves,
+        rtol=1e-11,
+        atol=1e-14 * d_max,
+        first_step=1e-4 * d_max / v0,
+    )
     assert sol.status == 1, "the mass did not leave the contact"
     return -float(sol.y_events[0][0][1]) / v0
 
@@ -151,8 +174,14 @@ def _carvalho_martins_restitution(chi: float) -> float:
 
 
 @settings(max_examples=15, deadline=None)
-@given(name=st.sampled_from(sorted(PUBLISHED_CHI)), K=stiffness, n=exponent, e=st.floats(0.35, 0.95),
-       m=st.floats(1e-2, 10.0), v0=st.floats(0.05, 5.0))
+@given(
+    name=st.sampled_from(sorted(PUBLISHED_CHI)),
+    K=stiffness,
+    n=exponent,
+    e=st.floats(0.35, 0.95),
+    m=st.floats(1e-2, 10.0),
+    v0=st.floats(0.05, 5.0),
+)
 def test_hunt_crossley_form_restitutes_by_the_exact_relation(name, K, n, e, m, v0):
     """Integrated 1-DOF impact against Carvalho & Martins' relation: whatever m, K, n, v0.
 

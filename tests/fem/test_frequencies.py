@@ -87,8 +87,9 @@ def _scale(case) -> float:
 def test_roots():
     """Blevins (1979), Table 8-1, eight decimals: the table rounds to half a unit of the eighth decimal, the roots
     here are found to ~1e-15 (measured 4.9e-9 off at most, the table's rounding of 10.99554073)."""
-    assert_allclose(clamped_free_roots(5)[:4], [1.87510407, 4.69409113, 7.85475744, 10.99554073], rtol=0,
-                    atol=5e-9 + 1e-12)
+    assert_allclose(
+        clamped_free_roots(5)[:4], [1.87510407, 4.69409113, 7.85475744, 10.99554073], rtol=0, atol=5e-9 + 1e-12
+    )
     assert_allclose(pinned_free_roots(3), [3.92660231, 7.06858275, 10.21017612], rtol=0, atol=5e-9 + 1e-12)
 
 
@@ -111,9 +112,7 @@ def test_clamped_free(elements):
 
 @pytest.mark.parametrize("elements", [10, 40])
 def test_pinned_free(elements):
-    case = seed(
-        fem__elements=elements, model__gravity=0.0, hub__radius=0.0, hub__inertia=0.0, contact__position=0.7
-    )
+    case = seed(fem__elements=elements, model__gravity=0.0, hub__radius=0.0, hub__inertia=0.0, contact__position=0.7)
     _check_against_dispersion(case, True, pinned_free_roots(3), elements)
 
 

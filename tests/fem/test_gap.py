@@ -52,8 +52,12 @@ def test_sphere_gap_is_the_signed_distance_to_the_circle(r, c, R):
     phis = np.linspace(-math.pi, math.pi, 721)
     pts = c + R * np.stack((np.cos(phis), np.sin(phis)), axis=1)
     k = int(np.argmin(np.linalg.norm(pts - r, axis=1)))
-    res = minimize_scalar(lambda p: float(np.sum((r - c - R * np.array([math.cos(p), math.sin(p)])) ** 2)),
-                          bounds=(phis[k] - 0.01, phis[k] + 0.01), method="bounded", options={"xatol": 1e-10})
+    res = minimize_scalar(
+        lambda p: float(np.sum((r - c - R * np.array([math.cos(p), math.sin(p)])) ** 2)),
+        bounds=(phis[k] - 0.01, phis[k] + 0.01),
+        method="bounded",
+        options={"xatol": 1e-10},
+    )
     assert_allclose(abs(delta), math.sqrt(res.fun), atol=1e-12)
     assert (delta > 0.0) == (dist > R)
 
@@ -74,8 +78,9 @@ def test_half_plane_gap_is_the_signed_distance_to_the_line(r, c, phi):
 
 def _node_gap(kind, x, v, a, c_off, centre, R, normal):
     J = np.empty(3)
-    d, dv, da = gap_at(np.asarray(x, float), np.asarray(v, float), np.asarray(a, float), c_off, kind,
-                       centre, R, normal, J)
+    d, dv, da = gap_at(
+        np.asarray(x, float), np.asarray(v, float), np.asarray(a, float), c_off, kind, centre, R, normal, J
+    )
     return d, dv, da, J
 
 
@@ -86,8 +91,13 @@ obstacle = st.one_of(
 
 
 @settings(max_examples=80, deadline=None)
-@given(ob=obstacle, x=st.tuples(coord, coord, angle), v=st.tuples(rate, rate, rate),
-       a=st.tuples(rate, rate, rate), c_off=offset)
+@given(
+    ob=obstacle,
+    x=st.tuples(coord, coord, angle),
+    v=st.tuples(rate, rate, rate),
+    a=st.tuples(rate, rate, rate),
+    c_off=offset,
+)
 def test_jacobian_and_rates_are_derivatives_of_the_gap(ob, x, v, a, c_off):
     """J by central differences (step 1e-6; measured <= 8.4e-10 over 5000 random draws, tolerance
     1e-7), and delta', delta'' by differences of delta along X(t) = X + V t + A t^2/2 (step 1e-4;
@@ -108,8 +118,10 @@ def test_jacobian_and_rates_are_derivatives_of_the_gap(ob, x, v, a, c_off):
     for k in range(3):
         e = np.zeros(3)
         e[k] = h
-        num[k] = (_node_gap(kind, x + e, v, a, c_off, centre, R, normal)[0]
-                  - _node_gap(kind, x - e, v, a, c_off, centre, R, normal)[0]) / (2 * h)
+        num[k] = (
+            _node_gap(kind, x + e, v, a, c_off, centre, R, normal)[0]
+            - _node_gap(kind, x - e, v, a, c_off, centre, R, normal)[0]
+        ) / (2 * h)
     assert_allclose(J, num, atol=1e-7)
     assert_allclose(dv, J @ v, atol=1e-12)
 
@@ -128,8 +140,9 @@ def test_obstacle_from_the_case_touches_p_in_the_impact_configuration(theta, x_p
     """Without obstacle.centre the case puts the obstacle against P on the straight beam at the
     impact angle, with its normal along the beam normal e2 (round-off only: tolerance 1e-12 m)."""
     extra = {"contact__stiffness": 1e9} if kind == "half-plane" else {}
-    beam = FemBeam.from_case(seed(initial__impact_angle=theta, contact__position=x_p, obstacle__kind=kind,
-                                  fem__elements=6, **extra))
+    beam = FemBeam.from_case(
+        seed(initial__impact_angle=theta, contact__position=x_p, obstacle__kind=kind, fem__elements=6, **extra)
+    )
     z, zd = beam.straight(theta, 0.0)
     delta, _, _, J = beam.gap(z, zd)
     assert abs(delta) < 1e-12

@@ -30,8 +30,9 @@ def _contacts(sol, count: int) -> list[tuple[float, float]]:
 
 def _check(t_end: float, elements: int) -> None:
     fe = _contacts(simulate_fem(seed(solver__t_end=t_end, fem__elements=elements, **HERTZ)), 4)
-    coarse, fine = (_contacts(fb.simulate(seed(model__modes=n, solver__t_end=t_end, **HERTZ), "ccfm"), 4)
-                    for n in (16, 32))
+    coarse, fine = (
+        _contacts(fb.simulate(seed(model__modes=n, solver__t_end=t_end, **HERTZ), "ccfm"), 4) for n in (16, 32)
+    )
     assert fine[0][0] == fe[0][0] == 0.0
     for k in (1, 2, 3):
         for j, what in ((0, "onset"), (1, "peak")):

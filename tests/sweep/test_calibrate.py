@@ -49,10 +49,28 @@ def test_force_history_recovers_stiffness_and_restitution_from_the_cli(tmp_path)
     case = fb.load_case("seed-experiment", {"model.modes": 0, "solver.t_end": 2e-3})
     data = tmp_path / "measured.csv"
     truth = _synthetic_csv(data, case)
-    r = subprocess.run([sys.executable, "-m", "flexbeam.cli", "calibrate", "seed-experiment", *sets,
-                        "--data", str(data), "--columns", "time=t,force=F",
-                        "--fit", "contact.stiffness,contact.restitution", "--json", "--out", str(tmp_path / "out")],
-                       capture_output=True, text=True, timeout=300)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "flexbeam.cli",
+            "calibrate",
+            "seed-experiment",
+            *sets,
+            "--data",
+            str(data),
+            "--columns",
+            "time=t,force=F",
+            "--fit",
+            "contact.stiffness,contact.restitution",
+            "--json",
+            "--out",
+            str(tmp_path / "out"),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     report = json.loads(r.stdout)
     K, e = report["parameters"]["contact.stiffness"], report["parameters"]["contact.restitution"]
@@ -137,13 +155,17 @@ def test_parameter_scaling_follows_the_field_ranges():
     [
         (lambda: Parameter.of(fb.load_case("seed-experiment"), "model.modes"), "model.modes"),
         (lambda: Parameter.of(fb.load_case("seed-experiment"), "contact.law"), "contact.law"),
-        (lambda: Parameter.of(fb.load_case("seed-experiment"), "contact.stifness"),
-         "contact.stifness: unknown field, did you mean stiffness"),
+        (
+            lambda: Parameter.of(fb.load_case("seed-experiment"), "contact.stifness"),
+            "contact.stifness: unknown field, did you mean stiffness",
+        ),
         (lambda: parse_columns("tim=t"), "best matches: time"),
         (lambda: parse_features("peak_force=abc"), "--features"),
         (lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"]), "--data"),
-        (lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"], features={"peak_forc": 1.0}),
-         "peak_force"),
+        (
+            lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"], features={"peak_forc": 1.0}),
+            "peak_force",
+        ),
     ],
 )
 def test_bad_input_names_the_field(call, match):
@@ -154,8 +176,23 @@ def test_bad_input_names_the_field(call, match):
 def test_missing_column_is_one_line_exit_2(tmp_path):
     data = tmp_path / "m.csv"
     data.write_text("time,force\n0,0\n1e-6,1\n2e-6,2\n")
-    r = subprocess.run([sys.executable, "-m", "flexbeam.cli", "calibrate", "seed-experiment", "--data", str(data),
-                        "--columns", "force=F", "--fit", "contact.stiffness"], capture_output=True, text=True,
-                       timeout=120)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "flexbeam.cli",
+            "calibrate",
+            "seed-experiment",
+            "--data",
+            str(data),
+            "--columns",
+            "force=F",
+            "--fit",
+            "contact.stiffness",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert r.returncode == 2
     assert r.stderr.count("\n") == 1 and "--columns force" in r.stderr and "force" in r.stderr

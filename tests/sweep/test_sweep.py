@@ -58,15 +58,47 @@ def cluster(tmp_path_factory):
     d = tmp_path_factory.mktemp("dask")
     sched_file = d / "scheduler.json"
     dask = [sys.executable, "-m", "dask"]
-    procs = [_start([*dask, "scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
-                     "--dashboard-address", "127.0.0.1:0", "--scheduler-file", str(sched_file)], d / "scheduler.log")]
+    procs = [
+        _start(
+            [
+                *dask,
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                "0",
+                "--no-dashboard",
+                "--dashboard-address",
+                "127.0.0.1:0",
+                "--scheduler-file",
+                str(sched_file),
+            ],
+            d / "scheduler.log",
+        )
+    ]
     try:
         deadline = time.monotonic() + 30
         while not sched_file.exists():
             assert time.monotonic() < deadline, (d / "scheduler.log").read_text()
             time.sleep(0.05)
-        procs.append(_start([*dask, "worker", "--scheduler-file", str(sched_file), "--host", "127.0.0.1",
-                             "--nworkers", "1", "--nthreads", "1", "--no-dashboard"], d / "worker.log"))
+        procs.append(
+            _start(
+                [
+                    *dask,
+                    "worker",
+                    "--scheduler-file",
+                    str(sched_file),
+                    "--host",
+                    "127.0.0.1",
+                    "--nworkers",
+                    "1",
+                    "--nthreads",
+                    "1",
+                    "--no-dashboard",
+                ],
+                d / "worker.log",
+            )
+        )
         address = json.loads(sched_file.read_text())["address"]
         with Client(address, timeout="30s") as client:
             client.wait_for_workers(1, timeout=30)
@@ -96,13 +128,20 @@ def _wait_for(store: Path, count: int, proc: subprocess.Popen, timeout: float = 
 
 
 # The CLI with Ctrl-C restored: a process started from a background job inherits SIGINT ignored.
-_CLI = ("import runpy, signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
-        "sys.argv[0] = 'flexbeam'; runpy.run_module('flexbeam.cli', run_name='__main__')")
+_CLI = (
+    "import runpy, signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
+    "sys.argv[0] = 'flexbeam'; runpy.run_module('flexbeam.cli', run_name='__main__')"
+)
 
 
 def _cli(*args: str) -> subprocess.Popen:
-    return subprocess.Popen([sys.executable, "-c", _CLI, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, start_new_session=True)
+    return subprocess.Popen(
+        [sys.executable, "-c", _CLI, *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
 
 
 def _sweep_args(store: Path, address: str) -> list[str]:
@@ -115,22 +154,35 @@ def test_grid_result_has_a_dimension_per_field_and_a_variable_per_metric(referen
     assert ds["peak_force"].dims == ("contact.restitution", "contact.stiffness")
     assert ds["contact.stiffness"].values.tolist() == GRID["contact.stiffness"]
     assert set(ds["status"].values.ravel()) == {"success"}
-    for name in ("peak_force", "contact_duration", "contacts", "post_impact_velocity", "second_peak_force",
-                 "wall_time"):
+    for name in (
+        "peak_force",
+        "contact_duration",
+        "contacts",
+        "post_impact_velocity",
+        "second_peak_force",
+        "wall_time",
+    ):
         assert name in ds
     assert ds["peak_force"].attrs["units"] == "N"
     # a stiffer contact gives a higher, shorter pulse; more restitution a faster rebound
     assert np.all(np.diff(ds["peak_force"].values, axis=1) > 0)
     assert np.all(np.diff(ds["contact_duration"].values, axis=1) < 0)
     assert np.all(np.diff(ds["post_impact_velocity"].values, axis=0) > 0)
-    single = fb.simulate("seed-experiment", model__modes=2, solver__t_end=0.005, contact__restitution=0.6,
-                         contact__stiffness=2e9, solver__integrator="reference").metrics()
+    single = fb.simulate(
+        "seed-experiment",
+        model__modes=2,
+        solver__t_end=0.005,
+        contact__restitution=0.6,
+        contact__stiffness=2e9,
+        solver__integrator="reference",
+    ).metrics()
     point = ds.sel({"contact.restitution": 0.6, "contact.stiffness": 2e9})
     assert float(point["peak_force"]) == single["peak_force"]
 
 
 def test_killed_worker_and_interrupt_lose_no_finished_case_and_resume_equals_uninterrupted(
-        cluster, reference, tmp_path):
+    cluster, reference, tmp_path
+):
     address, client = cluster
     store = tmp_path / "store"
     proc = _cli(*_sweep_args(store, address))
@@ -171,8 +223,9 @@ def test_killed_worker_and_interrupt_lose_no_finished_case_and_resume_equals_uni
 def test_a_failing_case_is_recorded_and_the_others_finish(cluster, tmp_path):
     # 'release' without gravity raises inside the simulation; 'impact' runs
     grid = {"initial.kind": ["impact", "release"], "contact.restitution": [0.6, 0.8]}
-    kw = dict(grid=grid, overrides={**BASE, "model.gravity": 0.0}, scheduler=cluster[0], out=tmp_path / "s",
-              histories=True)
+    kw = dict(
+        grid=grid, overrides={**BASE, "model.gravity": 0.0}, scheduler=cluster[0], out=tmp_path / "s", histories=True
+    )
     ds = fb.sweep("seed-experiment", **kw)
     impact, release = ds.sel({"initial.kind": "impact"}), ds.sel({"initial.kind": "release"})
     assert set(impact["status"].values) == {"success"} and np.all(impact["peak_force"] > 0)
@@ -190,8 +243,13 @@ def test_a_failing_case_is_recorded_and_the_others_finish(cluster, tmp_path):
 
 def test_samples_have_a_case_dimension_and_more_samples_reuse_the_first(cluster, tmp_path):
     samples = {"contact.restitution": "uniform(0.5, 0.9)", "contact.stiffness": "loguniform(1e9, 5e9)"}
-    kw = dict(samples=samples, seed=7, overrides={"model.modes": 0, "solver.t_end": 0.003}, scheduler=cluster[0],
-              out=tmp_path / "s")
+    kw = dict(
+        samples=samples,
+        seed=7,
+        overrides={"model.modes": 0, "solver.t_end": 0.003},
+        scheduler=cluster[0],
+        out=tmp_path / "s",
+    )
     first = fb.sweep("seed-experiment", n=3, **kw)
     assert first["peak_force"].dims == ("case",) and first.sizes["case"] == 3
     e = first["contact.restitution"].values
@@ -202,8 +260,13 @@ def test_samples_have_a_case_dimension_and_more_samples_reuse_the_first(cluster,
 
 
 def test_local_cluster_by_default(tmp_path):
-    ds = fb.sweep("seed-experiment", grid={"contact.restitution": [0.6, 0.8]},
-                  overrides={"model.modes": 0, "solver.t_end": 0.003}, workers=1, out=tmp_path / "s")
+    ds = fb.sweep(
+        "seed-experiment",
+        grid={"contact.restitution": [0.6, 0.8]},
+        overrides={"model.modes": 0, "solver.t_end": 0.003},
+        workers=1,
+        out=tmp_path / "s",
+    )
     assert set(ds["status"].values) == {"success"}
     assert (tmp_path / "s" / "result.nc").exists()
 
@@ -216,7 +279,8 @@ def test_case_key_is_the_hash_of_the_parameters_and_method():
     assert case_key(a, "ccfm") != case_key(fb.load_case(a, {"contact.restitution": 0.7}), "ccfm")
     # 1 and 1.0 are the same validated value
     assert case_key(fb.load_case(a, {"model.gravity": 9}), "ccfm") == case_key(
-        fb.load_case(a, {"model.gravity": 9.0}), "ccfm")
+        fb.load_case(a, {"model.gravity": 9.0}), "ccfm"
+    )
 
 
 def test_samples_are_reproducible_and_invalid_samples_are_cases():
@@ -236,8 +300,10 @@ def test_samples_are_reproducible_and_invalid_samples_are_cases():
         (lambda: parse_grid(["model.modes=linspace(1,2)"]), "model.modes"),
         (lambda: parse_samples(["contact.restitution=nromal(1,2)"]), "best matches: normal"),
         (lambda: Distribution.parse("loguniform(0, 1)"), "0 < a < b"),
-        (lambda: plan(fb.load_case("seed-experiment"), grid={"contact.restitutio": [1]}),
-         "contact.restitutio: unknown field, did you mean restitution"),
+        (
+            lambda: plan(fb.load_case("seed-experiment"), grid={"contact.restitutio": [1]}),
+            "contact.restitutio: unknown field, did you mean restitution",
+        ),
         (lambda: plan(fb.load_case("seed-experiment"), grid={"contact.restitution": [2.0]}), "contact.restitution"),
         (lambda: plan(fb.load_case("seed-experiment"), samples={"contact.restitution": "uniform(0,1)"}), "n:"),
         (lambda: plan(fb.load_case("seed-experiment")), "grid"),

@@ -68,8 +68,11 @@ def test_calibration_repr_shows_fitted_values_and_peak_force():
     """A rigid-beam fit of the restitution to the peak force and duration of a known case."""
     case = fb.load_case("seed-experiment", {"model.modes": 0, "solver.t_end": 2e-3})
     m = fb.simulate(fb.load_case(case, {"contact.restitution": 0.6})).metrics()
-    fit = fb.calibrate(case, fit=["contact.restitution"],
-                       features={"peak_force": m["peak_force"], "contact_duration": m["contact_duration"]})
+    fit = fb.calibrate(
+        case,
+        fit=["contact.restitution"],
+        features={"peak_force": m["peak_force"], "contact_duration": m["contact_duration"]},
+    )
     root = _fragment(fit._repr_html_())
     text = _text(root)
     assert "success" in text and "contact.restitution" in text

@@ -19,8 +19,9 @@ def _random_state(system, rng, scale=1e-4):
     """A state with modal amplitudes of a realistic spectrum (q_k ~ scale / k^2)."""
     n = system.n
     k2 = np.arange(1, n + 1) ** 2
-    return system.state(rng.uniform(-1, 1), rng.uniform(-20, 20), rng.normal(size=n) * scale / k2,
-                        rng.normal(size=n) * scale * 300 / k2)
+    return system.state(
+        rng.uniform(-1, 1), rng.uniform(-20, 20), rng.normal(size=n) * scale / k2, rng.normal(size=n) * scale * 300 / k2
+    )
 
 
 @pytest.mark.parametrize("frame", FRAMES)
@@ -28,8 +29,15 @@ def _random_state(system, rng, scale=1e-4):
 def test_energy_rate_equals_drive_power(frame, coupling):
     """d/dt (T + V_e + V_g) = tau phi' along the free equations, phi = theta + d q the hub angle (Lagrange
     consistency: a torque on the hub works on the hub angle, in the system frame through d = Psi'(0))."""
-    case = seed(model__modes=4, model__coupling=coupling, model__frame=frame, hub__radius=0.05, hub__inertia=0.01,
-                drive__kind="torque", drive__torque=3.0)
+    case = seed(
+        model__modes=4,
+        model__coupling=coupling,
+        model__frame=frame,
+        hub__radius=0.05,
+        hub__inertia=0.01,
+        drive__kind="torque",
+        drive__torque=3.0,
+    )
     system = BeamSystem.from_case(case)
     rng = np.random.default_rng(1)
     for _ in range(5):

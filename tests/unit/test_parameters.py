@@ -22,8 +22,16 @@ def test_every_builtin_case_round_trips_through_toml(tmp_path):
 def test_overrides_change_the_named_fields():
     case = fb.load_case(
         "seed-experiment",
-        parse_overrides(["beam.youngs_modulus=70e9", "model.modes=3", "contact.law=hunt_crossley",
-                         "contact.stiffness=1e9", "initial.impact_velocity=-0.2", "solver.t_end=0.01"]),
+        parse_overrides(
+            [
+                "beam.youngs_modulus=70e9",
+                "model.modes=3",
+                "contact.law=hunt_crossley",
+                "contact.stiffness=1e9",
+                "initial.impact_velocity=-0.2",
+                "solver.t_end=0.01",
+            ]
+        ),
     )
     assert case.beam.youngs_modulus == 70e9 and case.model.modes == 3
     assert case.contact.law == "hunt_crossley" and case.contact.stiffness == 1e9
@@ -117,6 +125,7 @@ def test_too_few_gauss_points_for_the_modes_are_rejected():
 
 def test_point_obstacle_is_rejected_but_a_half_plane_needs_no_radius():
     assert _message("seed-experiment", {"obstacle.radius": 0.0}).startswith("obstacle.radius: must be > 0")
-    case = fb.load_case("seed-experiment", {"obstacle.kind": "half-plane", "obstacle.radius": 0.0,
-                                            "contact.stiffness": 1e9})
+    case = fb.load_case(
+        "seed-experiment", {"obstacle.kind": "half-plane", "obstacle.radius": 0.0, "contact.stiffness": 1e9}
+    )
     assert case.obstacle.radius == 0.0

@@ -9,6 +9,7 @@ from flexbeam.solution import interior_maxima
 
 def test_two_hertz_like_peaks_are_found_at_fine_sampling():
     """Two smooth pulses sampled every 2e-7 s (the contact output step): both maxima found."""
+
     def force(t):
         return 900.0 * np.sin(np.pi * t / 6e-4) ** 1.5 + 300.0 * np.exp(-(((t - 4.5e-4) / 3e-5) ** 2))
 

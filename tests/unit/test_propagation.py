@@ -29,8 +29,9 @@ def test_moments_equal_their_integrals(theta):
     for m in range(p):
         if theta < 10.0:
             c = quad(lambda u, m=m: math.cos(theta * (1 - u)) * u**m, 0, 1, epsabs=1e-15, epsrel=1e-13)[0]
-            s = quad(lambda u, m=m: (1 - u) * np.sinc(theta * (1 - u) / math.pi) * u**m, 0, 1, epsabs=1e-15,
-                     epsrel=1e-13)[0]
+            s = quad(
+                lambda u, m=m: (1 - u) * np.sinc(theta * (1 - u) / math.pi) * u**m, 0, 1, epsabs=1e-15, epsrel=1e-13
+            )[0]
         else:  # oscillatory weights (QAWO): cos(theta (1 - u)) = cos theta cos(theta u) + sin theta sin(theta u)
             ic = quad(lambda u, m=m: u**m, 0, 1, weight="cos", wvar=theta, epsabs=1e-16, epsrel=1e-13)[0]
             is_ = quad(lambda u, m=m: u**m, 0, 1, weight="sin", wvar=theta, epsabs=1e-16, epsrel=1e-13)[0]
@@ -58,8 +59,16 @@ def test_step_weights_propagate_a_forced_oscillator(omega):
     Cw, SW, WS = (np.array([[w[i] for w in weights]]) for i in range(3))
     RE, RV = np.array([[w[3] for w in weights]]), np.array([[w[4] for w in weights]])
     eta0, v0 = 1e-3, -0.2
-    sol = solve_ivp(lambda t, y: [y[1], forcing(t) - omega**2 * y[0]], (0, h), [eta0, v0], method="DOP853",
-                    rtol=1e-12, atol=1e-16, t_eval=s * h, max_step=h / max(1.0, omega * h / 0.5))
+    sol = solve_ivp(
+        lambda t, y: [y[1], forcing(t) - omega**2 * y[0]],
+        (0, h),
+        [eta0, v0],
+        method="DOP853",
+        rtol=1e-12,
+        atol=1e-16,
+        t_eval=s * h,
+        max_step=h / max(1.0, omega * h / 0.5),
+    )
     eta = Cw[0] * eta0 + SW[0] * v0 + RE[0] @ fn
     v = -WS[0] * eta0 + Cw[0] * v0 + RV[0] @ fn
     scale_e = abs(eta0) + abs(v0) * h + np.max(np.abs(fn)) * h * h

@@ -50,8 +50,12 @@ def configurations(draw, obstacle: str = "sphere", hub_inertia=None):
     n = draw(st.integers(1, MAX_MODES))
     if hub_inertia is None:
         hub_inertia = st.one_of(st.just(0.0), st.floats(1e-3, 0.5))
-    overrides = {"model.modes": n, "model.frame": frame, "hub.inertia": draw(hub_inertia),
-                 "hub.radius": draw(st.floats(0.0, 0.05))}
+    overrides = {
+        "model.modes": n,
+        "model.frame": frame,
+        "hub.inertia": draw(hub_inertia),
+        "hub.radius": draw(st.floats(0.0, 0.05)),
+    }
     if obstacle == "half-plane":
         overrides |= {"obstacle.kind": "half-plane", "contact.stiffness": PLANE_STIFFNESS}
     system = BeamSystem.from_case(fb.load_case("seed-experiment", overrides))
@@ -106,9 +110,9 @@ def jump_round_off(system: BeamSystem, y: np.ndarray, P: float) -> tuple[float, 
     def quadratic_form_size(v: np.ndarray) -> float:
         return 0.5 * float(np.abs(v) @ np.abs(M) @ np.abs(v))
 
-    energy = ((N + 1) ** 2 * EPS * (quadratic_form_size(zd) + quadratic_form_size(zd_plus))
-              + N * EPS * abs(P) * np.linalg.norm(M, 2) * (np.linalg.norm(zd) + np.linalg.norm(zd_plus))
-              * np.linalg.norm(u))
+    energy = (N + 1) ** 2 * EPS * (quadratic_form_size(zd) + quadratic_form_size(zd_plus)) + N * EPS * abs(
+        P
+    ) * np.linalg.norm(M, 2) * (np.linalg.norm(zd) + np.linalg.norm(zd_plus)) * np.linalg.norm(u)
     return 10.0 * vel, 10.0 * energy
 
 
@@ -274,6 +278,7 @@ def check_gap_kinematics(system: BeamSystem, y: np.ndarray) -> tuple[float, floa
     worst_J = 0.0
     h = 1e-6  # about (eps R / |delta'''|)^(1/3) for |delta'''| up to ~1e3; the error estimate covers the rest
     for i in range(system.n + 1):
+
         def along(s, i=i):
             yy = y.copy()
             yy[i] += s

@@ -34,8 +34,14 @@ M2, KS, KC, V0 = 0.05, 2.0e6, 5.0e6, -0.4
 
 
 def _rod_case(**extra):
-    base = dict(model__modes=0, model__gravity=0.0, obstacle__support__mass=M2,
-                obstacle__support__stiffness=KS, initial__impact_velocity=V0, solver__t_end=4e-3)
+    base = dict(
+        model__modes=0,
+        model__gravity=0.0,
+        obstacle__support__mass=M2,
+        obstacle__support__stiffness=KS,
+        initial__impact_velocity=V0,
+        solver__t_end=4e-3,
+    )
     base.update(extra)
     return seed(**base)
 
@@ -55,8 +61,7 @@ def test_ccfm_linear_contact_matches_two_mass_chain():
 
 def test_sensor_pulse_of_the_two_mass_chain():
     """The sensor reads -k_s x_2, which outlasts the contact while the obstacle rings back."""
-    case = _rod_case(contact__law="hertz", contact__stiffness=KC, contact__exponent=1.0,
-                     solver__sample_step=2e-8)
+    case = _rod_case(contact__law="hertz", contact__stiffness=KC, contact__exponent=1.0, solver__sample_step=2e-8)
     m = fb.simulate(case, "ccfm").metrics()
     _, _, F_s, t_s = two_mass_chain(_m1(case), M2, KC, KS, V0)
     assert t_s > m["contact_duration"]
@@ -94,8 +99,9 @@ def test_imm_two_body_restitution(e):
     assert_allclose(s_rate, (1 + e) * m1 * V0 / (m1 + M2), rtol=1e-10)
     assert_allclose(jump.velocity_after, -e * V0, rtol=1e-10, atol=1e-15)
     # the kinetic energy lost is (1 - e^2)/2 times the reduced mass times v0^2
-    assert_allclose(jump.kinetic_before - jump.kinetic_after,
-                    0.5 * (1 - e**2) * m1 * M2 / (m1 + M2) * V0**2, rtol=1e-10, atol=1e-15)
+    assert_allclose(
+        jump.kinetic_before - jump.kinetic_after, 0.5 * (1 - e**2) * m1 * M2 / (m1 + M2) * V0**2, rtol=1e-10, atol=1e-15
+    )
 
 
 def test_stiff_support_tends_to_the_rigid_obstacle():
@@ -103,16 +109,22 @@ def test_stiff_support_tends_to_the_rigid_obstacle():
     contact's (2/5) F delta (the support, ringing at 1 MHz, follows quasi-statically), so the peak force drops by
     3/5 of that, ~2e-5 (measured 1.35e-5; duration 5.5e-6); bound 1e-4."""
     rigid = fb.simulate(seed(model__modes=4, solver__t_end=6e-4), "ccfm").metrics()
-    stiff = fb.simulate(seed(model__modes=4, solver__t_end=6e-4, obstacle__support__mass=1.0,
-                             obstacle__support__stiffness=1e12), "ccfm").metrics()
+    stiff = fb.simulate(
+        seed(model__modes=4, solver__t_end=6e-4, obstacle__support__mass=1.0, obstacle__support__stiffness=1e12), "ccfm"
+    ).metrics()
     assert_allclose(stiff["peak_force"], rigid["peak_force"], rtol=1e-4)
     assert_allclose(stiff["contact_duration"], rigid["contact_duration"], rtol=1e-4)
 
 
 @pytest.mark.parametrize("method", ["ccfm", "ccm", "imm"])
 def test_energy_balance_with_damped_support(method):
-    case = seed(model__modes=4, solver__t_end=5e-3, obstacle__support__mass=0.02,
-                obstacle__support__stiffness=5e6, obstacle__support__damping=8.0)
+    case = seed(
+        model__modes=4,
+        solver__t_end=5e-3,
+        obstacle__support__mass=0.02,
+        obstacle__support__stiffness=5e6,
+        obstacle__support__damping=8.0,
+    )
     sol = fb.simulate(case, method)
     assert sol.metrics()["energy_drift_max"] < 1e-6
     assert sol["dissipated_energy"][-1] > 0.0
@@ -125,8 +137,7 @@ def test_support_input_errors():
     with pytest.raises(ParameterError, match="obstacle.support.stiffness"):
         seed(obstacle__support__damping=3.0)
     with pytest.raises(ParameterError, match="obstacle.support.direction"):
-        seed(obstacle__support__stiffness=1e6, obstacle__support__mass=0.1,
-             obstacle__support__direction=[1.0, 1.0])
+        seed(obstacle__support__stiffness=1e6, obstacle__support__mass=0.1, obstacle__support__direction=[1.0, 1.0])
     with pytest.raises(ParameterError, match="obstacle.support"):
         fb.simulate(seed(obstacle__support__stiffness=1e6, obstacle__support__mass=0.1), "fem")
 

@@ -104,8 +104,9 @@ def impact(p, m: float, v_in: float, clip: bool = True):
     k, n = p[0], p[1]
     dmax = ((n + 1.0) * m * v_in**2 / (2.0 * k)) ** (1.0 / (n + 1.0))
     atol = 1e-15 * np.array([dmax, v_in, m * v_in])
-    sol = solve_ivp(rhs, (0.0, 100.0 * dmax / v_in), [0.0, v_in, 0.0], method="DOP853",
-                    rtol=1e-12, atol=atol, events=(back, turn))
+    sol = solve_ivp(
+        rhs, (0.0, 100.0 * dmax / v_in), [0.0, v_in, 0.0], method="DOP853", rtol=1e-12, atol=atol, events=(back, turn)
+    )
     assert sol.status == 1, "no separation"
     t_c, (_, v_end, imp) = sol.t_events[0][0], sol.y_events[0][0]
     d_top = sol.y_events[1][0][0]
@@ -133,8 +134,9 @@ def kelvin_voigt_clipped(e: float) -> float:
     return -math.exp(-s * phi / wd) * (math.cos(phi) - (s / wd) * math.sin(phi))
 
 
-def e_eff(name: str, e: float, m: float = 1.0, K: float = 1.0, v: float = 1.0, n: float = 1.5,
-          clip: bool = True) -> tuple[float, float]:
+def e_eff(
+    name: str, e: float, m: float = 1.0, K: float = 1.0, v: float = 1.0, n: float = 1.5, clip: bool = True
+) -> tuple[float, float]:
     law = make_law(name, K, n, e)
     p = law.parameters(v, m)
     v_out, imp, *_ = impact(p, m, v, clip)
@@ -220,8 +222,7 @@ def test_hertz_impact_closed_form(m, v, K):
     assert fmax == pytest.approx(j_fmax, rel=1e-12)
     # 2.9432 is the constant 2.943275 cut to four decimals: up to 1e-4 / 2.9432 = 3.4e-5 (measured 2.55e-5)
     assert tc == pytest.approx(j_tc, rel=5e-5)
-    assert tc * v / dmax == pytest.approx(2.0 * math.sqrt(math.pi) * math.gamma(1.4) / math.gamma(0.9),
-                                          rel=1e-14)
+    assert tc * v / dmax == pytest.approx(2.0 * math.sqrt(math.pi) * math.gamma(1.4) / math.gamma(0.9), rel=1e-14)
     # against the integrated 1-DOF impact
     v_out, imp, t_c, d_top, f_top = impact(np.array([K, 1.5, 0.0, 0.0]), m, v)
     assert d_top == pytest.approx(dmax, rel=1e-9)

@@ -48,6 +48,14 @@ def test_damped_run_books_the_dissipated_energy():
 
 
 def test_torque_drive_work_is_booked():
-    for sol in _drifts(model__modes=2, drive__kind="torque", drive__torque=-2.0, initial__kind="state",
-                       initial__angle=0.3, initial__rate=0.0, contact__law="hertz", solver__t_end=0.2):
+    for sol in _drifts(
+        model__modes=2,
+        drive__kind="torque",
+        drive__torque=-2.0,
+        initial__kind="state",
+        initial__angle=0.3,
+        initial__rate=0.0,
+        contact__law="hertz",
+        solver__t_end=0.2,
+    ):
         assert abs(sol["drive_work"][-1]) > 0.01

@@ -108,12 +108,15 @@ def test_imm_at_zero_restitution_is_ccm():
     np.testing.assert_allclose([c.impulse for c in imm.contacts], [c.impulse for c in ccm.contacts], rtol=1e-9)
 
 
-@pytest.mark.parametrize("method, overrides", [
-    ("imm", {"contact__restitution": 0.0}),
-    ("ccm", {}),
-    ("imm", {}),
-    ("ccfm", STIFF),
-])
+@pytest.mark.parametrize(
+    "method, overrides",
+    [
+        ("imm", {"contact__restitution": 0.0}),
+        ("ccm", {}),
+        ("imm", {}),
+        ("ccfm", STIFF),
+    ],
+)
 def test_no_contact_is_missed(method, overrides):
     """Never inside the obstacle while free: a free phase's gap stays above -1 nm (the event search's floor for a
     phase that starts on the surface) -- before the fix P sank 1 mm unseen after a plastic jump without gravity."""

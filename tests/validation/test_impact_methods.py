@@ -17,8 +17,9 @@ from tests.conftest import rigid_rod_mass_inertia, seed
 
 @pytest.mark.parametrize("e", [0.0, 0.35, 1.0])
 def test_rigid_rod_imm_reverses_rate_by_restitution(e):
-    case = seed(model__modes=0, model__gravity=0.0, contact__restitution=e, contact__law="hunt_crossley",
-                solver__t_end=1e-3)
+    case = seed(
+        model__modes=0, model__gravity=0.0, contact__restitution=e, contact__law="hunt_crossley", solver__t_end=1e-3
+    )
     sol = fb.simulate(case, method="imm")
     i = np.nonzero(sol.time == sol.contacts[0].onset)[0]
     before, after = sol["theta_rate"][i[0]], sol["theta_rate"][i[-1]]
@@ -75,8 +76,7 @@ def test_ccm_keeps_the_gap_closed_with_compressive_force():
 
 def test_ccm_rod_resting_under_gravity_gives_static_reaction():
     """Moment balance about O: lambda x_P = m g L / 2."""
-    case = seed(model__modes=0, initial__kind="state", initial__angle=0.0, initial__rate=0.0,
-                solver__t_end=0.01)
+    case = seed(model__modes=0, initial__kind="state", initial__angle=0.0, initial__rate=0.0, solver__t_end=0.01)
     sol = fb.simulate(case, method="ccm")
     m, _ = rigid_rod_mass_inertia(case)
     F = sol["contact_force"][sol.phase == "constrained"]
@@ -116,8 +116,7 @@ def test_stiff_ccfm_approaches_imm_for_a_rigid_rod():
     (3 g / 2 L) x_P t_c / v, first order in t_c ~ K^(-2/5) (Johnson 1985 Sec. 11.4), so each factor 100 in K
     divides it by 100^(2/5) = 6.31.  The next order shifts that ratio by about the larger error itself (3 % at
     K = 1e8); bound 10 % (measured 2.2 % and 0.3 %; errors 3.0e-2, 4.7e-3, 7.4e-4)."""
-    base = dict(model__modes=0, contact__law="carvalho_martins", contact__restitution=0.6,
-                solver__t_end=20e-3)
+    base = dict(model__modes=0, contact__law="carvalho_martins", contact__restitution=0.6, solver__t_end=20e-3)
     v_imm = fb.simulate(seed(**base), method="imm").metrics()["post_impact_velocity"]
     errors = []
     for K in (1e8, 1e10, 1e12):

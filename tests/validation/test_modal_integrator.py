@@ -46,8 +46,7 @@ def test_seed_first_contact_agrees():
 
 
 def test_seed_damped_law_agrees_and_books_dissipation():
-    ref, fast = _both(seed(model__modes=4, contact__law="hunt_crossley", contact__restitution=0.5,
-                           solver__t_end=2e-3))
+    ref, fast = _both(seed(model__modes=4, contact__law="hunt_crossley", contact__restitution=0.5, solver__t_end=2e-3))
     _agree(ref, fast)
     assert_allclose(fast["dissipated_energy"][-1], ref["dissipated_energy"][-1], rtol=1e-5)
 
@@ -56,8 +55,15 @@ def test_kinked_law_agrees():
     """Kelvin-Voigt at e = 0.3: the clipped force has a kink while the gap is still closed, which the
     integrator locates and ends a step at (a polynomial cannot follow it): restitution and duration to 1e-6;
     the force jumps to C d'_0 at the onset, its peak to 1e-4 (measured 6.2e-6, 16x)."""
-    ref, fast = _both(seed(model__modes=0, model__gravity=0.0, contact__law="kelvin_voigt",
-                           contact__restitution=0.3, solver__t_end=2e-3))
+    ref, fast = _both(
+        seed(
+            model__modes=0,
+            model__gravity=0.0,
+            contact__law="kelvin_voigt",
+            contact__restitution=0.3,
+            solver__t_end=2e-3,
+        )
+    )
     _agree(ref, fast, peak=1e-4)
 
 
@@ -67,15 +73,21 @@ def test_rigid_rod_agrees():
 
 def test_spinning_beam_impact_agrees():
     """A beam spun at 8 rad/s into the obstacle: centrifugal and Coriolis terms active."""
-    case = seed(model__modes=4, initial__kind="state", initial__angle=0.05, initial__rate=-8.0,
-                solver__t_end=0.01)
+    case = seed(model__modes=4, initial__kind="state", initial__angle=0.05, initial__rate=-8.0, solver__t_end=0.01)
     _agree(*_both(case))
 
 
 def test_high_spin_prescribed_impact_agrees():
     """theta(t) prescribed at -30 rad/s into the obstacle (hub frame): the joint reaction does the work."""
-    case = seed(model__modes=4, drive__kind="prescribed", drive__profile="constant-rate",
-                drive__spin_rate=-30.0, initial__kind="state", initial__angle=0.02, solver__t_end=2e-3)
+    case = seed(
+        model__modes=4,
+        drive__kind="prescribed",
+        drive__profile="constant-rate",
+        drive__spin_rate=-30.0,
+        initial__kind="state",
+        initial__angle=0.02,
+        solver__t_end=2e-3,
+    )
     ref, fast = _both(case)
     _agree(ref, fast, peak=1e-4)  # measured 5.1e-6 (a 124 kN peak at 30 rad/s), 19x
     assert fast.provenance["frame"] == "hub"
@@ -134,8 +146,18 @@ def test_compliant_support_multi_contact_onsets_agree_and_converge():
     peak (measured 9.8e-8 of it, 1.4e-3 relative to a small late peak of its own); energy drift measured 4.1e-7,
     bound 5e-6."""
     ref, fast = _both(_calibrated(model__modes=4, model__gravity=98.1, solver__t_end=0.03))
-    tight = fb.simulate(_with(_calibrated(model__modes=4, model__gravity=98.1, solver__t_end=0.03,
-                                          solver__fast_rtol=1e-10, solver__fast_atol=1e-13), "exponential"))
+    tight = fb.simulate(
+        _with(
+            _calibrated(
+                model__modes=4,
+                model__gravity=98.1,
+                solver__t_end=0.03,
+                solver__fast_rtol=1e-10,
+                solver__fast_atol=1e-13,
+            ),
+            "exponential",
+        )
+    )
     assert len(fast.contacts) == len(tight.contacts) == len(ref.contacts) >= 8
     top = ref.contacts[0].peak_force
     for a, b, c in zip(ref.contacts, fast.contacts, tight.contacts, strict=True):
@@ -153,8 +175,15 @@ def test_constrained_phases_on_a_compliant_support_take_the_reference_path(metho
 
 def test_torque_drive_books_the_work():
     """Constant joint torque on the hub angle: W = tau (phi - phi_0) booked exactly, energy conserved."""
-    case = seed(model__modes=6, drive__kind="torque", drive__torque=-2.0, initial__kind="state",
-                initial__angle=0.05, initial__rate=0.0, solver__t_end=0.02)
+    case = seed(
+        model__modes=6,
+        drive__kind="torque",
+        drive__torque=-2.0,
+        initial__kind="state",
+        initial__angle=0.05,
+        initial__rate=0.0,
+        solver__t_end=0.02,
+    )
     fast = fb.simulate(_with(case, "exponential"))
     assert fast.status == "success"
     assert abs(fast.metrics()["energy_drift_max"]) < 1e-6

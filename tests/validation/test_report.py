@@ -82,8 +82,12 @@ def test_written_page_prints_the_results(reduced):
             for name, x in (("reference", r.reference), ("flexbeam", r.value)):
                 assert _printed(row[name], x, 7 if "e" in row[name] else 9), (s.key, name, row, x)
             assert _printed(row["error"], r.error, 4) and _printed(row["tolerance"], r.tolerance, 3), (s.key, row)
-            assert row["check"] == {"rel": "relative", "abs": "absolute", "upper": "value <= reference",
-                                    "lower": "value >= reference"}[r.kind], (s.key, row)
+            assert (
+                row["check"]
+                == {"rel": "relative", "abs": "absolute", "upper": "value <= reference", "lower": "value >= reference"}[
+                    r.kind
+                ]
+            ), (s.key, row)
             assert row["status"] == ("pass" if r.passed else "FAIL"), (s.key, row)
         for name, _ in s.figures:
             assert f"](figures/{name})" in text

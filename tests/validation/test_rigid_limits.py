@@ -20,8 +20,9 @@ from tests.conftest import rigid_rod_mass_inertia, seed
 @pytest.mark.parametrize("theta0", [0.2, 0.7, 1.2])
 def test_pinned_rod_reaches_horizontal_with_textbook_rate(theta0):
     """Energy: 1/2 (m L^2/3) w^2 = m g (L/2) sin(theta0)  ->  w^2 = 3 g sin(theta0) / L."""
-    case = seed(model__modes=0, initial__kind="release", initial__release_angle=theta0,
-                contact__law="hertz", solver__t_end=0.8)
+    case = seed(
+        model__modes=0, initial__kind="release", initial__release_angle=theta0, contact__law="hertz", solver__t_end=0.8
+    )
     sol = fb.simulate(case)
     ev = sol.contacts[0]
     i = int(np.searchsorted(sol.time, ev.onset))
@@ -46,8 +47,9 @@ def test_rigid_rod_hertz_impact_matches_closed_form(v0):
     8.2e-6 off the exact constant at fast_rtol 1e-6 and 1e-10 alike, the peak 1e-7).  The constant 2.9432 is
     2 sqrt(pi) Gamma(7/5) / Gamma(9/10) = 2.943275 to four decimals: up to 1e-4 / 2.9432 = 3.4e-5 more on the
     duration (2.55e-5 of it here).  The integrator adds ~1e-7 (fast_rtol 1e-6)."""
-    case = seed(model__modes=0, model__gravity=0.0, contact__law="hertz", initial__impact_velocity=v0,
-                solver__t_end=2e-3)
+    case = seed(
+        model__modes=0, model__gravity=0.0, contact__law="hertz", initial__impact_velocity=v0, solver__t_end=2e-3
+    )
     sol = fb.simulate(case)
     _, J_O = rigid_rod_mass_inertia(case)
     m_eff = J_O / case.contact.position**2
@@ -84,8 +86,7 @@ def _elliptical_hertz_stiffness(R1: float, R2: float, E_star: float) -> float:
 
 def test_hertz_stiffness_of_a_sphere_on_a_flat_is_johnsons():
     """A sphere on a flat (an infinitely wide cylinder): K = 4/3 E* sqrt(R), Johnson (1985) Sec. 4.2, exact."""
-    assert_allclose(sphere_on_cylinder_stiffness(0.01, math.inf, 3.8e10), 4 / 3 * 3.8e10 * math.sqrt(0.01),
-                    rtol=1e-14)
+    assert_allclose(sphere_on_cylinder_stiffness(0.01, math.inf, 3.8e10), 4 / 3 * 3.8e10 * math.sqrt(0.01), rtol=1e-14)
 
 
 def test_hertz_stiffness_of_a_sphere_on_a_cylinder_against_the_elliptical_contact():

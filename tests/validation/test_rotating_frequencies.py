@@ -52,8 +52,7 @@ def test_report_reads_the_same_published_values():
 
 def test_series_reference_is_the_clamped_free_beam_at_rest():
     """gamma = 0: (beta_k L)^2 with cos(bL) cosh(bL) = -1, found independently by brentq."""
-    roots = [brentq(lambda b: math.cos(b) * math.cosh(b) + 1.0, a, a + 1.5)
-             for a in (1.0, 4.0, 7.0)]
+    roots = [brentq(lambda b: math.cos(b) * math.cosh(b) + 1.0, a, a + 1.5) for a in (1.0, 4.0, 7.0)]
     assert np.allclose(reference_flapwise(0.0, 0.0), np.square(roots), rtol=1e-10)
     assert np.allclose(reference_flapwise(0.0, 1.0), np.square(roots), rtol=1e-10)
 
@@ -71,13 +70,22 @@ def test_series_reference_reproduces_published_values(entry):
 # ----------------------------------------------------------------------------------------
 def unit_case(delta: float, modes: int = MODES, coupling: str = "first-order") -> Case:
     """L = 1, rho A = 1, EI = 1 (so T = 1 s and Omega = gamma), hub radius delta."""
-    return Case.model_validate({
-        "beam": {"length": 1.0, "density": 1.0, "youngs_modulus": 1.0, "section": "general",
-                 "area": 1.0, "second_moment": 1.0, "half_depth": 0.0},
-        "hub": {"radius": delta},
-        "model": {"modes": modes, "coupling": coupling, "gravity": 0.0},
-        "contact": {"position": 1.0},
-    })
+    return Case.model_validate(
+        {
+            "beam": {
+                "length": 1.0,
+                "density": 1.0,
+                "youngs_modulus": 1.0,
+                "section": "general",
+                "area": 1.0,
+                "second_moment": 1.0,
+                "half_depth": 0.0,
+            },
+            "hub": {"radius": delta},
+            "model": {"modes": modes, "coupling": coupling, "gravity": 0.0},
+            "contact": {"position": 1.0},
+        }
+    )
 
 
 @functools.cache
@@ -113,13 +121,22 @@ def test_frequencies_scale_with_T():
     """A physical beam (Kane et al.'s data) gives omega T equal to the unit beam's omega_bar."""
     mu, EI, L = 1.2, 1.4e4, 10.0
     T = math.sqrt(mu * L**4 / EI)
-    case = Case.model_validate({
-        "beam": {"length": L, "density": 3000.0, "youngs_modulus": 7e10, "section": "general",
-                 "area": 4e-4, "second_moment": 2e-7, "half_depth": 0.04},
-        "hub": {"radius": 0.5 * L},
-        "model": {"modes": MODES, "gravity": 0.0},
-        "contact": {"position": L},
-    })
+    case = Case.model_validate(
+        {
+            "beam": {
+                "length": L,
+                "density": 3000.0,
+                "youngs_modulus": 7e10,
+                "section": "general",
+                "area": 4e-4,
+                "second_moment": 2e-7,
+                "half_depth": 0.04,
+            },
+            "hub": {"radius": 0.5 * L},
+            "model": {"modes": MODES, "gravity": 0.0},
+            "contact": {"position": L},
+        }
+    )
     gamma = 7.0
     got = spin_frequencies(hub_frame_beam(case), gamma / T, "flapwise")[:3] * T
     np.testing.assert_allclose(got, reference_flapwise(gamma, 0.5), rtol=RTOL)

@@ -106,8 +106,11 @@ def derive(first_order: bool):
     slope = d[0] * qe[0] + d[1] * qe[1]  # sin(alpha), the root slope in the frame
     # the rim's shortening r_h (1 - cos alpha) = r_h (1 - sqrt(1 - sin^2 alpha)), as a series in eps
     rim = rh * sp.series(1 - sp.sqrt(1 - slope**2), eps, 0, 3).removeO()
-    ux = (-rim - sp.Rational(1, 2) * sum(H[i][j] * qe[i] * qe[j] for i in range(2) for j in range(2))) \
-        if first_order else sp.Integer(0)
+    ux = (
+        (-rim - sp.Rational(1, 2) * sum(H[i][j] * qe[i] * qe[j] for i in range(2) for j in range(2)))
+        if first_order
+        else sp.Integer(0)
+    )
     X, Y = b + ux, uy
     r = sp.Matrix([C * X - S * Y, S * X + C * Y])
     # r' = dr/dtheta theta' + sum dr/dq_i q_i' (dr/dq_i carries the eps of q -> eps q: q' -> eps q')
@@ -140,8 +143,12 @@ def derive(first_order: bool):
 # numbers: own mode shapes and quadrature
 # ---------------------------------------------------------------------------------------
 def _roots(n):
-    return [brentq(lambda z: math.cos(z) * math.cosh(z) + 1.0, (k - 0.5) * math.pi - 0.6,
-                   (k - 0.5) * math.pi + 0.6, xtol=1e-15) for k in range(1, n + 1)]
+    return [
+        brentq(
+            lambda z: math.cos(z) * math.cosh(z) + 1.0, (k - 0.5) * math.pi - 0.6, (k - 0.5) * math.pi + 0.6, xtol=1e-15
+        )
+        for k in range(1, n + 1)
+    ]
 
 
 def modes(x, derivative=0):
@@ -153,9 +160,11 @@ def modes(x, derivative=0):
         sig = (math.cosh(z) + math.cos(z)) / (math.sinh(z) + math.sin(z))
         y = be * x
         ch, sh, c, s = np.cosh(y), np.sinh(y), np.cos(y), np.sin(y)
-        cols.append({0: ch - c - sig * (sh - s),
-                     1: be * (sh + s - sig * (ch - c)),
-                     2: be**2 * (ch + c - sig * (sh + s))}[derivative])
+        cols.append(
+            {0: ch - c - sig * (sh - s), 1: be * (sh + s - sig * (ch - c)), 2: be**2 * (ch + c - sig * (sh + s))}[
+                derivative
+            ]
+        )
     return np.stack(cols, axis=1)
 
 
@@ -185,16 +194,26 @@ def integral_values(integrals: dict, hub_radius: float, shapes=modes) -> dict:
     return out
 
 
-def make_case(coupling: str, hub_radius: float, hub_inertia: float, gravity: float, torque: float,
-              frame: str = "hub") -> Case:
-    return Case.model_validate({
-        "beam": {"length": L, "density": 2.0, "youngs_modulus": 3.0, "section": "general",
-                 "area": MU / 2.0, "second_moment": EI / 3.0, "half_depth": 0.05},
-        "hub": {"radius": hub_radius, "inertia": hub_inertia},
-        "model": {"modes": 2, "coupling": coupling, "gravity": gravity, "frame": frame},
-        "drive": {"kind": "torque", "torque": torque},
-        "contact": {"position": 0.8 * L, "stiffness": 1e6},
-    })
+def make_case(
+    coupling: str, hub_radius: float, hub_inertia: float, gravity: float, torque: float, frame: str = "hub"
+) -> Case:
+    return Case.model_validate(
+        {
+            "beam": {
+                "length": L,
+                "density": 2.0,
+                "youngs_modulus": 3.0,
+                "section": "general",
+                "area": MU / 2.0,
+                "second_moment": EI / 3.0,
+                "half_depth": 0.05,
+            },
+            "hub": {"radius": hub_radius, "inertia": hub_inertia},
+            "model": {"modes": 2, "coupling": coupling, "gravity": gravity, "frame": frame},
+            "drive": {"kind": "torque", "torque": torque},
+            "contact": {"position": 0.8 * L, "stiffness": 1e6},
+        }
+    )
 
 
 # ---------------------------------------------------------------------------------------
@@ -237,11 +256,16 @@ def test_mass_matrix_and_forces_match_flexbeam(coupling, hub, frame):
     f_Q = sp.lambdify(args, Q_sym.subs(subs), "numpy")
 
     def sympy_MQ(state, grav, torque):
-        return (np.array(f_M(*state, grav, torque, hub[1]), float),
-                np.array(f_Q(*state, grav, torque, hub[1]), float).ravel())
+        return (
+            np.array(f_M(*state, grav, torque, hub[1]), float),
+            np.array(f_Q(*state, grav, torque, hub[1]), float).ravel(),
+        )
 
-    systems = {(gr, tq): BeamSystem.from_case(make_case(coupling, hub[0], hub[1], gr, tq, frame))
-               for gr in (0.0, GRAV) for tq in (0.0, TAU)}
+    systems = {
+        (gr, tq): BeamSystem.from_case(make_case(coupling, hub[0], hub[1], gr, tq, frame))
+        for gr in (0.0, GRAV)
+        for tq in (0.0, TAU)
+    }
 
     def flex_MQ(state, grav, torque):
         s = systems[(grav, torque)]

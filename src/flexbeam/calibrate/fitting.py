@@ -61,8 +61,10 @@ def calibrate(
     from ..registry import METHOD_NAMES
 
     if method not in METHOD_NAMES:
-        raise ParameterError(f"method: unknown impact method '{method}'; allowed: "
-                             f"{', '.join(METHOD_NAMES)}{closest(method, METHOD_NAMES)}")
+        raise ParameterError(
+            f"method: unknown impact method '{method}'; allowed: "
+            f"{', '.join(METHOD_NAMES)}{closest(method, METHOD_NAMES)}"
+        )
     base = load_case(case, dict(overrides) if overrides else None)
     keys = parse_fit(fit)
     params = [Parameter.of(base, k) for k in keys]
@@ -70,8 +72,9 @@ def calibrate(
     feats = dict(features or {})
     for k in feats:
         if k not in FEATURES:
-            raise ParameterError(f"--features {k}: unknown feature; allowed: {', '.join(FEATURES)}"
-                                 f"{closest(k, FEATURES)}")
+            raise ParameterError(
+                f"--features {k}: unknown feature; allowed: {', '.join(FEATURES)}{closest(k, FEATURES)}"
+            )
     if measured is None and not feats:
         raise ParameterError("calibrate: give measured histories (--data) and/or features (--features)")
     if measured is not None and measured.force is not None and method == "imm":
@@ -87,13 +90,16 @@ def calibrate(
     hi = np.array([p.bounds()[1] for p in params] + ([1.0] if problem.fit_shift else []))
     r0 = problem.residuals(z0)
     if r0.size < n_z:
-        raise ParameterError(f"calibrate: {r0.size} measured values cannot determine {n_z} parameters "
-                             "(give more features or histories)")
-    res = least_squares(problem.residuals, z0, bounds=(lo, hi), method="trf", diff_step=1e-3, x_scale=1.0,
-                        max_nfev=max_nfev)
+        raise ParameterError(
+            f"calibrate: {r0.size} measured values cannot determine {n_z} parameters (give more features or histories)"
+        )
+    res = least_squares(
+        problem.residuals, z0, bounds=(lo, hi), method="trf", diff_step=1e-3, x_scale=1.0, max_nfev=max_nfev
+    )
     cov_z, s2, dof = covariance(res.jac, res.fun)
-    deriv = np.array([p.derivative(float(z)) for p, z in zip(params, res.x)]
-                     + ([problem.time_scale] if problem.fit_shift else []))
+    deriv = np.array(
+        [p.derivative(float(z)) for p, z in zip(params, res.x)] + ([problem.time_scale] if problem.fit_shift else [])
+    )
     cov = cov_z * np.outer(deriv, deriv)
     with np.errstate(invalid="ignore", divide="ignore"):
         sd = np.sqrt(np.diag(cov))
@@ -105,10 +111,26 @@ def calibrate(
     active = [names[i] for i in np.nonzero(res.active_mask)[0]]
     fitted_case = load_case(base, {p.key: v for p, v in zip(params, x_hat)})
     result = Calibration(
-        case=fitted_case, method=method, parameters=params, values=np.asarray(x_hat), uncertainty=sd[: len(params)],
-        covariance=cov, correlation=corr, names=names, sigma=math.sqrt(s2) if math.isfinite(s2) else math.nan,
-        dof=dof, cost=float(res.cost), nfev=int(res.nfev), success=bool(res.success), message=str(res.message),
-        active=active, residuals=res.fun, solution=sol, initial_solution=sol0, measured=measured, features=feats,
+        case=fitted_case,
+        method=method,
+        parameters=params,
+        values=np.asarray(x_hat),
+        uncertainty=sd[: len(params)],
+        covariance=cov,
+        correlation=corr,
+        names=names,
+        sigma=math.sqrt(s2) if math.isfinite(s2) else math.nan,
+        dof=dof,
+        cost=float(res.cost),
+        nfev=int(res.nfev),
+        success=bool(res.success),
+        message=str(res.message),
+        active=active,
+        residuals=res.fun,
+        solution=sol,
+        initial_solution=sol0,
+        measured=measured,
+        features=feats,
     )
     if measured is not None:
         n = int(np.count_nonzero(problem.mask))
@@ -118,8 +140,8 @@ def calibrate(
         result.data_mask = problem.mask
         result.model_reference = (problem.reference(sol0), problem.reference(sol))
         for i, (chan, scale) in enumerate(zip(measured.channels, problem.scales)):
-            result.channel_rms[chan] = float(np.sqrt(np.mean(res.fun[i * n:(i + 1) * n] ** 2)) * scale)
-            result.channel_rms_initial[chan] = float(np.sqrt(np.mean(r0[i * n:(i + 1) * n] ** 2)) * scale)
+            result.channel_rms[chan] = float(np.sqrt(np.mean(res.fun[i * n : (i + 1) * n] ** 2)) * scale)
+            result.channel_rms_initial[chan] = float(np.sqrt(np.mean(r0[i * n : (i + 1) * n] ** 2)) * scale)
     if out is not None:
         result.write(out)
     return result

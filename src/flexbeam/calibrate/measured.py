@@ -16,8 +16,11 @@ if TYPE_CHECKING:
     import numpy as np
 
 #: CSV column roles and the column names tried when ``columns`` does not name them
-ROLES = {"time": ("time", "t"), "force": ("force", "contact_force", "F"),
-         "velocity": ("velocity", "normal_velocity", "v")}
+ROLES = {
+    "time": ("time", "t"),
+    "force": ("force", "contact_force", "F"),
+    "velocity": ("velocity", "normal_velocity", "v"),
+}
 
 
 @dataclass
@@ -98,8 +101,10 @@ def read_measured(path: str | Path, columns: Mapping[str, str] | None = None) ->
         if role in columns:
             name = columns[role]
             if name not in header:
-                raise ParameterError(f"--columns {role}: no column '{name}' in '{path}'; columns: "
-                                     f"{', '.join(header)}{closest(name, header)}")
+                raise ParameterError(
+                    f"--columns {role}: no column '{name}' in '{path}'; columns: "
+                    f"{', '.join(header)}{closest(name, header)}"
+                )
             chosen[role] = header.index(name)
         else:
             for name in candidates:
@@ -107,11 +112,14 @@ def read_measured(path: str | Path, columns: Mapping[str, str] | None = None) ->
                     chosen[role] = header.index(name)
                     break
     if "time" not in chosen:
-        raise ParameterError(f"data: no time column in '{path}' (columns: {', '.join(header)}); "
-                             "name it with --columns time=NAME")
+        raise ParameterError(
+            f"data: no time column in '{path}' (columns: {', '.join(header)}); name it with --columns time=NAME"
+        )
     if "force" not in chosen and "velocity" not in chosen:
-        raise ParameterError(f"data: no force or velocity column in '{path}' (columns: {', '.join(header)}); "
-                             "name them with --columns force=NAME,velocity=NAME")
+        raise ParameterError(
+            f"data: no force or velocity column in '{path}' (columns: {', '.join(header)}); "
+            "name them with --columns force=NAME,velocity=NAME"
+        )
     values: dict[str, np.ndarray] = {}
     for role, j in chosen.items():
         col = []
@@ -125,5 +133,9 @@ def read_measured(path: str | Path, columns: Mapping[str, str] | None = None) ->
     t = values["time"][ok]
     if t.size < 2 or np.any(np.diff(t) <= 0):
         raise ParameterError(f"data: the time column of '{path}' must increase strictly")
-    return Measured(t, values["force"][ok] if "force" in values else None,
-                    values["velocity"][ok] if "velocity" in values else None, str(path))
+    return Measured(
+        t,
+        values["force"][ok] if "force" in values else None,
+        values["velocity"][ok] if "velocity" in values else None,
+        str(path),
+    )

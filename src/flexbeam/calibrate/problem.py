@@ -52,8 +52,15 @@ def _crossing(t: np.ndarray, f: np.ndarray, level: float) -> float:
 class ResidualProblem:
     """Residuals of one calibration as a function of the scaled variables."""
 
-    def __init__(self, base: Case, params: list[Parameter], method: str, measured: Measured | None,
-                 features: dict[str, float], align_fraction: float) -> None:
+    def __init__(
+        self,
+        base: Case,
+        params: list[Parameter],
+        method: str,
+        measured: Measured | None,
+        features: dict[str, float],
+        align_fraction: float,
+    ) -> None:
         import numpy as np
 
         self.base, self.params, self.method = base, params, method
@@ -140,8 +147,10 @@ class ResidualProblem:
             raise ModelError("calibration: the initial case has no contact within solver.t_end")
         for k in self.features:
             if not math.isfinite(float(sol.metrics().get(k, math.nan))):
-                raise ParameterError(f"--features {k}: the initial model gives no value for it "
-                                     f"(e.g. a rigid or few-mode beam has no second force peak)")
+                raise ParameterError(
+                    f"--features {k}: the initial model gives no value for it "
+                    f"(e.g. a rigid or few-mode beam has no second force peak)"
+                )
         if self.measured is not None:
             ref = self.reference(sol)
             self.mask = self.tau <= self.case.solver.t_end - ref

@@ -73,13 +73,22 @@ class Calibration:
             "case": self.case.name,
             "method": self.method,
             "parameters": {
-                p.key: {"initial": p.x0, "value": float(v), "uncertainty": float(u), "units": p.units,
-                        "scaling": "log" if p.log else "linear", "at_bound": p.key in self.active}
+                p.key: {
+                    "initial": p.x0,
+                    "value": float(v),
+                    "uncertainty": float(u),
+                    "units": p.units,
+                    "scaling": "log" if p.log else "linear",
+                    "at_bound": p.key in self.active,
+                }
                 for p, v, u in zip(self.parameters, self.values, self.uncertainty)
             },
             "correlation": {"names": self.names, "matrix": self.correlation.tolist()},
             "residuals": {
-                "sigma": self.sigma, "dof": self.dof, "cost": self.cost, "count": int(self.residuals.size),
+                "sigma": self.sigma,
+                "dof": self.dof,
+                "cost": self.cost,
+                "count": int(self.residuals.size),
                 "rms": float(math.sqrt(float(self.residuals @ self.residuals) / max(self.residuals.size, 1))),
             },
             "nfev": self.nfev,
@@ -87,15 +96,25 @@ class Calibration:
             "message": self.message,
         }
         if self.measured is not None:
-            out["data"] = {"file": self.measured.source, "samples": int(self.aligned_time.size)
-                           if self.aligned_time is not None else 0,
-                           "channels": self.measured.channels,
-                           "rms": self.channel_rms, "rms_initial": self.channel_rms_initial,
-                           "time_shift": self.time_shift, "time_shift_uncertainty": self.time_shift_uncertainty}
+            out["data"] = {
+                "file": self.measured.source,
+                "samples": int(self.aligned_time.size) if self.aligned_time is not None else 0,
+                "channels": self.measured.channels,
+                "rms": self.channel_rms,
+                "rms_initial": self.channel_rms_initial,
+                "time_shift": self.time_shift,
+                "time_shift_uncertainty": self.time_shift_uncertainty,
+            }
         if self.features:
-            out["features"] = {k: {"measured": v, "initial": m_init.get(k), "fitted": m_fit.get(k),
-                                   "residual": (m_fit.get(k, math.nan) - v)}
-                               for k, v in self.features.items()}
+            out["features"] = {
+                k: {
+                    "measured": v,
+                    "initial": m_init.get(k),
+                    "fitted": m_fit.get(k),
+                    "residual": (m_fit.get(k, math.nan) - v),
+                }
+                for k, v in self.features.items()
+            }
         out["metrics"] = {k: v for k, v in m_fit.items() if k not in ("force_peaks", "force_peak_times")}
         return jsonable(out)
 
@@ -115,8 +134,10 @@ class Calibration:
         if self.measured is not None and self.aligned_time is not None:
             lines = ["time_after_onset," + ",".join(f"{c}_residual" for c in self.measured.channels)]
             n = self.aligned_time.size
-            parts = [self.residuals[i * n:(i + 1) * n] * self.measured.scale(c)
-                     for i, c in enumerate(self.measured.channels)]
+            parts = [
+                self.residuals[i * n : (i + 1) * n] * self.measured.scale(c)
+                for i, c in enumerate(self.measured.channels)
+            ]
             for i in range(n):
                 lines.append(f"{self.aligned_time[i]:.9g}," + ",".join(f"{p[i]:.9g}" for p in parts))
             files["residuals"] = write_text_atomic(out / "residuals.csv", "\n".join(lines) + "\n")
@@ -150,8 +171,10 @@ class Calibration:
             axes[0, 0].set_title(f"{self.case.name}: calibration ({self.method.upper()})")
         else:
             fig, ax = plt.subplots(figsize=(6.4, 4.0))
-            for sol, style, name in ((self.initial_solution, "--", "initial"),
-                                     (self.solution, "-", f"fitted: {label}")):
+            for sol, style, name in (
+                (self.initial_solution, "--", "initial"),
+                (self.solution, "-", f"fitted: {label}"),
+            ):
                 t0 = sol.contacts[0].onset if sol.contacts else 0.0
                 dur = sol.contacts[0].duration if sol.contacts and math.isfinite(sol.contacts[0].duration) else 1e-3
                 sel = (sol.time >= t0 - 0.1 * dur) & (sol.time <= t0 + 1.5 * dur)
@@ -161,8 +184,13 @@ class Calibration:
                 if key in f:
                     ax.axhline(f[key], ls=ls, c="k", lw=0.8, label=f"measured {key} {f[key]:g} N")
             if "contact_duration" in f:
-                ax.axvline(f["contact_duration"] * 1e3, ls="-.", c="0.4", lw=0.8,
-                           label=f"measured contact_duration {f['contact_duration'] * 1e3:g} ms")
+                ax.axvline(
+                    f["contact_duration"] * 1e3,
+                    ls="-.",
+                    c="0.4",
+                    lw=0.8,
+                    label=f"measured contact_duration {f['contact_duration'] * 1e3:g} ms",
+                )
             ax.set_xlabel("Time after first contact [ms]")
             ax.set_ylabel("Contact force [N]")
             ax.set_title(f"{self.case.name}: calibration to features ({self.method.upper()})")

@@ -23,9 +23,7 @@ def effective_modulus(E1: float, nu1: float, E2: float, nu2: float) -> float:
     return 1.0 / ((1.0 - nu1**2) / E1 + (1.0 - nu2**2) / E2)
 
 
-def sphere_on_cylinder_stiffness(
-    sphere_radius: float, cylinder_radius: float, E_star: float
-) -> float:
+def sphere_on_cylinder_stiffness(sphere_radius: float, cylinder_radius: float, E_star: float) -> float:
     """Hertz stiffness K [N/m^1.5] of a sphere on a cylinder (crossed at right angles).
 
     Equivalent-radius approximation R_e = sqrt(R' R''), Johnson (1985) eq. 4.29.

@@ -183,8 +183,7 @@ class KelvinVoigt(ContactLaw):
 
 #: the contact laws by name: the one registry the case schema, the CLI and the documentation read
 LAWS: dict[str, type[ContactLaw]] = {
-    cls.name: cls
-    for cls in (Hertz, KelvinVoigt, HuntCrossley, LankaraniNikravesh, Flores, Gonthier, CarvalhoMartins)
+    cls.name: cls for cls in (Hertz, KelvinVoigt, HuntCrossley, LankaraniNikravesh, Flores, Gonthier, CarvalhoMartins)
 }
 LAW_NAMES = tuple(LAWS)
 #: laws whose damping is infinite at e = 0

@@ -46,7 +46,6 @@ def node_states(z, zd, zdd, rh, X, V, A):
             A[i, k] = zdd[3 * i + k - 2]
 
 
-
 @njit(cache=True)
 def _dof_map(e, a, T0):
     node = e + a // 3
@@ -227,7 +226,6 @@ def newton(
         if err < tol:
             return it, 0
     return max_iter, 1
-
 
 
 @njit(cache=True)

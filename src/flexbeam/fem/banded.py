@@ -61,7 +61,6 @@ def band_solve(ab, x):
     return True
 
 
-
 def band_to_dense(ab: np.ndarray) -> np.ndarray:
     """Dense matrix from the band storage ``ab`` (for small meshes and tests)."""
     n = ab.shape[1]

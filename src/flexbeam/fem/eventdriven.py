@@ -332,9 +332,8 @@ def _effective_mass(beam: FemBeam, z: np.ndarray) -> float:
     if beam.prescribed:
         fix_first_dof(ab)
         J[0] = 0.0
-    x = solve_banded((BAND, BAND), ab[BAND :], J)
+    x = solve_banded((BAND, BAND), ab[BAND:], J)
     return float(1.0 / (J @ x))
-
 
 
 __all__ = ["Record", "RunInfo", "contact_step", "reference_mass", "run"]

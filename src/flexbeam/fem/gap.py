@@ -92,12 +92,7 @@ def hermite_dip(g0, v0, g1, v1, h):
         s = i / 64.0
         s2 = s * s
         s3 = s2 * s
-        p = (
-            (2 * s3 - 3 * s2 + 1) * g0
-            + (s3 - 2 * s2 + s) * h * v0
-            + (-2 * s3 + 3 * s2) * g1
-            + (s3 - s2) * h * v1
-        )
+        p = (2 * s3 - 3 * s2 + 1) * g0 + (s3 - 2 * s2 + s) * h * v0 + (-2 * s3 + 3 * s2) * g1 + (s3 - s2) * h * v1
         if p < best:
             best = p
             sbest = s

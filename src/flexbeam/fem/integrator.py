@@ -218,5 +218,4 @@ class FemIntegrator:
         raise NewtonFailure(f"Newton did not converge in {NEWTON_MAX_ITER} iterations")
 
 
-
 __all__ = ["FemIntegrator", "GeneralizedAlpha", "NewtonFailure", "State", "StepResult"]

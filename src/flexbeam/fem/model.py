@@ -382,7 +382,7 @@ class FemBeam:
                 R = R - target * load
                 R[0] = 0.0
                 fix_first_dof(ab)
-                dz = solve_banded((BAND, BAND), ab[BAND :], -R)
+                dz = solve_banded((BAND, BAND), ab[BAND:], -R)
                 if not np.all(np.isfinite(dz)):
                     break
                 trial += dz

@@ -49,9 +49,7 @@ def _first_impact_velocity(beam: FemBeam, angle: float) -> float:
 
     _, info, _ = run(beam, integ, z, zd, 10.0, sample, stop_at_impact=True)
     if info.status != "impact":
-        raise ParameterError(
-            f"initial.release_angle: released at {angle:.6g} rad the beam does not reach the obstacle"
-        )
+        raise ParameterError(f"initial.release_angle: released at {angle:.6g} rad the beam does not reach the obstacle")
     return out[-1]
 
 

@@ -117,8 +117,9 @@ class RunResult:
     phase_steps: list[tuple[str, int]] = field(default_factory=list)
 
 
-def run_phases(method: PhaseMethod, stepper: Stepper, y0: np.ndarray, t_end: float,
-               progress: Callable[[float], None] | None = None) -> RunResult:
+def run_phases(
+    method: PhaseMethod, stepper: Stepper, y0: np.ndarray, t_end: float, progress: Callable[[float], None] | None = None
+) -> RunResult:
     """Integrate from t = 0 to ``t_end``, switching phases at events as ``method`` decides."""
     wall0 = time.perf_counter()
     y0 = np.asarray(y0, float)

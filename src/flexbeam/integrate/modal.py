@@ -124,8 +124,14 @@ class ModalDense:
         order = np.argsort(times, kind="stable")
         Y = np.empty((times.size, self.stepper.system.size))
         Ys = np.empty_like(Y)
-        core.dense(self.stepper.kernel, self.stepper.basis_buffer, self.records, self.records.shape[0],
-                   np.ascontiguousarray(times[order]), Ys)
+        core.dense(
+            self.stepper.kernel,
+            self.stepper.basis_buffer,
+            self.records,
+            self.records.shape[0],
+            np.ascontiguousarray(times[order]),
+            Ys,
+        )
         Y[order] = Ys
         return Y
 
@@ -156,8 +162,9 @@ class ModalStepper:
 
     name = "exponential modal Gauss collocation (p = 4), compiled, event-driven"
 
-    def __init__(self, system: BeamSystem, rtol: float = 1e-6, atol: float = 1e-9,
-                 max_step: float | None = None) -> None:
+    def __init__(
+        self, system: BeamSystem, rtol: float = 1e-6, atol: float = 1e-9, max_step: float | None = None
+    ) -> None:
         self.system = system
         self.rtol, self.atol = rtol, atol
         self.max_step = max_step or math.inf
@@ -230,4 +237,3 @@ class ModalStepper:
         elif code == _ADV_NONFINITE:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
         return PhaseRun(t1, y1, event, dense, int(info[1]), int(info[3]), failure)
-

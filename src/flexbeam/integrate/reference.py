@@ -112,8 +112,9 @@ def _hump(ev: Event, dense, ta: float, tb: float) -> float | None:
 
     s = float(ev.direction) if ev.direction else 1.0
     g = lambda t: ev.fun(t, dense(t))[0]  # noqa: E731
-    res = minimize_scalar(lambda t: s * g(t), bounds=(ta, tb), method="bounded",
-                          options={"xatol": 1e-14 * max(1.0, abs(tb))})
+    res = minimize_scalar(
+        lambda t: s * g(t), bounds=(ta, tb), method="bounded", options={"xatol": 1e-14 * max(1.0, abs(tb))}
+    )
     t_ext = float(res.x)
     if -s * g(t_ext) <= 0.0:
         return None
@@ -174,15 +175,14 @@ def _scan(ev: Event, dense, ts, vals, depth) -> float | None:
     return None
 
 
-
-
 class ReferenceStepper:
     """Advances phases of one system with scipy's DOP853 (rtol, atol) on :meth:`BeamSystem.rhs_function`."""
 
     name = "scipy DOP853, event-driven (reference)"
 
-    def __init__(self, system: BeamSystem, rtol: float = 1e-9, atol: float = 1e-12,
-                 max_step: float | None = None) -> None:
+    def __init__(
+        self, system: BeamSystem, rtol: float = 1e-9, atol: float = 1e-12, max_step: float | None = None
+    ) -> None:
         self.system = system
         self.rtol, self.atol = rtol, atol
         self.max_step = max_step or math.inf
@@ -197,9 +197,11 @@ class ReferenceStepper:
         def multiplier(t: float, y: np.ndarray) -> tuple[float, float]:
             return float(sysm.rhs(t, y, ContactMode.CONSTRAINT, phase.parameters)[1]), float("nan")
 
-        make = {EventKind.IMPACT: lambda: Event(EventKind.IMPACT, gap, -1),
-                EventKind.SEPARATION: lambda: Event(EventKind.SEPARATION, gap, +1),
-                EventKind.RELEASE: lambda: Event(EventKind.RELEASE, multiplier, -1)}
+        make = {
+            EventKind.IMPACT: lambda: Event(EventKind.IMPACT, gap, -1),
+            EventKind.SEPARATION: lambda: Event(EventKind.SEPARATION, gap, +1),
+            EventKind.RELEASE: lambda: Event(EventKind.RELEASE, multiplier, -1),
+        }
         return [make[e]() for e in phase.events]
 
     def safe_step(self, t: float, y: np.ndarray) -> float:
@@ -238,12 +240,21 @@ class ReferenceStepper:
             try:
                 msg = solver.step()
             except (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError, ValueError) as exc:
-                return self._result(ta, y, None, ts, pieces, steps, solver,
-                                    f"step failed at t = {ta:.9g} s: {type(exc).__name__}: {exc}")
+                return self._result(
+                    ta,
+                    y,
+                    None,
+                    ts,
+                    pieces,
+                    steps,
+                    solver,
+                    f"step failed at t = {ta:.9g} s: {type(exc).__name__}: {exc}",
+                )
             steps += 1
             if solver.status == "failed":
-                return self._result(ta, y, None, ts, pieces, steps, solver,
-                                    f"step failed at t = {solver.t:.9g} s: {msg}")
+                return self._result(
+                    ta, y, None, ts, pieces, steps, solver, f"step failed at t = {solver.t:.9g} s: {msg}"
+                )
             tb = solver.t
             dense = solver.dense_output()
             hit = _find_event(events, dense, ta, tb)
@@ -252,8 +263,9 @@ class ReferenceStepper:
             pieces.append(dense)
             y = dense(t_stop) if hit else solver.y.copy()
             if not np.all(np.isfinite(y)):
-                return self._result(t_stop, y, None, ts, pieces, steps, solver,
-                                    f"non-finite state at t = {t_stop:.9g} s")
+                return self._result(
+                    t_stop, y, None, ts, pieces, steps, solver, f"non-finite state at t = {t_stop:.9g} s"
+                )
             if hit:
                 return self._result(t_stop, y, hit[1].kind, ts, pieces, steps, solver)
             if limit is not None:

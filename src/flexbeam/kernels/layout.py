@@ -49,23 +49,43 @@ def pack_model(
 ) -> np.ndarray:
     """The model buffer of a beam, its drive, points (P, tip, measuring points) and obstacles."""
     n = beam.n
-    head = [LAYOUT_VERSION, n, int(drive.kind == "prescribed"), DRIVES[drive.kind], PROFILES[drive.profile],
-            len(points), len(obstacles), *[o.kind for o in obstacles]]
-    scalars = [beam.Jc, beam.m1, gravity, drive.torque if drive.kind == "torque" else 0.0, drive.spin_rate,
-               drive.spin_up_time, theta0]
+    head = [
+        LAYOUT_VERSION,
+        n,
+        int(drive.kind == "prescribed"),
+        DRIVES[drive.kind],
+        PROFILES[drive.profile],
+        len(points),
+        len(obstacles),
+        *[o.kind for o in obstacles],
+    ]
+    scalars = [
+        beam.Jc,
+        beam.m1,
+        gravity,
+        drive.torque if drive.kind == "torque" else 0.0,
+        drive.spin_rate,
+        drive.spin_up_time,
+        theta0,
+    ]
     parts: list[np.ndarray] = [np.asarray(head, float), np.asarray(scalars, float)]
     for arr in (beam.Mc, beam.Mqq, beam.mtq, beam.Kff, beam.sf, beam.G, beam.d):
         parts.append(np.asarray(arr, float).ravel())
     for pt in points:
         parts += [np.array([pt.base, pt.offset]), pt.phi.ravel(), pt.dphi.ravel(), pt.H.ravel()]
     for o in obstacles:
-        parts += [np.asarray(o.centre, float), np.array([o.radius]), np.asarray(o.normal, float),
-                  np.asarray(o.support, float)]
+        parts += [
+            np.asarray(o.centre, float),
+            np.array([o.radius]),
+            np.asarray(o.normal, float),
+            np.asarray(o.support, float),
+        ]
     return np.ascontiguousarray(np.concatenate(parts))
 
 
-def pack_basis(omega: np.ndarray, Psi: np.ndarray, toM: np.ndarray, row0: np.ndarray, inv00: float,
-               nz: int, diagonal: bool) -> np.ndarray:
+def pack_basis(
+    omega: np.ndarray, Psi: np.ndarray, toM: np.ndarray, row0: np.ndarray, inv00: float, nz: int, diagonal: bool
+) -> np.ndarray:
     """The basis buffer of a modal basis (see :class:`flexbeam.integrate.modal.ModalBasis`)."""
     N = omega.size
     head = np.array([LAYOUT_VERSION, N, nz, int(diagonal), inv00], float)

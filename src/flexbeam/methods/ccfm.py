@@ -25,8 +25,15 @@ class CCFM(ImpactMethod):
         m_eff = self.system.effective_mass(t, y)
         p = self.system.law.parameters(-ev.velocity_before, m_eff)
         step = self.contact_time(-ev.velocity_before, m_eff, float(p[0]), float(p[1])) / CONTACT_STEPS
-        return Phase("contact", ContactMode.FORCE, (EventKind.SEPARATION,), self.case.solver.contact_sample_step,
-                     p, ev, max_step=step)
+        return Phase(
+            "contact",
+            ContactMode.FORCE,
+            (EventKind.SEPARATION,),
+            self.case.solver.contact_sample_step,
+            p,
+            ev,
+            max_step=step,
+        )
 
     def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         return self.contact_phase(t, y), y

@@ -227,8 +227,16 @@ def _build_modal_beam(case: Case) -> ModalBeam:
     )
 
 
-def _orthogonality(shapes: ModeShapes, mu: float, EI: float, Jh: float, d: np.ndarray, Mff: np.ndarray,
-                  Kff: np.ndarray, mtf: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _orthogonality(
+    shapes: ModeShapes,
+    mu: float,
+    EI: float,
+    Jh: float,
+    d: np.ndarray,
+    Mff: np.ndarray,
+    Kff: np.ndarray,
+    mtf: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The exact values of the integrals that the eigenfunctions' orthogonality fixes.
 
     The shapes are exact eigenfunctions, normalised to int mu Psi^T Psi dx + J_h d^T d = mu L I with

@@ -42,8 +42,10 @@ def spin_frequencies(beam: ModalBeam, spin: float, plane: str = "chordwise") -> 
         negative square root of ``|omega^2|``, so a negative entry flags instability.
     """
     if beam.frame != "hub":
-        raise ValueError("beam: spin frequencies about a hub held at constant speed need the hub frame "
-                         "(build it with hub_frame_beam)")
+        raise ValueError(
+            "beam: spin frequencies about a hub held at constant speed need the hub frame "
+            "(build it with hub_frame_beam)"
+        )
     if beam.n == 0:
         return np.empty(0)
     K = beam.Kff + spin**2 * beam.D

@@ -209,8 +209,9 @@ class ModeShapes:
             return np.empty((x.size, 0))
         xi = (x / self.length)[:, None]
         z = self.roots[None, :]
-        return (z / self.length) ** derivative * _combine(z, self.a[None, :], self.c[None, :],
-                                                         _stable_terms(z, xi), derivative)
+        return (z / self.length) ** derivative * _combine(
+            z, self.a[None, :], self.c[None, :], _stable_terms(z, xi), derivative
+        )
 
 
 @functools.cache

@@ -149,8 +149,14 @@ class BeamSystem:
         multiplier with Baumgarte stabilisation ``p = [alpha, beta, 0, 0]``.
         """
         dy = np.empty(self.size)
-        F, torque = core.rhs(self.kernel, float(t), np.ascontiguousarray(y, float), int(mode),
-                             _NO_PARAMETERS if p is None else np.ascontiguousarray(p, float), dy)
+        F, torque = core.rhs(
+            self.kernel,
+            float(t),
+            np.ascontiguousarray(y, float),
+            int(mode),
+            _NO_PARAMETERS if p is None else np.ascontiguousarray(p, float),
+            dy,
+        )
         return dy, F, torque
 
     def rhs_function(self, mode: int = ContactMode.NONE, p: np.ndarray | None = None):
@@ -161,14 +167,19 @@ class BeamSystem:
 
         def fun(t: float, y: np.ndarray) -> np.ndarray:
             dy = np.empty(size)
-            rhs(kernel, t, y if y.flags.c_contiguous and y.dtype == float else np.ascontiguousarray(y, float),
-                mode, p, dy)
+            rhs(
+                kernel,
+                t,
+                y if y.flags.c_contiguous and y.dtype == float else np.ascontiguousarray(y, float),
+                mode,
+                p,
+                dy,
+            )
             return dy
 
         return fun
 
-    def joint_torque(self, t: float, y: np.ndarray, mode: int = ContactMode.NONE,
-                     p: np.ndarray | None = None) -> float:
+    def joint_torque(self, t: float, y: np.ndarray, mode: int = ContactMode.NONE, p: np.ndarray | None = None) -> float:
         """Joint torque: applied tau (free/torque) or the reaction needed for theta(t)."""
         return float(self.rhs(t, y, mode, p)[2])
 
@@ -234,11 +245,17 @@ class BeamSystem:
         T, Ve, Vg = self._equations(t, y)[2]
         s, sd = self.support_state(y)
         sup = self.contact.obstacle.support
-        return {"kinetic": float(T + 0.5 * sup[0] * sd * sd), "elastic": float(Ve + 0.5 * sup[1] * s * s),
-                "gravitational": float(Vg), "dissipated": float(y[-2]), "drive_work": float(y[-1])}
+        return {
+            "kinetic": float(T + 0.5 * sup[0] * sd * sd),
+            "elastic": float(Ve + 0.5 * sup[1] * s * s),
+            "gravitational": float(Vg),
+            "dissipated": float(y[-2]),
+            "drive_work": float(y[-1]),
+        }
 
-    def outputs(self, times: np.ndarray, states: np.ndarray, mode: int = ContactMode.NONE,
-                p: np.ndarray | None = None) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    def outputs(
+        self, times: np.ndarray, states: np.ndarray, mode: int = ContactMode.NONE, p: np.ndarray | None = None
+    ) -> tuple[dict[str, np.ndarray], np.ndarray]:
         """Output columns (:data:`~flexbeam.kernels.OUTPUT_COLUMNS`) and measuring-point normal velocities.
 
         ``theta``/``theta_rate`` are the hub angle and rate; ``tip_deflection`` is the tip's distance from the
@@ -248,8 +265,15 @@ class BeamSystem:
         m = times.size
         cols = np.empty((m, len(OUTPUT_COLUMNS)))
         mv = np.empty((m, len(self.measuring)))
-        core.outputs(self.kernel, times, np.ascontiguousarray(states, float).reshape(m, self.size), int(mode),
-                     _NO_PARAMETERS if p is None else np.ascontiguousarray(p, float), cols, mv)
+        core.outputs(
+            self.kernel,
+            times,
+            np.ascontiguousarray(states, float).reshape(m, self.size),
+            int(mode),
+            _NO_PARAMETERS if p is None else np.ascontiguousarray(p, float),
+            cols,
+            mv,
+        )
         return {name: cols[:, i] for i, name in enumerate(OUTPUT_COLUMNS)}, mv
 
     # ----------------------------------------------------------- initial state

@@ -53,9 +53,7 @@ class Beam(_Section):
     radius: Positive | None = Field(None, description="circular section radius [m]")
     area: Positive | None = Field(None, description="cross-section area S [m^2]")
     second_moment: Positive | None = Field(None, description="second moment of area I [m^4]")
-    half_depth: NonNegative | None = Field(
-        None, description="distance from the centre line to the contact surface [m]"
-    )
+    half_depth: NonNegative | None = Field(None, description="distance from the centre line to the contact surface [m]")
 
     @model_validator(mode="after")
     def _section_complete(self) -> Beam:
@@ -125,9 +123,7 @@ class Model(_Section):
     clamped-free modes (the seed paper's choice, and the natural one for a prescribed hub angle).
     """
 
-    modes: Annotated[int, Field(ge=0, le=64)] = Field(
-        8, description="number of assumed modes n (0 = rigid beam)"
-    )
+    modes: Annotated[int, Field(ge=0, le=64)] = Field(8, description="number of assumed modes n (0 = rigid beam)")
     frame: Literal["auto", "system", "hub"] = Field(
         "auto",
         description="body frame and shape functions: 'system' (frame pinned at O carrying the rigid rotation, "
@@ -189,8 +185,7 @@ class Support(_Section):
     mass: Positive | None = Field(None, description="moving mass m_s of the obstacle [kg]")
     damping: NonNegative = Field(0.0, description="support damping c_s [N s/m]")
     direction: tuple[Finite, Finite] | None = Field(
-        None, description="unit axis u along which the obstacle moves (default: its outward "
-        "contact normal at impact)"
+        None, description="unit axis u along which the obstacle moves (default: its outward contact normal at impact)"
     )
 
     @model_validator(mode="after")
@@ -252,15 +247,9 @@ class Contact(_Section):
 
     law: Literal[LAW_NAMES] = Field("lankarani_nikravesh", description="contact force law")
     position: NonNegative = Field(description="material coordinate x_P of the contact point [m]")
-    stiffness: Positive | None = Field(
-        None, description="contact stiffness K [N/m^n] (omitted = Hertz theory)"
-    )
-    exponent: Annotated[float, Field(ge=1.0, le=3.0)] = Field(
-        1.5, description="force exponent n (1.5 = Hertz)"
-    )
-    restitution: Annotated[float, Field(ge=0.0, le=1.0)] = Field(
-        0.8, description="coefficient of restitution e [-]"
-    )
+    stiffness: Positive | None = Field(None, description="contact stiffness K [N/m^n] (omitted = Hertz theory)")
+    exponent: Annotated[float, Field(ge=1.0, le=3.0)] = Field(1.5, description="force exponent n (1.5 = Hertz)")
+    restitution: Annotated[float, Field(ge=0.0, le=1.0)] = Field(0.8, description="coefficient of restitution e [-]")
 
 
 class Initial(_Section):
@@ -286,9 +275,7 @@ class Initial(_Section):
     @model_validator(mode="after")
     def _approaching(self) -> Initial:
         if self.kind != "state" and not self.impact_velocity < 0.0:
-            raise ValueError(
-                "initial.impact_velocity: must be < 0 m/s (P approaching the obstacle)"
-            )
+            raise ValueError("initial.impact_velocity: must be < 0 m/s (P approaching the obstacle)")
         return self
 
 
@@ -304,8 +291,9 @@ class Solver(_Section):
     """
 
     integrator: Literal["exponential", "reference"] = Field(
-        "exponential", description="time integrator (exponential: with a rigid obstacle, or CCFM "
-        "on a compliant support; else the reference is used)"
+        "exponential",
+        description="time integrator (exponential: with a rigid obstacle, or CCFM "
+        "on a compliant support; else the reference is used)",
     )
     fast_rtol: Annotated[float, Field(gt=0, lt=1)] = Field(
         1e-6, description="relative tolerance of the exponential integrator"
@@ -323,9 +311,7 @@ class Solver(_Section):
     max_contacts: Annotated[int, Field(ge=1)] = Field(
         1000, description="stop with a status after this many contacts (Zeno guard)"
     )
-    baumgarte_frequency: NonNegative = Field(
-        2000.0, description="CCM: Baumgarte stabilisation alpha = beta [1/s]"
-    )
+    baumgarte_frequency: NonNegative = Field(2000.0, description="CCM: Baumgarte stabilisation alpha = beta [1/s]")
     rest_velocity: NonNegative = Field(
         1e-6, description="IMM: impacts slower than this [m/s] start resting contact (Zeno)"
     )
@@ -343,12 +329,8 @@ class Output(_Section):
 class Fem(_Section):
     """Settings of the independent finite-element reference (``--method fem``)."""
 
-    elements: Annotated[int, Field(ge=1, le=2000)] = Field(
-        32, description="number of beam finite elements"
-    )
-    time_step: Positive | None = Field(
-        None, description="time step [s] (omitted = automatic)"
-    )
+    elements: Annotated[int, Field(ge=1, le=2000)] = Field(32, description="number of beam finite elements")
+    time_step: Positive | None = Field(None, description="time step [s] (omitted = automatic)")
     rho_inf: Annotated[float, Field(ge=0.0, le=1.0)] = Field(
         0.9, description="spectral radius at infinite frequency of the generalized-alpha scheme"
     )
@@ -387,10 +369,7 @@ class Case(_Section):
             )
         for i, x in enumerate(self.output.measuring_points):
             if x > L:
-                raise ValueError(
-                    f"output.measuring_points[{i}]: must lie on the beam, 0 <= x <= {L:g} m "
-                    f"(got {x:g})"
-                )
+                raise ValueError(f"output.measuring_points[{i}]: must lie on the beam, 0 <= x <= {L:g} m (got {x:g})")
         if self.model.frame == "system" and self.drive.kind == "prescribed":
             raise ValueError(
                 "model.frame: 'system' needs a free or torque-driven joint; with drive.kind = 'prescribed' the "
@@ -401,9 +380,7 @@ class Case(_Section):
                 "contact.stiffness: required for a half-plane obstacle (a cylinder on a plane "
                 "is a line contact, not a Hertzian point contact)"
             )
-        if self.contact.law in NEEDS_RESTITUTION and (
-            self.contact.restitution == 0.0
-        ):
+        if self.contact.law in NEEDS_RESTITUTION and (self.contact.restitution == 0.0):
             raise ValueError(
                 f"contact.restitution: must be in (0, 1] for contact.law = "
                 f"'{self.contact.law}' (its damping is infinite at e = 0)"

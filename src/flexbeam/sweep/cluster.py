@@ -28,8 +28,15 @@ def run_case(data: dict[str, Any], method: str, histories: bool = False) -> tupl
     from .. import __version__
 
     t0 = time.perf_counter()
-    record: dict[str, Any] = {"method": method, "status": "error", "error": "", "message": "", "metrics": {},
-                              "worker": f"{socket.gethostname()}:{os.getpid()}", "flexbeam_version": __version__}
+    record: dict[str, Any] = {
+        "method": method,
+        "status": "error",
+        "error": "",
+        "message": "",
+        "metrics": {},
+        "worker": f"{socket.gethostname()}:{os.getpid()}",
+        "flexbeam_version": __version__,
+    }
     history = None
     try:
         from ..simulation import simulate
@@ -38,8 +45,9 @@ def run_case(data: dict[str, Any], method: str, histories: bool = False) -> tupl
         metrics = sol.metrics()
         for name in ("method", "status", "message"):
             metrics.pop(name, None)
-        record.update(status=sol.status, message=sol.message, metrics=metrics,
-                      error=sol.message if sol.status == "failed" else "")
+        record.update(
+            status=sol.status, message=sol.message, metrics=metrics, error=sol.message if sol.status == "failed" else ""
+        )
         if histories:
             history = sol.to_xarray()
     except Exception as exc:  # noqa: BLE001 - recorded, the sweep goes on
@@ -78,14 +86,29 @@ def cluster_client(scheduler: Any, workers: int | None) -> Iterator[Any]:
             yield client
         return
     # no dashboard; the scheduler's HTTP endpoints on a free port rather than 8787, which may be taken
-    with LocalCluster(n_workers=workers or cpu_count(), threads_per_worker=1, processes=True,
-                      dashboard_address=None, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"}) as cluster, \
-            Client(cluster) as client:
+    with (
+        LocalCluster(
+            n_workers=workers or cpu_count(),
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+        ) as cluster,
+        Client(cluster) as client,
+    ):
         yield client
 
 
-def compute(client: Any, todo: list[Point], method: str, histories: bool, store: Store | None,
-             records: dict[str, dict[str, Any]], lost: dict[str, str], progress: ProgressFn | None) -> None:
+def compute(
+    client: Any,
+    todo: list[Point],
+    method: str,
+    histories: bool,
+    store: Store | None,
+    records: dict[str, dict[str, Any]],
+    lost: dict[str, str],
+    progress: ProgressFn | None,
+) -> None:
     from dask.distributed import as_completed
 
     token = uuid.uuid4().hex[:8]
@@ -100,8 +123,7 @@ def compute(client: Any, todo: list[Point], method: str, histories: bool, store:
         p = point_of[fut.key]
         if fut.status == "finished":
             record, history = fut.result()
-            record.update(key=p.key, overrides=p.overrides, case=p.data,
-                          finished=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
+            record.update(key=p.key, overrides=p.overrides, case=p.data, finished=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
             if store is not None:
                 store.save(record, history)
             record.pop("case")  # on disk; the result needs status, error and metrics

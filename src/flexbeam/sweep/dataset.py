@@ -24,8 +24,9 @@ METRICS: dict[str, tuple[str, str]] = {
 }
 
 
-def build_dataset(spec: dict[str, Any], plan_: Plan | None, records: dict[str, dict[str, Any]],
-                  lost: dict[str, str]) -> xr.Dataset:
+def build_dataset(
+    spec: dict[str, Any], plan_: Plan | None, records: dict[str, dict[str, Any]], lost: dict[str, str]
+) -> xr.Dataset:
     """The Dataset of a sweep from its definition ``spec`` and the finished ``records`` by key.
 
     ``plan_`` gives the sampled coordinates (else ``spec["values"]``); ``lost`` the reason
@@ -48,8 +49,14 @@ def build_dataset(spec: dict[str, Any], plan_: Plan | None, records: dict[str, d
         coords = {"case": ("case", np.arange(len(keys)), {"long_name": "Case index"})}
         coords.update({k: ("case", _coord(values[k]), {"long_name": k}) for k in spec["keys"]})
     names = list(METRICS)
-    extra = sorted({m for r in records.values() for m, v in r.get("metrics", {}).items()
-                    if m not in METRICS and isinstance(v, (int, float)) and not isinstance(v, bool)})
+    extra = sorted(
+        {
+            m
+            for r in records.values()
+            for m, v in r.get("metrics", {}).items()
+            if m not in METRICS and isinstance(v, (int, float)) and not isinstance(v, bool)
+        }
+    )
     arrays = {m: np.full(len(keys), np.nan) for m in names + extra}
     status = np.empty(len(keys), dtype=object)
     error = np.empty(len(keys), dtype=object)
@@ -71,8 +78,11 @@ def build_dataset(spec: dict[str, Any], plan_: Plan | None, records: dict[str, d
         data_vars[m] = (dims, arr.reshape(shape), {"units": units, "long_name": long_name})
     data_vars["status"] = (dims, status.astype(str).reshape(shape), {"long_name": "Case status"})
     data_vars["error"] = (dims, error.astype(str).reshape(shape), {"long_name": "Error of a failed case"})
-    data_vars["case_key"] = (dims, np.asarray(keys, dtype=str).reshape(shape),
-                             {"long_name": "Store key of the case (cases/KEY.json)"})
+    data_vars["case_key"] = (
+        dims,
+        np.asarray(keys, dtype=str).reshape(shape),
+        {"long_name": "Store key of the case (cases/KEY.json)"},
+    )
     n_missing = int(np.count_nonzero(status == "missing"))
     n_failed = int(sum(1 for s in status if s in FAILED))
     attrs = {
@@ -98,7 +108,6 @@ def _coord(values: Sequence[Any]) -> Any:
     return np.asarray([str(v) for v in values], dtype=str)
 
 
-
 def load(store: str | Path) -> xr.Dataset:
     """Rebuild the Dataset of the last sweep in ``store`` from its case files.
 
@@ -121,8 +130,14 @@ def summary(ds: xr.Dataset) -> dict[str, Any]:
     for idx in zip(*np.nonzero(np.isin(status, FAILED))):
         point = dict(zip(ds["status"].dims, idx))
         params = {k: plain(ds[k].values[point[ds[k].dims[0]]]) for k in swept}
-        failures.append({"key": str(ds["case_key"].values[idx]), "parameters": params,
-                         "status": str(status[idx]), "error": str(ds["error"].values[idx])})
+        failures.append(
+            {
+                "key": str(ds["case_key"].values[idx]),
+                "parameters": params,
+                "status": str(status[idx]),
+                "error": str(ds["error"].values[idx]),
+            }
+        )
     info["failures"] = failures
     return info
 

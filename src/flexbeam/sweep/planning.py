@@ -116,8 +116,14 @@ def plan(
         dists = {k: d if isinstance(d, Distribution) else Distribution.parse(str(d), k) for k, d in samples.items()}
         draws = {k: d.draw(_rng(seed, k), n) for k, d in dists.items()}
         coords = {k: v for k, v in draws.items()}
-        spec.update(kind="samples", keys=list(dists), samples={k: str(d) for k, d in dists.items()}, n=n, seed=seed,
-                    values=coords)
+        spec.update(
+            kind="samples",
+            keys=list(dists),
+            samples={k: str(d) for k, d in dists.items()},
+            n=n,
+            seed=seed,
+            values=coords,
+        )
         for i in range(n):
             points.append(_point(base, {k: draws[k][i] for k in dists}, method, strict=False))
     spec["cases"] = [p.key for p in points]

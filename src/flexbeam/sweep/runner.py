@@ -73,8 +73,10 @@ def sweep(
     from ..registry import METHOD_NAMES
 
     if method not in METHOD_NAMES:
-        raise ParameterError(f"method: unknown impact method '{method}'; allowed: "
-                             f"{', '.join(METHOD_NAMES)}{closest(method, METHOD_NAMES)}")
+        raise ParameterError(
+            f"method: unknown impact method '{method}'; allowed: "
+            f"{', '.join(METHOD_NAMES)}{closest(method, METHOD_NAMES)}"
+        )
     base = load_case(case, dict(overrides) if overrides else None)
     pl = plan(base, grid, samples, n, seed, method)
     store = Store(out) if out is not None else None
@@ -96,8 +98,17 @@ def sweep(
             records[p.key] = rec
             reused += 1
         elif p.data is None:
-            rec = {"key": p.key, "method": method, "status": "invalid", "error": p.error, "message": p.error,
-                   "metrics": {}, "overrides": p.overrides, "elapsed": 0.0, "flexbeam_version": __version__}
+            rec = {
+                "key": p.key,
+                "method": method,
+                "status": "invalid",
+                "error": p.error,
+                "message": p.error,
+                "metrics": {},
+                "overrides": p.overrides,
+                "elapsed": 0.0,
+                "flexbeam_version": __version__,
+            }
             if store is not None:
                 store.save(rec)
             records[p.key] = rec

@@ -58,8 +58,10 @@ def series_tip(lam: np.ndarray, gamma: float, delta: float, nterms: int = 160) -
         a = np.zeros((nterms + 4, lam.size))
         a[2], a[3] = basis
         for n in range(nterms):
-            rhs = g2 * (c0 * (n + 1) * (n + 2) * a[n + 2] - delta * (n + 1) ** 2 * a[n + 1]
-                        - 0.5 * n * (n + 1) * a[n]) + lam * a[n]
+            rhs = (
+                g2 * (c0 * (n + 1) * (n + 2) * a[n + 2] - delta * (n + 1) ** 2 * a[n + 1] - 0.5 * n * (n + 1) * a[n])
+                + lam * a[n]
+            )
             a[n + 4] = rhs / ((n + 1) * (n + 2) * (n + 3) * (n + 4))
         out[:, 0, j] = np.sum(k * (k - 1) * a, axis=0)
         out[:, 1, j] = np.sum(k * (k - 1) * (k - 2) * a, axis=0)
@@ -103,8 +105,7 @@ def kane_hub_rates(t: float, W: float, Ts: float) -> tuple[float, float]:
     return W, 0.0
 
 
-def quasi_static_tip(mu: float, EI: float, L: float, rate: float, accel: float,
-                     hub_radius: float = 0.0) -> float:
+def quasi_static_tip(mu: float, EI: float, L: float, rate: float, accel: float, hub_radius: float = 0.0) -> float:
     """Static in-plane tip deflection [m] of a cantilever spinning at ``rate`` under ``accel``.
 
     EI w'''' - (N w')' - mu rate^2 w = -mu accel (r_h + x), N the centrifugal tension;

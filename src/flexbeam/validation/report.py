@@ -49,8 +49,9 @@ class Row:
 
     @property
     def check(self) -> str:
-        return {"rel": "relative", "abs": "absolute", "upper": "value <= reference",
-                "lower": "value >= reference"}[self.kind]
+        return {"rel": "relative", "abs": "absolute", "upper": "value <= reference", "lower": "value >= reference"}[
+            self.kind
+        ]
 
 
 @dataclass
@@ -115,16 +116,26 @@ def render(sections: list[Section], reduced: bool, seconds: float) -> str:
     ]
     for s in sections:
         worst = max((r.error / r.tolerance for r in s.rows), default=math.nan)
-        lines.append(f"| [{s.title}](#{_anchor(s.title)}) | {len(s.rows)} | {_fmt_err(worst)} | "
-                     f"{'pass' if s.passed else 'FAIL'} | {s.seconds:.1f} |")
+        lines.append(
+            f"| [{s.title}](#{_anchor(s.title)}) | {len(s.rows)} | {_fmt_err(worst)} | "
+            f"{'pass' if s.passed else 'FAIL'} | {s.seconds:.1f} |"
+        )
     for s in sections:
         lines += ["", f"## {s.title}", "", f"Source: {s.source}", ""]
         head = ["quantity", "reference", "flexbeam", *s.columns, "error", "tolerance", "check", "status"]
         lines.append("| " + " | ".join(head) + " |")
         lines.append("|" + "---|" * len(head))
         for r in s.rows:
-            cells = [r.quantity, _fmt(r.reference), _fmt(r.value), *(r.extra.get(c, "") for c in s.columns),
-                     _fmt_err(r.error), f"{r.tolerance:.3g}", r.check, "pass" if r.passed else "FAIL"]
+            cells = [
+                r.quantity,
+                _fmt(r.reference),
+                _fmt(r.value),
+                *(r.extra.get(c, "") for c in s.columns),
+                _fmt_err(r.error),
+                f"{r.tolerance:.3g}",
+                r.check,
+                "pass" if r.passed else "FAIL",
+            ]
             lines.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
         for note in s.notes:
             lines += ["", note]

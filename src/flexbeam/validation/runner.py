@@ -17,8 +17,12 @@ from .sections import SECTIONS
 DESCRIPTION = "Validation report: flexbeam against independent references, written to ``docs/validation.md``."
 
 
-def run_validation(reduced: bool = False, out: str | Path | None = "docs",
-                   only: list[str] | None = None, log: Callable[[str], None] | None = None) -> list[Section]:
+def run_validation(
+    reduced: bool = False,
+    out: str | Path | None = "docs",
+    only: list[str] | None = None,
+    log: Callable[[str], None] | None = None,
+) -> list[Section]:
     """Run the sections (all, or ``only``) and, if ``out`` is given, write ``out/validation.md``.
 
     Figures go to ``out/figures``; every file is written atomically (temporary file, rename).
@@ -39,9 +43,14 @@ def run_validation(reduced: bool = False, out: str | Path | None = "docs",
         sections.append(sec)
         if log:
             bad = [r for r in sec.rows if not r.passed]
-            log(f"{key:12s} {len(sec.rows):4d} rows  {'pass' if sec.passed else 'FAIL'}  {sec.seconds:6.1f} s"
-                + "".join(f"\n    FAIL {r.quantity} {r.extra}: ref {r.reference!r} got {r.value!r} "
-                          f"err {r.error:.3e} > {r.tolerance:g}" for r in bad))
+            log(
+                f"{key:12s} {len(sec.rows):4d} rows  {'pass' if sec.passed else 'FAIL'}  {sec.seconds:6.1f} s"
+                + "".join(
+                    f"\n    FAIL {r.quantity} {r.extra}: ref {r.reference!r} got {r.value!r} "
+                    f"err {r.error:.3e} > {r.tolerance:g}"
+                    for r in bad
+                )
+            )
     if out is not None:
         text = render(sections, reduced, time.perf_counter() - t_all)
         write_text_atomic(Path(out) / "validation.md", text)

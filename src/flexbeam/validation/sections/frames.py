@@ -15,8 +15,9 @@ def section_frames(reduced: bool, figdir: Path | None) -> Section:
     from ...model.system import BeamSystem
 
     s = Section(
-        "frames", "The hub frame and the system frame against the finite-element reference",
-        "flexbeam's finite-element model (`method=\"fem\"`, independent of the modal model) on the seed "
+        "frames",
+        "The hub frame and the system frame against the finite-element reference",
+        'flexbeam\'s finite-element model (`method="fem"`, independent of the modal model) on the seed '
         "experiment, first contact, against the modal model (CCFM) in both body frames (`model.frame`, "
         "docs/formulation.md): the seed paper's hub frame with clamped-free modes, and the system frame with the "
         "hub + beam eigenmodes (the default for a free joint). Both converge to the same peak and duration; the "
@@ -24,7 +25,8 @@ def section_frames(reduced: bool, figdir: Path | None) -> Section:
         "frame's carries the light root-slope coordinate (its condition number and top frequency grow with n, "
         "and so does the step count). Tolerance: 0.1 % from n = 16 on in the system frame (the target), 0.2 % "
         "for the hub frame at n = 16, the truncation error of fewer modes above it.",
-        columns=["modes", "frame", "cond M0", "top frequency [rad/s]", "steps in 0.1 s"])
+        columns=["modes", "frame", "cond M0", "top frequency [rad/s]", "steps in 0.1 s"],
+    )
     elements = 64  # converged to 2.4e-5 (against 32 elements): well inside the 0.1 % target; 0.1 s to run
     fem = simulate(seed(solver__t_end=1e-3, fem__elements=elements), "fem").metrics()
     modes = (4, 12, 16) if reduced else (4, 8, 12, 16, 24, 32)
@@ -40,8 +42,13 @@ def section_frames(reduced: bool, figdir: Path | None) -> Section:
             steps = "-"
             if not (reduced or (frame == "hub" and n > 16)):  # the hub frame's 0.1 s at n = 32 takes ~10 s
                 steps = str(simulate(seed(model__modes=n, model__frame=frame)).stats["steps"])
-            ex = {"modes": str(n), "frame": frame, "cond M0": f"{np.linalg.cond(M0):.3g}",
-                  "top frequency [rad/s]": f"{top:.4g}", "steps in 0.1 s": steps}
+            ex = {
+                "modes": str(n),
+                "frame": frame,
+                "cond M0": f"{np.linalg.cond(M0):.3g}",
+                "top frequency [rad/s]": f"{top:.4g}",
+                "steps in 0.1 s": steps,
+            }
             tol = tolerance.get((frame, n), tolerance.get(n, 1e-3))
             s.rows.append(Row("peak force [N]", fem["peak_force"], m["peak_force"], tol, extra=ex))
             s.rows.append(Row("contact duration [s]", fem["contact_duration"], m["contact_duration"], tol, extra=ex))
@@ -50,5 +57,6 @@ def section_frames(reduced: bool, figdir: Path | None) -> Section:
         "functions only in the limit n -> inf, so at a given n their truncation errors differ; with 4 modes the "
         "hub frame's clamped basis misses the pinned root's mobility and over-predicts the peak by 35 % "
         "(the system frame by 18 %), and over 20 ms it makes three contacts where the FE model and the system "
-        "frame make one.")
+        "frame make one."
+    )
     return s

@@ -16,10 +16,13 @@ from ..report import Row, Section
 def section_roots(reduced: bool, figdir: Path | None) -> Section:
     from ...model.modes import cantilever_roots
 
-    s = Section("roots", "Cantilever eigenvalues beta_k L",
-                "roots of cos(bL) cosh(bL) = -1 as tabulated to nine significant figures (e.g. R. D. "
-                "Blevins, *Formulas for Natural Frequency and Mode Shape*, 1979, Table 8-1), and the "
-                "asymptote (2k - 1) pi / 2 for high k (its error is ~2 exp(-(2k-1) pi/2)).")
+    s = Section(
+        "roots",
+        "Cantilever eigenvalues beta_k L",
+        "roots of cos(bL) cosh(bL) = -1 as tabulated to nine significant figures (e.g. R. D. "
+        "Blevins, *Formulas for Natural Frequency and Mode Shape*, 1979, Table 8-1), and the "
+        "asymptote (2k - 1) pi / 2 for high k (its error is ~2 exp(-(2k-1) pi/2)).",
+    )
     ks = (12, 16, 32, 64)
     roots = cantilever_roots(max(ks))
     for k, ref in enumerate(PUBLISHED_ROOTS, start=1):
@@ -35,7 +38,8 @@ def section_rotating(reduced: bool, figdir: Path | None) -> Section:
     from ...parameters.case import Case
 
     s = Section(
-        "rotating", "Rotating cantilever bending frequencies",
+        "rotating",
+        "Rotating cantilever bending frequencies",
         "exact continuous beam: flapwise (EI w'')'' - (N w')' = rho A omega^2 w with the centrifugal "
         "tension N, chordwise omega^2 = omega_flap^2 - Omega^2 (inextensible), solved by a Frobenius "
         "power series (the method of A. D. Wright et al., 1982; `flexbeam.validation.reference_flapwise`), "
@@ -43,18 +47,28 @@ def section_rotating(reduced: bool, figdir: Path | None) -> Section:
         "(Hamza-Cherif & Houmat, ICAS 2004, Table 2; Ozdemir Ozgumus & Kaya via IJMME 2015). "
         "flexbeam: first-order model, 12 cantilever modes, `spin_frequencies`. "
         "Dimensionless: gamma = Omega T, omega_bar = omega T, T = sqrt(rho A L^4/EI), delta = r_h/L.",
-        columns=["delta", "gamma", "mode"])
+        columns=["delta", "gamma", "mode"],
+    )
     modes = 12
 
     @functools.cache
     def beam(delta: float, coupling: str = "first-order"):
-        case = Case.model_validate({
-            "beam": {"length": 1.0, "density": 1.0, "youngs_modulus": 1.0, "section": "general",
-                     "area": 1.0, "second_moment": 1.0, "half_depth": 0.0},
-            "hub": {"radius": delta},
-            "model": {"modes": modes, "coupling": coupling, "gravity": 0.0, "frame": "hub"},
-            "contact": {"position": 1.0},
-        })
+        case = Case.model_validate(
+            {
+                "beam": {
+                    "length": 1.0,
+                    "density": 1.0,
+                    "youngs_modulus": 1.0,
+                    "section": "general",
+                    "area": 1.0,
+                    "second_moment": 1.0,
+                    "half_depth": 0.0,
+                },
+                "hub": {"radius": delta},
+                "model": {"modes": modes, "coupling": coupling, "gravity": 0.0, "frame": "hub"},
+                "contact": {"position": 1.0},
+            }
+        )
         return build_modal_beam(case)
 
     def ex(d, g, m):
@@ -63,8 +77,16 @@ def section_rotating(reduced: bool, figdir: Path | None) -> Section:
     published = published_rotating_values()
     for e in published:
         ref = reference_flapwise(float(e["gamma"]), float(e["delta"]))[e["mode"] - 1]
-        s.rows.append(Row("series (the reference, not flexbeam) vs published", e["value"], ref, 1.5e-4, "abs",
-                          ex(e["delta"], e["gamma"], e["mode"])))
+        s.rows.append(
+            Row(
+                "series (the reference, not flexbeam) vs published",
+                e["value"],
+                ref,
+                1.5e-4,
+                "abs",
+                ex(e["delta"], e["gamma"], e["mode"]),
+            )
+        )
     for e in published:
         got = spin_frequencies(beam(float(e["delta"])), float(e["gamma"]), "flapwise")[e["mode"] - 1]
         s.rows.append(Row("published flapwise", e["value"], got, 1e-4, "rel", ex(e["delta"], e["gamma"], e["mode"])))
@@ -86,7 +108,8 @@ def section_rotating(reduced: bool, figdir: Path | None) -> Section:
         f"{max(r.value / r.reference - 1 for r in s.rows if r.quantity.endswith('omega_bar')):.2e}, "
         f"smallest {min(r.value / r.reference - 1 for r in s.rows if r.quantity.endswith('omega_bar')):.2e}). "
         "The zeroth-order model's chordwise stiffness K - Omega^2 M loses definiteness at gamma = 3.516 "
-        "(the first non-rotating frequency): dotted line in the figure.")
+        "(the first non-rotating frequency): dotted line in the figure."
+    )
     if figdir is not None:
         plt = pyplot()
         fig, axes = plt.subplots(1, 2, figsize=(10.0, 4.2), sharey=True)
@@ -96,21 +119,29 @@ def section_rotating(reduced: bool, figdir: Path | None) -> Section:
             chord = np.sqrt(np.maximum(flap**2 - gfine[:, None] ** 2, 0.0))
             fb_flap = np.array([spin_frequencies(beam(delta), float(g), "flapwise")[:3] for g in gfine])
             fb_chord = np.array([spin_frequencies(beam(delta), float(g), "chordwise")[:3] for g in gfine])
-            zeroth = np.array([spin_frequencies(beam(delta, "zeroth-order"), float(g), "chordwise")[0]
-                               for g in gfine])
+            zeroth = np.array([spin_frequencies(beam(delta, "zeroth-order"), float(g), "chordwise")[0] for g in gfine])
             for m in range(3):
                 c = f"C{m}"
                 ax.plot(gfine, flap[:, m], c=c, lw=1.2, label="series, flapwise" if m == 0 else None)
                 ax.plot(gfine, chord[:, m], c=c, lw=1.2, ls="--", label="series, chordwise" if m == 0 else None)
-                ax.plot(gfine[::2], fb_flap[::2, m], "o", c=c, ms=4, mfc="none",
-                        label="flexbeam, flapwise" if m == 0 else None)
+                ax.plot(
+                    gfine[::2],
+                    fb_flap[::2, m],
+                    "o",
+                    c=c,
+                    ms=4,
+                    mfc="none",
+                    label="flexbeam, flapwise" if m == 0 else None,
+                )
                 ax.plot(gfine[::2], fb_chord[::2, m], "s", c=c, ms=3, label="flexbeam, chordwise" if m == 0 else None)
-            ax.plot(gfine, np.where(zeroth > 0, zeroth, np.nan), ":", c="k", lw=1.2,
-                    label="zeroth-order chordwise, mode 1")
+            ax.plot(
+                gfine, np.where(zeroth > 0, zeroth, np.nan), ":", c="k", lw=1.2, label="zeroth-order chordwise, mode 1"
+            )
             pub = [e for e in published if float(e["delta"]) == delta]
             if pub:
-                ax.plot([e["gamma"] for e in pub], [e["value"] for e in pub], "x", c="k", ms=7,
-                        label="published (flapwise)")
+                ax.plot(
+                    [e["gamma"] for e in pub], [e["value"] for e in pub], "x", c="k", ms=7, label="published (flapwise)"
+                )
             ax.set_yscale("log")
             ax.set_xlabel("Dimensionless spin rate gamma [-]")
             ax.set_title(f"hub radius ratio delta = {delta:g}")
@@ -118,6 +149,11 @@ def section_rotating(reduced: bool, figdir: Path | None) -> Section:
         axes[0].set_ylabel("Dimensionless frequency omega_bar [-]")
         axes[0].legend(fontsize=7)
         save_figure(fig, figdir / "rotating_frequencies.png")
-        s.figures.append(("rotating_frequencies.png", "Bending frequencies of the rotating cantilever, modes 1-3: "
-                          "series (lines), flexbeam (markers), published values (x)."))
+        s.figures.append(
+            (
+                "rotating_frequencies.png",
+                "Bending frequencies of the rotating cantilever, modes 1-3: "
+                "series (lines), flexbeam (markers), published values (x).",
+            )
+        )
     return s

@@ -15,11 +15,14 @@ from ..runs import modes_label, preset, seed, simulate
 
 
 def section_fem(reduced: bool, figdir: Path | None) -> Section:
-    s = Section("fem", "Modal model against the finite-element reference",
-                "flexbeam's independent geometrically nonlinear finite-element model (`method=\"fem\"`: "
-                "co-rotational Euler-Bernoulli elements, generalized-alpha; it shares no equations with the "
-                "modal model) on the seed experiment, first contact. Reference: FEM; value: modal model (CCFM).",
-                columns=["modes", "elements"])
+    s = Section(
+        "fem",
+        "Modal model against the finite-element reference",
+        'flexbeam\'s independent geometrically nonlinear finite-element model (`method="fem"`: '
+        "co-rotational Euler-Bernoulli elements, generalized-alpha; it shares no equations with the "
+        "modal model) on the seed experiment, first contact. Reference: FEM; value: modal model (CCFM).",
+        columns=["modes", "elements"],
+    )
     elements = 32 if reduced else 64
     fem = simulate(seed(solver__t_end=1e-3, fem__elements=elements), "fem")
     fm = fem.metrics()
@@ -33,14 +36,19 @@ def section_fem(reduced: bool, figdir: Path | None) -> Section:
         s.rows.append(Row("peak force [N]", fm["peak_force"], m["peak_force"], tol, extra=ex))
         s.rows.append(Row("contact duration [s]", fm["contact_duration"], m["contact_duration"], tol, extra=ex))
         s.rows.append(Row("peak time [s]", fm["peak_time"], m["peak_time"], 10 * tol, extra=ex))
-    s.notes.append("The paper (Duan, Zhang & Hong 2013) reports 584 N measured, 689 N (its CCFM) and 625 N (its "
-                   "CCM); flexbeam's defaults assume a Hertz stiffness for an undocumented hemisphere and are not "
-                   "tuned to those numbers (see README).")
+    s.notes.append(
+        "The paper (Duan, Zhang & Hong 2013) reports 584 N measured, 689 N (its CCFM) and 625 N (its "
+        "CCM); flexbeam's defaults assume a Hertz stiffness for an undocumented hemisphere and are not "
+        "tuned to those numbers (see README)."
+    )
     if figdir is not None:
         from ...plotting import plot_contact_force
 
-        plot_contact_force([modal[12], fem], figdir / "fem_vs_modal_force.png",
-                           title=f"Seed impact: 12 modes (CCFM) vs FEM ({elements} elements)")
+        plot_contact_force(
+            [modal[12], fem],
+            figdir / "fem_vs_modal_force.png",
+            title=f"Seed impact: 12 modes (CCFM) vs FEM ({elements} elements)",
+        )
         s.figures.append(("fem_vs_modal_force.png", "Seed impact, first contact: modal model against the FE model."))
     return s
 
@@ -48,15 +56,18 @@ def section_fem(reduced: bool, figdir: Path | None) -> Section:
 def section_kane(reduced: bool, figdir: Path | None) -> Section:
     from ...model.frequencies import case_frequencies
 
-    s = Section("kane", "Kane spin-up: first-order bounded, zeroth-order divergent",
-                "T. R. Kane, R. R. Ryan, A. K. Banerjee, *J. Guidance Control Dyn.* 10 (1987) 139: a 10 m "
-                "cantilever spun up to W in 15 s (`kane-spinup` preset). Reference for the first-order model: "
-                "the quasi-static deflection of the spinning cantilever under the hub acceleration, "
-                "EI w'''' - (N w')' - mu theta'^2 w = -mu theta'' (r_h + x), solved with solve_bvp "
-                "(`flexbeam.validation.quasi_static_tip`); after the spin-up it is zero. Zeroth-order model: "
-                "stiffness K - theta'^2 M is indefinite above omega_1 = 3.80 rad/s, so it must diverge "
-                "(bound: the beam length), and stay bounded below.",
-                columns=["model", "W [rad/s]", "modes"])
+    s = Section(
+        "kane",
+        "Kane spin-up: first-order bounded, zeroth-order divergent",
+        "T. R. Kane, R. R. Ryan, A. K. Banerjee, *J. Guidance Control Dyn.* 10 (1987) 139: a 10 m "
+        "cantilever spun up to W in 15 s (`kane-spinup` preset). Reference for the first-order model: "
+        "the quasi-static deflection of the spinning cantilever under the hub acceleration, "
+        "EI w'''' - (N w')' - mu theta'^2 w = -mu theta'' (r_h + x), solved with solve_bvp "
+        "(`flexbeam.validation.quasi_static_tip`); after the spin-up it is zero. Zeroth-order model: "
+        "stiffness K - theta'^2 M is indefinite above omega_1 = 3.80 rad/s, so it must diverge "
+        "(bound: the beam length), and stay bounded below.",
+        columns=["model", "W [rad/s]", "modes"],
+    )
     first = ((6.0, 2),) if reduced else ((4.0, 5), (6.0, 5), (10.0, 5))
     zeroth = ((4.0, 1),) if reduced else ((3.0, 5), (4.0, 5), (6.0, 5))
     plotted, ref_curve = [], None
@@ -73,12 +84,27 @@ def section_kane(reduced: bool, figdir: Path | None) -> Section:
         qdense = np.array([quasi_static_tip(mu, EI, L, *kane_hub_rates(float(x), W, Ts), rh) for x in tq])
         m = sol.metrics()
         ex = {"model": "first-order", "W [rad/s]": f"{W:g}", "modes": str(n)}
-        s.rows.append(Row("max |tip - quasi-static| / max |quasi-static| during spin-up", 0.0,
-                          float(np.max(np.abs(tip[idx] - qs))) / peak, 0.025, "abs", extra=ex))
+        s.rows.append(
+            Row(
+                "max |tip - quasi-static| / max |quasi-static| during spin-up",
+                0.0,
+                float(np.max(np.abs(tip[idx] - qs))) / peak,
+                0.025,
+                "abs",
+                extra=ex,
+            )
+        )
         s.rows.append(Row("tip_deflection_min [m]", float(qdense.min()), m["tip_deflection_min"], 0.025, extra=ex))
         after = t >= Ts
-        s.rows.append(Row("max |tip| after spin-up / quasi-static peak", 0.02,
-                          float(np.max(np.abs(tip[after]))) / peak, kind="upper", extra=ex))
+        s.rows.append(
+            Row(
+                "max |tip| after spin-up / quasi-static peak",
+                0.02,
+                float(np.max(np.abs(tip[after]))) / peak,
+                kind="upper",
+                extra=ex,
+            )
+        )
         mid = Ts + 0.5 * (t[-1] - Ts)
         late = float(np.max(np.abs(tip[t >= mid])))
         early = float(np.max(np.abs(tip[after & (t < mid)])))
@@ -112,49 +138,90 @@ def section_kane(reduced: bool, figdir: Path | None) -> Section:
                 ref = simulate(preset("kane-spinup", drive__spin_rate=W, model__modes=n))
                 first_max[W] = float(np.max(np.abs(ref["tip_deflection"])))
             s.rows.append(Row("max |tip| [m] (softer than first-order)", first_max[W], amp, kind="lower", extra=ex))
-    s.notes.append("The Solution metrics `tip_deflection_min`/`tip_deflection_max` are the extremes of the tip "
-                   "deflection in the rotating frame over the run. flexbeam's extreme exceeds the quasi-static one by "
-                   "0.5-1.5 %, the size of the dynamic amplification of a load varying at 2 pi/T_s = 0.42 rad/s on a "
-                   "beam whose first frequency is 3.8-5 rad/s ((0.42/3.8)^2 = 1.2 %); it does not shrink with more "
-                   "modes (2 modes: -0.5735 m, 5 modes: -0.5744 m at W = 6 rad/s).")
+    s.notes.append(
+        "The Solution metrics `tip_deflection_min`/`tip_deflection_max` are the extremes of the tip "
+        "deflection in the rotating frame over the run. flexbeam's extreme exceeds the quasi-static one by "
+        "0.5-1.5 %, the size of the dynamic amplification of a load varying at 2 pi/T_s = 0.42 rad/s on a "
+        "beam whose first frequency is 3.8-5 rad/s ((0.42/3.8)^2 = 1.2 %); it does not shrink with more "
+        "modes (2 modes: -0.5735 m, 5 modes: -0.5744 m at W = 6 rad/s)."
+    )
     if figdir is not None:
         from ...plotting import plot_tip_deflection
 
         fo = [sol for sol, lab in plotted if lab.startswith("first")]
         lim = 2.0 * max(float(np.max(np.abs(sol["tip_deflection"]))) for sol in fo)
-        plot_tip_deflection([p[0] for p in plotted], figdir / "kane_tip_deflection.png",
-                            labels=[p[1] for p in plotted], reference=ref_curve,
-                            reference_label="quasi-static (solve_bvp), W = 6 rad/s",
-                            title="Kane spin-up: tip deflection", ylim=(-lim, lim))
-        s.figures.append(("kane_tip_deflection.png", "Tip deflection during and after the spin-up; the zeroth-order "
-                          "model leaves the plot (divergence)."))
+        plot_tip_deflection(
+            [p[0] for p in plotted],
+            figdir / "kane_tip_deflection.png",
+            labels=[p[1] for p in plotted],
+            reference=ref_curve,
+            reference_label="quasi-static (solve_bvp), W = 6 rad/s",
+            title="Kane spin-up: tip deflection",
+            ylim=(-lim, lim),
+        )
+        s.figures.append(
+            (
+                "kane_tip_deflection.png",
+                "Tip deflection during and after the spin-up; the zeroth-order model leaves the plot (divergence).",
+            )
+        )
     return s
 
 
 def section_energy(reduced: bool, figdir: Path | None) -> Section:
-    s = Section("energy", "Energy conservation",
-                "the total energy T + V_e + V_g + U_c + E_dissipated - W_drive is a first integral of the "
-                "equations (exact bookkeeping of the contact dissipation and the drive work); reference 0, "
-                "value: the largest relative change over the run (`Solution.energy_drift`). The generalized-alpha "
-                "FE reference dissipates slightly by design (rho_inf = 0.9).",
-                columns=["run"])
+    s = Section(
+        "energy",
+        "Energy conservation",
+        "the total energy T + V_e + V_g + U_c + E_dissipated - W_drive is a first integral of the "
+        "equations (exact bookkeeping of the contact dissipation and the drive work); reference 0, "
+        "value: the largest relative change over the run (`Solution.energy_drift`). The generalized-alpha "
+        "FE reference dissipates slightly by design (rho_inf = 0.9).",
+        columns=["run"],
+    )
     modes, t_end = (4, 0.01) if reduced else (12, 0.03)
     runs: list[tuple[str, Callable[[], Any], float]] = [
-        (f"CCFM Hertz, {modes} modes, {t_end:g} s",
-         lambda: simulate(seed(model__modes=modes, contact__law="hertz", solver__t_end=t_end)), 1e-6),
-        ("CCFM Hunt-Crossley e = 0.5, 2 modes, 3 ms",
-         lambda: simulate(seed(model__modes=2, contact__law="hunt_crossley", contact__restitution=0.5,
-                                 solver__t_end=0.003)), 1e-6),
-        ("torque drive -2 N m, 2 modes, 0.2 s",
-         lambda: simulate(seed(model__modes=2, drive__kind="torque", drive__torque=-2.0, initial__kind="state",
-                                 initial__angle=0.3, initial__rate=0.0, contact__law="hertz",
-                                 solver__t_end=0.2)), 1e-6),
+        (
+            f"CCFM Hertz, {modes} modes, {t_end:g} s",
+            lambda: simulate(seed(model__modes=modes, contact__law="hertz", solver__t_end=t_end)),
+            1e-6,
+        ),
+        (
+            "CCFM Hunt-Crossley e = 0.5, 2 modes, 3 ms",
+            lambda: simulate(
+                seed(model__modes=2, contact__law="hunt_crossley", contact__restitution=0.5, solver__t_end=0.003)
+            ),
+            1e-6,
+        ),
+        (
+            "torque drive -2 N m, 2 modes, 0.2 s",
+            lambda: simulate(
+                seed(
+                    model__modes=2,
+                    drive__kind="torque",
+                    drive__torque=-2.0,
+                    initial__kind="state",
+                    initial__angle=0.3,
+                    initial__rate=0.0,
+                    contact__law="hertz",
+                    solver__t_end=0.2,
+                )
+            ),
+            1e-6,
+        ),
         ("IMM e = 0.8, 4 modes, 10 ms", lambda: simulate(seed(model__modes=4, solver__t_end=0.01), "imm"), 1e-6),
         ("CCM, 4 modes, 10 ms", lambda: simulate(seed(model__modes=4, solver__t_end=0.01), "ccm"), 1e-6),
         ("FEM 32 elements, 10 ms", lambda: simulate(seed(solver__t_end=0.01, fem__elements=32), "fem"), 1e-4),
     ]
     for label, run, tol in runs:
         sol = run()
-        s.rows.append(Row("max relative energy change", 0.0, sol.energy_drift()[1], tol, "abs",
-                          extra={"run": f"{label} ({len(sol.contacts)} contacts)"}))
+        s.rows.append(
+            Row(
+                "max relative energy change",
+                0.0,
+                sol.energy_drift()[1],
+                tol,
+                "abs",
+                extra={"run": f"{label} ({len(sol.contacts)} contacts)"},
+            )
+        )
     return s
