@@ -1,8 +1,9 @@
 """Energy bookkeeping: T + V_e + V_g + U_c (+ E_d - W with damping or a drive) is conserved.
 
-At the default fast_rtol = 1e-6 the relative drift is the integrator's error: measured up to 1.9e-6 (the full seed
-run, 12 modes, 0.1 s), 5.5e-7 on the reduced runs; bound 2e-5.  That it is integration error and not bookkeeping
-shows at fast_rtol = 1e-10, where the drift falls to <= 7.1e-11 on every run here; bound 1e-9.
+At the default fast_rtol = 1e-6 the relative drift is the integrator's error: measured up to 6.2e-7 (the full seed
+run, 12 modes, 0.1 s; 1.9e-6 before each step's energy balance entered the step control), 5.5e-7 on the reduced
+runs; bound 1e-5 (16x; issue 9's target is < 1e-6).  That it is integration error and not bookkeeping shows at
+fast_rtol = 1e-10, where the drift falls to <= 6e-11 on every run here; bound 1e-9.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from flexbeam.solution import Solution
 from tests.conftest import seed
 
 TIGHT = {"solver__fast_rtol": 1e-10, "solver__fast_atol": 1e-13}
-DEFAULT_DRIFT, TIGHT_DRIFT = 2e-5, 1e-9
+DEFAULT_DRIFT, TIGHT_DRIFT = 1e-5, 1e-9
 
 
 def _drifts(**case) -> list[Solution]:
