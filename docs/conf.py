@@ -60,7 +60,7 @@ numpydoc_xref_param_type = False
 
 intersphinx_mapping = {}  # no network in CI: references to other projects stay plain text
 
-# --- gallery: the examples run here (a few seconds each once the Numba kernels are cached)
+# --- gallery: the examples run here (a few seconds each on the compiled kernels)
 sphinx_gallery_conf = {
     "examples_dirs": str(HERE.parent / "examples"),
     "gallery_dirs": "auto_examples",

@@ -5,7 +5,7 @@ Each impact is instantaneous: M (z'^+ - z'^-) = J^T P with J z'^+ = -e J z'^-, t
 the same way.
 
 Accumulating impacts (e < 1 with gravity pressing P onto the obstacle: a Zeno sequence whose impact speeds
-shrink geometrically) are ended deliberately: once an impact's rebound speed e |delta'^-| falls below
+shrink geometrically) are ended deliberately: once an impact's rebound speed ``e |delta'^-|`` falls below
 ``solver.rest_velocity`` (always for e = 0: a plastic impact leaves P on the surface) the velocity is cancelled
 (e = 0) and P rests on the obstacle if the contact would push -- the contact is then
 held by the unilateral constraint of the CCM phase (phase "resting", the force is its multiplier) until that
