@@ -215,7 +215,7 @@ def scipy_ccfm(case, rtol: float, atol: float) -> dict[str, Any]:
     system = BeamSystem.from_case(case)
     y, _ = initial_state(system, case)
     t, t_end = 0.0, case.solver.t_end
-    free = system.rhs_function(ContactMode.NONE)
+    free = system.rhs_function()
 
     def gap(t: float, y: np.ndarray) -> float:
         return system.gap(t, y)[0]
@@ -234,7 +234,8 @@ def scipy_ccfm(case, rtol: float, atol: float) -> dict[str, Any]:
         if in_contact:
             vn = system.gap(t, y)[1]
             p = system.law.parameters(-vn, system.effective_mass(t, y))
-            fun, event = system.rhs_function(ContactMode.FORCE, p), separation
+            contact = system.contacts([ContactMode.FORCE], p[None, :])
+            fun, event = system.rhs_function(contact), separation
             contacts += 1
         else:
             fun, event = free, onset
@@ -263,7 +264,8 @@ def scipy_ccfm(case, rtol: float, atol: float) -> dict[str, Any]:
     peak = math.nan
     if first_contact is not None:  # peak force on the dense output of the first contact
         t0, t1, dense, p = first_contact
-        force = lambda s: float(system.rhs(s, dense(s), ContactMode.FORCE, p)[1])
+        contact = system.contacts([ContactMode.FORCE], p[None, :])
+        force = lambda s: float(system.rhs(s, dense(s), contact)[1][0])
         grid = np.linspace(t0, t1, 401)
         forces = [force(s) for s in grid]
         i = int(np.argmax(forces))

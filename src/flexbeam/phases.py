@@ -1,16 +1,18 @@
 """The typed description of a phase of motion, shared by the impact methods, the integrators and the Solution.
 
-A run is a sequence of phases (free flight, contact under a force law, contact held by a constraint, resting
-contact) separated by events (the gap closing or opening, a constraint's multiplier turning tensile).  An
-impact method decides, at each event, which phase comes next and whether the velocities jump; an integrator
-advances one phase until it ends at one of its events or at t_end.
+A run is a sequence of phases separated by events.  In a phase each contact pair (a point of the beam and an
+obstacle) is free, in contact under its force law, held closed by a constraint, or resting; an event is one pair's
+gap closing or opening, or its constraint's multiplier turning tensile.  An impact method decides, at each event,
+which phase comes next and whether the velocities jump; an integrator advances one phase until it ends at one of
+its events or at t_end.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, replace
 from enum import IntEnum
+from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -37,22 +39,52 @@ class EventKind(IntEnum):
 
 @dataclass(frozen=True)
 class Phase:
-    """One phase: its contact mode and parameters, the events that can end it, its output spacing.
+    """One phase: how each contact pair acts, the events that can end it, its output spacing.
 
-    ``parameters``: the law's [K, n, chi/d'_0, C] (FORCE) or the Baumgarte [alpha, beta, 0, 0] (CONSTRAINT).
-    ``contact``: the contact record this phase belongs to (None in free flight).
+    ``modes``: per pair its :class:`ContactMode`; ``parameters`` (pairs x 4): per pair its law's
+    [K, n, chi/d'_0, C] (FORCE pairs); ``baumgarte``: the constraints' [alpha, beta] (CONSTRAINT pairs);
+    ``records``: per pair the contact record it belongs to (None while that pair is free).
     ``max_step``: a bound on the integrator's step inside the phase [s].
     """
 
     name: str
-    mode: ContactMode
+    modes: tuple[ContactMode, ...]
     events: tuple[EventKind, ...]
     sample_step: float
-    parameters: np.ndarray = field(default_factory=lambda: np.zeros(4))
-    contact: ContactEvent | None = None
+    parameters: np.ndarray
+    records: tuple[ContactEvent | None, ...]
+    baumgarte: tuple[float, float] = (0.0, 0.0)
     max_step: float = math.inf
 
     @property
+    def mode(self) -> ContactMode:
+        """The phase's overall mode: CONSTRAINT if some pair is held, else FORCE if some pair is under its law."""
+        return max(self.modes, default=ContactMode.NONE)
+
+    @property
     def in_contact(self) -> bool:
-        """Is P in contact during this phase (force law, constraint, or resting)?"""
+        """Is some pair in contact during this phase (force law, constraint, or resting)?"""
         return self.mode != ContactMode.NONE
+
+    @property
+    def contact(self) -> ContactEvent | None:
+        """The first pair's open contact record, else any open one (None in free flight)."""
+        return next((r for r in self.records if r is not None), None)
+
+    @cached_property
+    def buffer(self) -> np.ndarray:
+        """The kernels' contacts buffer of this phase (:func:`flexbeam.kernels.pack_contacts`)."""
+        from .kernels import pack_contacts
+
+        return pack_contacts([int(m) for m in self.modes], self.parameters, *self.baumgarte)
+
+    def with_pair(self, pair: int, mode: ContactMode, parameters=None, record: ContactEvent | None = None,
+                  **changes) -> Phase:  # fmt: skip
+        """A copy with pair ``pair`` in ``mode`` (its law ``parameters``, its contact ``record``)."""
+        modes = list(self.modes)
+        modes[pair] = mode
+        params = self.parameters.copy()
+        params[pair] = 0.0 if parameters is None else parameters
+        records = list(self.records)
+        records[pair] = record
+        return replace(self, modes=tuple(modes), parameters=params, records=tuple(records), **changes)

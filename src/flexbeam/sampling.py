@@ -15,7 +15,7 @@ from functools import cached_property
 import numpy as np
 
 from .integrate.loop import RunResult, Segment
-from .kernels import OUTPUT_COLUMNS
+from .kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
 from .model.system import SUPPORT_COLUMNS, BeamSystem
 
 #: force evaluations per step when searching a contact's force for local maxima
@@ -44,9 +44,18 @@ class RunSource:
 
     def evaluate(self, seg: Segment, times: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
         """(columns, measuring velocities, states) of segment ``seg`` at ``times``."""
-        Y = seg.states(times)
-        cols, mv = self.system.outputs(times, Y, seg.phase.mode, seg.phase.parameters)
+        cols, mv, _, Y = self.evaluate_pairs(seg, times)
         return cols, mv, Y
+
+    def evaluate_pairs(self, seg: Segment, times: np.ndarray):
+        """(columns, measuring velocities, the pairs' columns (samples x pairs x 3), states) at ``times``."""
+        Y = seg.states(times)
+        cols, mv, pc = self.system.outputs(times, Y, seg.phase.buffer)
+        return cols, mv, pc, Y
+
+    def pair_force(self, seg: Segment, times: np.ndarray, pair: int) -> np.ndarray:
+        """Contact force of ``pair`` in segment ``seg`` at ``times``."""
+        return self.evaluate_pairs(seg, times)[2][:, pair, 2]
 
     @cached_property
     def samples(self) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
@@ -56,12 +65,12 @@ class RunSource:
         times, phases, parts = [], [], []
         for seg in self.segments:
             t = sample_grid(seg.t0, seg.t1, seg.phase.sample_step)
-            cols, mv, Y = self.evaluate(seg, t)
+            cols, mv, pc, Y = self.evaluate_pairs(seg, t)
             qs = Y[:, nz - n : nz]
             qds = Y[:, 2 * nz - n : 2 * nz]
             times.append(t)
             phases.append(np.full(t.size, seg.phase.name, dtype=object))
-            parts.append((cols, mv, qs, qds))
+            parts.append((cols, mv, qs, qds, pc))
         names = [c for c in OUTPUT_COLUMNS if sysm.compliant or c not in SUPPORT_COLUMNS]
         if not parts:
             empty = {name: np.empty(0) for name in names}
@@ -77,58 +86,65 @@ class RunSource:
         out["q_rate"] = np.concatenate([p[3] for p in parts])
         out["measuring_velocity"] = np.concatenate([p[1] for p in parts])
         out["total_energy"] = total_energy(out)
+        if sysm.pairs > 1:  # per pair (samples x pairs): gap, normal velocity, contact force
+            pc = np.concatenate([p[4] for p in parts])
+            for j, name in enumerate(PAIR_COLUMNS):
+                out[f"pair_{name}"] = pc[:, :, j]
         return np.concatenate(times), np.concatenate(phases), out
 
     # ---------------------------------------------------------------- contact force on the dense output
-    def _contact_segments(self, t0: float, t1: float) -> list[Segment]:
-        return [s for s in self.segments if s.phase.in_contact and s.t1 >= t0 and s.t0 <= t1 and s.t1 > s.t0]
+    def _contact_segments(self, t0: float, t1: float, pair: int = 0) -> list[Segment]:
+        return [s for s in self.segments if s.phase.modes[pair] != 0 and s.t1 >= t0 and s.t0 <= t1 and s.t1 > s.t0]
 
-    def force_at(self, t: float) -> float:
-        """Contact force at time t on the dense output (0 outside contact phases)."""
+    def force_at(self, t: float, pair: int = 0) -> float:
+        """A pair's contact force at time t on the dense output (0 outside its contact phases)."""
         for seg in self.segments:
-            if seg.phase.in_contact and seg.t0 <= t <= seg.t1 and seg.t1 > seg.t0:
-                return float(self.evaluate(seg, np.array([t]))[0]["contact_force"][0])
+            if seg.phase.modes[pair] != 0 and seg.t0 <= t <= seg.t1 and seg.t1 > seg.t0:
+                return float(self.pair_force(seg, np.array([t]), pair)[0])
         return 0.0
 
-    def force_many(self, times: np.ndarray) -> np.ndarray:
-        """Contact force at the ``times`` (within one contact phase each; 0 outside contact phases)."""
+    def force_many(self, times: np.ndarray, pair: int = 0) -> np.ndarray:
+        """A pair's contact force at the ``times`` (within one contact phase each; 0 outside its contact
+        phases)."""
         times = np.asarray(times, float)
         out = np.zeros(times.size)
         done = np.zeros(times.size, bool)
         for seg in self.segments:
-            if not seg.phase.in_contact or seg.t1 <= seg.t0:
+            if seg.phase.modes[pair] == 0 or seg.t1 <= seg.t0:
                 continue
             sel = ~done & (times >= seg.t0) & (times <= seg.t1)
             if sel.any():
-                out[sel] = self.evaluate(seg, times[sel])[0]["contact_force"]
+                out[sel] = self.pair_force(seg, times[sel], pair)
                 done |= sel
         return out
 
-    def force_profile(self, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
-        """(times, force) at PEAK_POINTS_PER_STEP points of every step of the contact phases in [t0, t1]."""
+    def force_profile(self, t0: float, t1: float, pair: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """(times, force) of a pair at PEAK_POINTS_PER_STEP points of every step of its contact phases in
+        [t0, t1]."""
         ts, fs = [], []
-        for seg in self._contact_segments(t0, t1):
+        for seg in self._contact_segments(t0, t1, pair):
             b = seg.breaks()
             frac = np.linspace(0.0, 1.0, PEAK_POINTS_PER_STEP + 1)[:-1]
             t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
             t = t[(t >= t0) & (t <= t1)]
             if t.size:
                 ts.append(t)
-                fs.append(self.evaluate(seg, t)[0]["contact_force"])
+                fs.append(self.pair_force(seg, t, pair))
         if not ts:
             return np.empty(0), np.empty(0)
         t, f = np.concatenate(ts), np.concatenate(fs)
         order = np.argsort(t, kind="stable")
         return t[order], f[order]
 
-    def impulse(self, t0: float, t1: float) -> float:
-        """int F dt over [t0, t1]: over whole steps of the compiled integrator the Gauss quadrature of its nodal
-        forces (exact for the collocated force), else 8-point Gauss-Legendre per step on the dense output."""
+    def impulse(self, t0: float, t1: float, pair: int = 0) -> float:
+        """int F dt of a pair over [t0, t1]: over whole steps of the compiled integrator the Gauss quadrature of
+        its nodal forces (exact for the collocated force), else 8-point Gauss-Legendre per step on the dense
+        output."""
         x, w = np.polynomial.legendre.leggauss(8)
         total = 0.0
-        for seg in self._contact_segments(t0, t1):
+        for seg in self._contact_segments(t0, t1, pair):
             if seg.t0 >= t0 and seg.t1 <= t1 and hasattr(seg.dense, "impulse"):
-                total += seg.dense.impulse()
+                total += seg.dense.impulse(pair)
                 continue
             b = np.clip(seg.breaks(), t0, t1)
             a, c = b[:-1], b[1:]
@@ -137,7 +153,7 @@ class RunSource:
             if not a.size:
                 continue
             t = (0.5 * (c - a)[:, None] * (x[None, :] + 1.0) + a[:, None]).ravel()
-            F = self.evaluate(seg, t)[0]["contact_force"].reshape(a.size, x.size)
+            F = self.pair_force(seg, t, pair).reshape(a.size, x.size)
             total += float(np.sum(0.5 * (c - a) * (F @ w)))
         return total
 

@@ -84,8 +84,8 @@ def release_state(system: BeamSystem, angle: float) -> np.ndarray:
 class _UntilImpact(CCFM):
     """Free flight that stops at the first impact, reporting P's normal velocity."""
 
-    def transition(self, phase, event, t, y):
-        raise Stop("impact", repr(self.gap_event(t, y)[1]))
+    def transition(self, phase, event, t, y, pair=0):
+        raise Stop("impact", repr(self.gap_event(t, y, pair)[1]))
 
 
 def _first_impact_velocity(system: BeamSystem, case: Case, angle: float) -> float:

@@ -57,6 +57,8 @@ class ContactEvent:
     onset (IMM, CCM's e = 0 step; also in ``jump_impulse``) plus the integral of the contact force until
     ``end`` (CCFM's force, CCM's multiplier, a resting contact's reaction).  ``energy_before``/``energy_after``
     [J] are the mechanical energy T + V_e + V_g just before the onset (before its jump) and at the end.
+    ``pair``: the contact pair (0: ``[contact]`` against ``[obstacle]``, k: ``obstacles[k - 1]``);
+    ``time_scale``: the contact's expected duration at onset (a rigid-body Hertz impact; CCFM) [s].
     """
 
     index: int
@@ -70,6 +72,8 @@ class ContactEvent:
     energy_before: float = float("nan")
     energy_after: float = float("nan")
     jump_impulse: float = float("nan")
+    pair: int = 0
+    time_scale: float = float("nan")
 
     @property
     def duration(self) -> float:

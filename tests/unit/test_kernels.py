@@ -138,7 +138,7 @@ def test_measuring_point_velocity_is_the_rate_of_its_position(frame):
         yd = system.rhs(0.0, y)[0]
         phi = system.hub_angle(0.0, y)[0]
         normal = np.array([-np.sin(phi), np.cos(phi)])
-        _, mv = system.outputs(np.zeros(1), y[None, :])
+        _, mv, _ = system.outputs(np.zeros(1), y[None, :])
         h = 1e-7
         for j in range(3):
             ends = [system.point_state(0.0, y + s * yd, 2 + j)[0] for s in (h, -h)]

@@ -1,9 +1,10 @@
 """Contact set-up of a case: the contact point on the beam, the obstacle's geometry and support, the law.
 
-One place for what the modal model and the finite-element reference share as *input*: where P is on the beam,
-where the obstacle is (placed, when the case gives no centre, so that it touches P with the beam straight at
-``initial.impact_angle``), how it is held, and which contact law with which stiffness acts (the Hertz stiffness
-of a sphere on the beam's cylinder unless ``contact.stiffness`` is given).
+One place for what the modal model and the finite-element reference share as *input*: the contact pairs -- which
+material point of the beam can touch which obstacle, under which law -- and the obstacles: where they are
+(``[obstacle]`` placed, when the case gives no centre, so that it touches P with the beam straight at
+``initial.impact_angle``), how they are held, and which stiffness acts (the Hertz stiffness of a sphere on the
+beam's cylinder unless a stiffness is given).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..parameters.case import Case
+from ..parameters.case import SIDES, Case, Obstacle, PairContact
 from .hertz import effective_modulus, sphere_on_cylinder_stiffness
 from .laws import ContactLaw, make_law
 
@@ -40,55 +41,121 @@ class ObstacleGeometry:
 
 
 @dataclass(frozen=True)
-class ContactSetup:
-    """The contact point P (material coordinate ``position``, ``offset`` c below the centre line), the obstacle
-    and the contact law of a case."""
+class ContactPair:
+    """A material point of the beam (``position`` x, ``offset`` c below the centre line) that can touch obstacle
+    number ``obstacle`` (an index into :attr:`ContactSetup.obstacles`) under the contact ``law``."""
 
     position: float
     offset: float
-    obstacle: ObstacleGeometry
+    obstacle: int
     law: ContactLaw
+    restitution: float
+    label: str
+
+
+@dataclass(frozen=True)
+class ContactSetup:
+    """The contact pairs of a case and the obstacles they touch.
+
+    Pair 0 is the case's ``[contact]`` point P against ``[obstacle]`` (obstacle 0, the only one that may stand on a
+    compliant support); each ``[[obstacles]]`` entry adds an obstacle and its pair.  ``position``, ``offset``,
+    ``obstacle`` and ``law`` are pair 0's.
+    """
+
+    pairs: tuple[ContactPair, ...]
+    obstacles: tuple[ObstacleGeometry, ...]
+
+    @property
+    def position(self) -> float:
+        return self.pairs[0].position
+
+    @property
+    def offset(self) -> float:
+        return self.pairs[0].offset
+
+    @property
+    def obstacle(self) -> ObstacleGeometry:
+        return self.obstacles[0]
+
+    @property
+    def law(self) -> ContactLaw:
+        return self.pairs[0].law
 
     @classmethod
     def from_case(cls, case: Case) -> ContactSetup:
-        """Contact point, obstacle placement and law of ``case``."""
+        """Contact points, obstacle placement and laws of ``case``."""
         c = case.beam.surface_offset
-        obstacle = place_obstacle(case, case.contact.position, c)
-        return cls(float(case.contact.position), float(c), obstacle, contact_law(case))
+        offset = SIDES[case.contact.side] * c
+        obstacles = [place_obstacle(case, case.contact.position, offset)]
+        pairs = [
+            ContactPair(
+                float(case.contact.position), float(offset), 0, contact_law(case), case.contact.restitution,
+                "obstacle",
+            )
+        ]  # fmt: skip
+        for i, ob in enumerate(case.obstacles):
+            pc = ob.contact
+            x = case.contact.position if pc.position is None else pc.position
+            side = case.contact.side if pc.side is None else pc.side
+            obstacles.append(obstacle_geometry(ob, np.array(ob.centre, float), _outward(case, side)))
+            law = contact_law(case, ob, pc)
+            e = case.contact.restitution if pc.restitution is None else pc.restitution
+            pairs.append(ContactPair(float(x), float(SIDES[side] * c), i + 1, law, e, f"obstacles[{i}]"))
+        return cls(tuple(pairs), tuple(obstacles))
 
 
-def contact_law(case: Case) -> ContactLaw:
-    """The case's contact law; its stiffness from Hertz theory (sphere on the beam's cylinder, exponent 3/2)
-    unless ``contact.stiffness`` is given."""
-    K = case.contact.stiffness
-    exponent = case.contact.exponent
+def contact_law(case: Case, obstacle: Obstacle | None = None, pair: PairContact | None = None) -> ContactLaw:
+    """The contact law of a pair (default: the case's ``[contact]`` against ``[obstacle]``); its stiffness from
+    Hertz theory (the obstacle's sphere on the beam's cylinder, exponent 3/2) unless a stiffness is given (the
+    pair's, else ``contact.stiffness``)."""
+    obstacle = obstacle or case.obstacle
+    con = case.contact
+    pick = lambda name: getattr(con, name) if pair is None or getattr(pair, name) is None else getattr(pair, name)  # noqa: E731
+    K, exponent = pick("stiffness"), pick("exponent")
     if K is None:
         E_star = effective_modulus(
-            case.beam.youngs_modulus, case.beam.poisson_ratio, case.obstacle.youngs_modulus,
-            case.obstacle.poisson_ratio,
-        )  # fmt: skip
+            case.beam.youngs_modulus, case.beam.poisson_ratio, obstacle.youngs_modulus, obstacle.poisson_ratio
+        )
         radius = case.beam.radius if case.beam.section == "circle" else 0.0
-        K = sphere_on_cylinder_stiffness(case.obstacle.radius, radius or 0.0, E_star)
+        K = sphere_on_cylinder_stiffness(obstacle.radius, radius or 0.0, E_star)
         exponent = 1.5
-    return make_law(case.contact.law, K, exponent, case.contact.restitution)
+    return make_law(pick("law"), K, exponent, pick("restitution"))
+
+
+def _outward(case: Case, side: str) -> np.ndarray:
+    """The direction from a contact point on ``side`` of the straight beam toward its obstacle, at
+    ``initial.impact_angle``: -e2 below (and at the centre line), +e2 above."""
+    th = case.initial.impact_angle
+    e2 = np.array([-math.sin(th), math.cos(th)])
+    return e2 if side == "above" else -e2
 
 
 def place_obstacle(case: Case, position: float, offset: float) -> ObstacleGeometry:
-    """The obstacle's arrays; without a centre it touches P (beam straight, hub at ``initial.impact_angle``)."""
+    """Obstacle 0's arrays; without a centre it touches P (beam straight, hub at ``initial.impact_angle``)."""
     ob = case.obstacle
     th = case.initial.impact_angle
     e1 = np.array([math.cos(th), math.sin(th)])
     e2 = np.array([-math.sin(th), math.cos(th)])
     r_P = (case.hub.radius + position) * e1 - offset * e2
-    if ob.kind == "sphere":
-        centre = np.array(ob.centre, float) if ob.centre is not None else r_P - ob.radius * e2
-        outward = r_P - centre
-        norm = math.hypot(*outward)
-        outward = outward / norm if norm > 0.0 else e2
-        kind, radius, normal = OBSTACLE_SPHERE, float(ob.radius), np.zeros(2)
+    towards = _outward(case, case.contact.side)
+    if ob.centre is not None:
+        centre = np.array(ob.centre, float)
     else:
-        centre = np.array(ob.centre, float) if ob.centre is not None else r_P
-        normal = np.array(ob.normal, float) if ob.normal is not None else e2
+        centre = r_P + ob.radius * towards if ob.kind == "sphere" else r_P
+    if ob.kind == "sphere":  # the contact normal at P, from the sphere's centre
+        norm = math.hypot(*(r_P - centre))
+        towards = (centre - r_P) / norm if norm > 0.0 else towards
+    return obstacle_geometry(ob, centre, towards)
+
+
+def obstacle_geometry(ob: Obstacle, centre: np.ndarray, towards: np.ndarray) -> ObstacleGeometry:
+    """The arrays of obstacle ``ob`` at ``centre``; ``towards``: from the beam toward the obstacle (a plane's
+    default outward normal is its opposite; a support moves along the outward contact normal by default)."""
+    if ob.kind == "sphere":
+        kind, radius, normal = OBSTACLE_SPHERE, float(ob.radius), np.zeros(2)
+        outward = -towards
+    else:
+        normal = np.array(ob.normal, float) if ob.normal is not None else -towards
         kind, radius, outward = OBSTACLE_PLANE, 0.0, normal
     support = np.zeros(5)
     sup = ob.support

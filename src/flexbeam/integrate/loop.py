@@ -72,6 +72,7 @@ class PhaseRun:
     steps: int = 0
     nfev: int = 0
     failure: str = ""
+    pair: int = 0  #: the contact pair the event belongs to
 
 
 class Stepper(Protocol):
@@ -98,7 +99,9 @@ class PhaseMethod(Protocol):
 
     def free_phase(self) -> Phase: ...
 
-    def transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]: ...
+    def transition(
+        self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
+    ) -> tuple[Phase, np.ndarray]: ...
 
 
 @dataclass
@@ -152,7 +155,7 @@ def run_phases(
             break
         events += 1
         try:
-            phase, y = method.transition(phase, run.event, t, y)
+            phase, y = method.transition(phase, run.event, t, y, run.pair)
         except Stop as stop:
             status, message = stop.status, stop.message
             break

@@ -80,7 +80,7 @@ class ModalBasis:
             row0, inv00 = np.zeros(0), 0.0
         toM = Psi.T @ M0
         if system.compliant:  # the support's sqrt(m_s) s, frequency sqrt(k_s / m_s)
-            ms, ks = float(system.contact.obstacle.support[0]), float(system.contact.obstacle.support[1])
+            ms, ks = float(system.contact.obstacle.support[0]), float(system.contact.obstacle.support[1])  # obstacle 0
             omega = np.append(omega, math.sqrt(ks / ms))
             Psi = _border(Psi, 1.0 / math.sqrt(ms))
             toM = _border(toM, math.sqrt(ms))
@@ -135,20 +135,24 @@ class ModalDense:
         Y[order] = Ys
         return Y
 
-    def impulse(self) -> float:
-        """int F dt over the phase: each step's Gauss quadrature of its nodal contact force (or multiplier)."""
-        c, w = gauss_nodes()
+    def _forces(self, pair: int) -> np.ndarray:
+        """A pair's nodal contact forces (steps x 4) of the records [t0, h, Ed0, W0, eta0, v0, f, F (pairs x 4),
+        ...]."""
         N = self.stepper.basis.N
-        off = 4 + 2 * N + 4 * N
-        return float(np.sum(self.records[:, 1] * (self.records[:, off : off + 4] @ w)))
+        off = 4 + 2 * N + 4 * N + 4 * pair
+        return self.records[:, off : off + 4]
 
-    def nodal_forces(self) -> tuple[np.ndarray, np.ndarray]:
-        """(times, values) of the contact force (or multiplier) at every step's Gauss nodes."""
+    def impulse(self, pair: int = 0) -> float:
+        """int F dt of a pair over the phase: each step's Gauss quadrature of its nodal contact force (or
+        multiplier)."""
+        c, w = gauss_nodes()
+        return float(np.sum(self.records[:, 1] * (self._forces(pair) @ w)))
+
+    def nodal_forces(self, pair: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """(times, values) of a pair's contact force (or multiplier) at every step's Gauss nodes."""
         c, _ = gauss_nodes()
-        N = self.stepper.basis.N
-        off = 4 + 2 * N + 4 * N
         t = self.records[:, 0:1] + self.records[:, 1:2] * c[None, :]
-        return t.ravel(), self.records[:, off : off + 4].ravel()
+        return t.ravel(), self._forces(pair).ravel()
 
 
 def gauss_nodes() -> tuple[np.ndarray, np.ndarray]:
@@ -171,7 +175,7 @@ class ModalStepper:
         self.basis = ModalBasis.of(system)
         self.basis_buffer = self.basis.packed()
         self.kernel = system.kernel
-        self.record_size, self.state_size, _, _ = core.sizes(self.basis.N)
+        self.record_size, self.state_size, _, _, _ = core.sizes(self.basis.N, system.pairs)
         self.h = FIRST_STEP
         self.omega_rigid = self.basis.omega_rigid
         self.psi = np.diag(self.basis.Psi).copy() if self.basis.diagonal else None
@@ -211,11 +215,9 @@ class ModalStepper:
         state[:5] = t, h, y[-2], y[-1], 0.0
         state[5 : 5 + N], state[5 + N : 5 + 2 * N] = eta, v
         bits = sum(_EVENT_BITS[e] for e in phase.events)
-        ctrl = np.zeros(10)
-        ctrl[0] = int(phase.mode)
-        ctrl[1:5] = phase.parameters[:4]
-        ctrl[5:10] = self.rtol, self.atol, min(self.max_step, phase.max_step), self.omega_rigid, bits
-        info = np.zeros(4)
+        head = [self.rtol, self.atol, min(self.max_step, phase.max_step), self.omega_rigid, bits]
+        ctrl = np.concatenate((head, phase.buffer))
+        info = np.zeros(5)
         chunks = []
         capacity = 64
         while True:
@@ -236,4 +238,4 @@ class ModalStepper:
             failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_NONFINITE:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
-        return PhaseRun(t1, y1, event, dense, int(info[1]), int(info[3]), failure)
+        return PhaseRun(t1, y1, event, dense, int(info[1]), int(info[3]), failure, int(info[4]))

@@ -42,6 +42,7 @@ class Event:
     kind: EventKind
     fun: Callable[[float, np.ndarray], tuple[float, float]]
     direction: int = 0
+    pair: int = 0
 
 
 class PiecewiseDense:
@@ -188,46 +189,53 @@ class ReferenceStepper:
         self.max_step = max_step or math.inf
 
     def _events(self, phase: Phase) -> list[Event]:
+        """Per pair the event its mode can end on: a free pair's impact, a pair under its law separating, a held
+        pair's release."""
         sysm = self.system
+        out = []
+        for k, mode in enumerate(phase.modes):
 
-        def gap(t: float, y: np.ndarray) -> tuple[float, float]:
-            delta, rate, _, _ = sysm.gap(t, y)
-            return delta, rate
+            def gap(t: float, y: np.ndarray, k=k) -> tuple[float, float]:
+                delta, rate, _, _ = sysm.gap(t, y, k)
+                return delta, rate
 
-        def multiplier(t: float, y: np.ndarray) -> tuple[float, float]:
-            return float(sysm.rhs(t, y, ContactMode.CONSTRAINT, phase.parameters)[1]), float("nan")
+            def multiplier(t: float, y: np.ndarray, k=k) -> tuple[float, float]:
+                return float(sysm.rhs(t, y, phase.buffer)[1][k]), float("nan")
 
-        make = {
-            EventKind.IMPACT: lambda: Event(EventKind.IMPACT, gap, -1),
-            EventKind.SEPARATION: lambda: Event(EventKind.SEPARATION, gap, +1),
-            EventKind.RELEASE: lambda: Event(EventKind.RELEASE, multiplier, -1),
-        }
-        return [make[e]() for e in phase.events]
+            if mode == ContactMode.NONE and EventKind.IMPACT in phase.events:
+                out.append(Event(EventKind.IMPACT, gap, -1, k))
+            elif mode == ContactMode.FORCE and EventKind.SEPARATION in phase.events:
+                out.append(Event(EventKind.SEPARATION, gap, +1, k))
+            elif mode == ContactMode.CONSTRAINT and EventKind.RELEASE in phase.events:
+                out.append(Event(EventKind.RELEASE, multiplier, -1, k))
+        return out
 
-    def safe_step(self, t: float, y: np.ndarray) -> float:
-        """Largest free-flight step that cannot carry P through the obstacle.
+    def safe_step(self, t: float, y: np.ndarray, phase: Phase) -> float:
+        """Largest free-flight step that cannot carry a free pair's point through its obstacle.
 
-        P moves at most |v_P| h (to first order) in a step h; allowing a quarter of the obstacle's size (sphere
-        radius; 1 mm for a point) or half the current gap keeps at least one event check point inside the
+        A point moves at most |v_P| h (to first order) in a step h; allowing a quarter of the obstacle's size
+        (sphere radius; 1 mm for a point) or half the current gap keeps at least one event check point inside the
         obstacle, and the Hermite check on (delta, delta') catches a shallower dip.  A half-plane cannot be
         passed through.
         """
-        ob = self.system.contact.obstacle
-        if ob.kind != 0:
-            return math.inf
-        _, v, _, _ = self.system.point_state(t, y, 0)
-        speed = math.hypot(v[0], v[1])
-        if speed == 0.0:
-            return math.inf
-        gap = self.system.gap(t, y)[0]
-        return max(0.25 * (ob.radius or 1e-3), 0.5 * gap) / speed
+        sysm = self.system
+        out = math.inf
+        for k, mode in enumerate(phase.modes):
+            ob = sysm.contact.obstacles[sysm.contact.pairs[k].obstacle]
+            if mode != ContactMode.NONE or ob.kind != 0:
+                continue
+            _, v, _, _ = sysm.point_state(t, y, sysm.pair_point(k))
+            speed = math.hypot(v[0], v[1])
+            if speed > 0.0:
+                out = min(out, max(0.25 * (ob.radius or 1e-3), 0.5 * sysm.gap(t, y, k)[0]) / speed)
+        return out
 
     def advance(self, phase: Phase, t: float, y: np.ndarray, t_end: float) -> PhaseRun:
         from scipy.integrate import DOP853  # imported here: the compiled path does not need scipy
 
-        fun = self.system.rhs_function(phase.mode, phase.parameters)
+        fun = self.system.rhs_function(phase.buffer)
         events = self._events(phase)
-        limit = self.safe_step if phase.mode == ContactMode.NONE else None
+        limit = (lambda t, y: self.safe_step(t, y, phase)) if ContactMode.NONE in phase.modes else None
         cap = min(self.max_step, phase.max_step, t_end - t)
         solver = DOP853(fun, t, y, t_end, rtol=self.rtol, atol=self.atol, max_step=cap)
         if limit is not None:
@@ -267,12 +275,12 @@ class ReferenceStepper:
                     t_stop, y, None, ts, pieces, steps, solver, f"non-finite state at t = {t_stop:.9g} s"
                 )
             if hit:
-                return self._result(t_stop, y, hit[1].kind, ts, pieces, steps, solver)
+                return self._result(t_stop, y, hit[1].kind, ts, pieces, steps, solver, pair=hit[1].pair)
             if limit is not None:
                 solver.max_step = min(cap, limit(tb, y))
         return self._result(solver.t, y, None, ts, pieces, steps, solver)
 
     @staticmethod
-    def _result(t1, y1, event, ts, pieces, steps, solver, failure: str = "") -> PhaseRun:
+    def _result(t1, y1, event, ts, pieces, steps, solver, failure: str = "", pair: int = 0) -> PhaseRun:
         dense = PiecewiseDense(ts, pieces) if pieces else None
-        return PhaseRun(float(t1), np.asarray(y1, float).copy(), event, dense, steps, solver.nfev, failure)
+        return PhaseRun(float(t1), np.asarray(y1, float).copy(), event, dense, steps, solver.nfev, failure, pair)

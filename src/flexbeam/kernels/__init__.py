@@ -4,10 +4,11 @@
   forces, energies, point kinematics, gap and contact Jacobian, the contact laws;
 * ``rhs.c`` -- the right-hand side of the reference integrator and the output columns;
 * ``propagation.c`` -- exact modal propagation for polynomial forcing (variation of constants);
-* ``collocation.c`` -- one Gauss collocation step (fixed point, contact force by Newton);
+* ``collocation.c`` -- one Gauss collocation step (fixed point, the pairs' contact forces by Newton);
 * ``stepcontrol.c`` -- the energy-norm error and the step-size controller;
 * ``events.c`` -- the guaranteed search for impact/separation on the dense output, the release of a constraint;
-* ``phase.c`` -- the phase driver (steps, control, events, dense-output records) and the dense evaluation;
+* ``phase.c`` -- the phase driver (steps, control, the pairs' events, dense-output records);
+* ``bookkeeping.c`` -- dissipated energy, joint work and energy balance of a step, the dense evaluation;
 * ``module.c`` -- the Python glue.
 
 Why C and not Numba: measured on this project's machine, a fresh process that imports numba and loads one
@@ -23,8 +24,8 @@ The arrays are packed once per system into flat float64 buffers by :mod:`flexbea
 from __future__ import annotations
 
 from . import _core
-from .layout import OUTPUT_COLUMNS, pack_basis, pack_model
+from .layout import OUTPUT_COLUMNS, PAIR_COLUMNS, pack_basis, pack_contacts, pack_model
 
-__all__ = ["OUTPUT_COLUMNS", "core", "pack_basis", "pack_model"]
+__all__ = ["OUTPUT_COLUMNS", "PAIR_COLUMNS", "core", "pack_basis", "pack_contacts", "pack_model"]
 
 core = _core

@@ -2,13 +2,21 @@
 
 Model buffer (float64; integers stored exactly)::
 
-    [version, n, prescribed, drive, profile, npoints, nobstacles, kind_0 .. kind_{nobstacles-1},
+    [version, n, prescribed, drive, profile, npoints, nobstacles, npairs, kind_0 .. kind_{nobstacles-1},
      Jc, m1, g, torque, spin_rate, spin_up_time, theta0,
      Mc (n x n), Mqq (n x n), mtq (n), K (n x n), sf (n), G (n x n), d (n),
      per point:    base, offset, phi (n), dphi (n), H (n x n),
-     per obstacle: cx, cy, radius, nx, ny, m_s, k_s, c_s, u_x, u_y]
+     per obstacle: cx, cy, radius, nx, ny, m_s, k_s, c_s, u_x, u_y,
+     per pair:     point, obstacle]
 
-Points: 0 is the contact point P, 1 the beam tip (centre line), then the measuring points.
+Points: 0 is the first pair's contact point P, 1 the beam tip (centre line), then the measuring points, then the
+other pairs' contact points.  Only obstacle 0 may stand on a compliant support.
+
+Contacts buffer (how each pair acts during a phase)::
+
+    [npairs, alpha, beta, per pair: mode, p0, p1, p2, p3]
+
+Control buffer of a phase: ``[rtol, atol, max step, omega_rigid, event bits, contacts buffer]``.
 
 Basis buffer::
 
@@ -27,7 +35,7 @@ if TYPE_CHECKING:
     from ..model.beam import ModalBeam, PointData
     from ..parameters.case import Drive
 
-LAYOUT_VERSION = 1
+LAYOUT_VERSION = 2
 DRIVES = {"free": 0, "torque": 1, "prescribed": 2}
 PROFILES = {"constant-rate": 0, "kane-spinup": 1}
 
@@ -37,6 +45,8 @@ OUTPUT_COLUMNS = (
     "kinetic_energy", "elastic_energy", "gravitational_energy", "dissipated_energy", "drive_work",
     "joint_torque", "tip_deflection", "support_displacement", "sensor_force",
 )  # fmt: skip
+#: columns per contact pair of the kernels' ``outputs`` (``FB_PAIR_COLS`` in C)
+PAIR_COLUMNS = ("gap", "normal_velocity", "contact_force")
 
 
 def pack_model(
@@ -46,8 +56,10 @@ def pack_model(
     gravity: float,
     points: Sequence[PointData],
     obstacles: Sequence[ObstacleGeometry],
+    pairs: Sequence[tuple[int, int]] = ((0, 0),),
 ) -> np.ndarray:
-    """The model buffer of a beam, its drive, points (P, tip, measuring points) and obstacles."""
+    """The model buffer of a beam, its drive, points (P, tip, measuring points, other contact points), obstacles
+    and contact pairs (point index, obstacle index)."""
     n = beam.n
     head = [
         LAYOUT_VERSION,
@@ -57,6 +69,7 @@ def pack_model(
         PROFILES[drive.profile],
         len(points),
         len(obstacles),
+        len(pairs),
         *[o.kind for o in obstacles],
     ]
     scalars = [
@@ -80,7 +93,20 @@ def pack_model(
             np.asarray(o.normal, float),
             np.asarray(o.support, float),
         ]
+    parts.append(np.asarray(pairs, float).ravel())
     return np.ascontiguousarray(np.concatenate(parts))
+
+
+def pack_contacts(modes: Sequence[int], parameters: np.ndarray, alpha: float = 0.0, beta: float = 0.0) -> np.ndarray:
+    """The contacts buffer: per pair its :class:`~flexbeam.phases.ContactMode` and law parameters
+    [K, n, chi/d'_0, C] (rows of ``parameters``), and the constraints' Baumgarte alpha, beta."""
+    S = len(modes)
+    out = np.empty(3 + 5 * S)
+    out[:3] = S, alpha, beta
+    rows = out[3:].reshape(S, 5)
+    rows[:, 0] = modes
+    rows[:, 1:] = np.asarray(parameters, float).reshape(S, 4)
+    return out
 
 
 def pack_basis(

@@ -21,13 +21,16 @@ from .impulse import Jump
 
 #: steps per (estimated) contact duration at least: a contact phase's step is bounded by t_c / CONTACT_STEPS
 CONTACT_STEPS = 8
+#: every phase watches all three kinds of event; each pair is watched for the one its mode can end on
+ALL_EVENTS = (EventKind.IMPACT, EventKind.SEPARATION, EventKind.RELEASE)
 
 
 @dataclass
 class ImpactMethod:
-    """Base of CCFM, CCM and IMM: the free phase, the impact event and the transitions back to free flight.
+    """Base of CCFM, CCM and IMM: the phases, the impact events and the transitions back to free flight.
 
-    Subclasses say what an impact starts (:meth:`on_impact`).
+    A phase says, pair by pair, whether the pair is free, under its law or held by its constraint
+    (:class:`~flexbeam.phases.Phase`); subclasses say what an impact of some pairs starts (:meth:`on_impact`).
     """
 
     system: BeamSystem
@@ -35,6 +38,8 @@ class ImpactMethod:
     contacts: list[ContactEvent] = field(default_factory=list)
 
     name = "base"
+    #: the name of a phase with held (constrained) pairs and no pair under a law
+    held_name = "constrained"
     #: onsets with |delta'| below this are grazing touches, not impacts [m/s]
     grazing_speed = 1e-9
     #: a gap this small counts as closed at the start of a run [m]
@@ -42,36 +47,46 @@ class ImpactMethod:
 
     def __post_init__(self) -> None:
         w = self.case.solver.baumgarte_frequency
-        self.baumgarte = np.array([w, w, 0.0, 0.0])
+        self.baumgarte = (w, w)
 
     # phases -----------------------------------------------------------------
     def free_phase(self) -> Phase:
-        """Unimpact motion until the gap closes."""
-        return Phase("free", ContactMode.NONE, (EventKind.IMPACT,), self.case.solver.sample_step)
+        """Unimpact motion until a gap closes."""
+        S = self.system.pairs
+        return Phase("free", (ContactMode.NONE,) * S, ALL_EVENTS, self.case.solver.sample_step, np.zeros((S, 4)),
+                     (None,) * S, self.baumgarte)  # fmt: skip
 
-    def constrained_phase(self, contact: ContactEvent, name: str = "constrained") -> Phase:
-        """Contact held closed by the unilateral constraint until its multiplier turns tensile.
+    def phase(self, modes, parameters: np.ndarray, records) -> Phase:
+        """The phase with the pairs in ``modes`` (their law ``parameters``, their contact ``records``).
 
-        Baumgarte stabilisation (Baumgarte 1972; Hairer & Wanner, Solving ODEs II, Sec. VII.2) with
-        alpha = beta = ``solver.baumgarte_frequency``.  A CCM contact is sampled at the contact spacing, IMM's
-        resting contact at the free one.  The phase starts consistent (delta = 0 at the located event,
-        delta' = 0 after the e = 0 jump), so the terms only damp the integration drift.
+        Held pairs are constrained with Baumgarte stabilisation (Baumgarte 1972; Hairer & Wanner, Solving ODEs II,
+        Sec. VII.2), alpha = beta = ``solver.baumgarte_frequency``; a held pair starts consistent (delta = 0 at the
+        located event, delta' = 0 after the e = 0 jump), so the terms only damp the integration drift.  Contacts are
+        sampled at the contact spacing (IMM's resting contact at the free one); a pair under its law bounds the step
+        by its contact's time scale over CONTACT_STEPS.
         """
+        modes = tuple(ContactMode(m) for m in modes)
+        if all(m == ContactMode.NONE for m in modes):
+            return self.free_phase()
         s = self.case.solver
-        step = s.contact_sample_step if name == "constrained" else s.sample_step
-        return Phase(name, ContactMode.CONSTRAINT, (EventKind.RELEASE,), step, self.baumgarte, contact)
+        force = any(m == ContactMode.FORCE for m in modes)
+        name = "contact" if force else self.held_name
+        sample = s.contact_sample_step if force or name == "constrained" else s.sample_step
+        steps = [r.time_scale / CONTACT_STEPS for m, r in zip(modes, records) if m == ContactMode.FORCE and r]
+        return Phase(name, modes, ALL_EVENTS, sample, np.asarray(parameters, float), tuple(records), self.baumgarte,
+                     min(steps, default=math.inf))  # fmt: skip
 
     # events -----------------------------------------------------------------
-    def gap_event(self, t: float, y: np.ndarray) -> tuple[float, float]:
-        """(delta, delta') of the contact point."""
-        delta, vn, _, _ = self.system.gap(t, y)
+    def gap_event(self, t: float, y: np.ndarray, pair: int = 0) -> tuple[float, float]:
+        """(delta, delta') of a pair's contact point."""
+        delta, vn, _, _ = self.system.gap(t, y, pair)
         return delta, vn
 
-    def gap_acceleration(self, t: float, y: np.ndarray) -> float:
-        """delta'' under free motion (no contact force) at state y."""
+    def gap_acceleration(self, t: float, y: np.ndarray, pair: int = 0, contacts: np.ndarray | None = None) -> float:
+        """delta'' of a pair under the ``contacts`` of the current phase (default: free motion) at state y."""
         sysm = self.system
-        _, _, gamma, J = sysm.gap(t, y)
-        yd = sysm.rhs(t, y)[0]
+        _, _, gamma, J = sysm.gap(t, y, pair)
+        yd = sysm.rhs(t, y, contacts)[0]
         n = sysm.n
         if sysm.prescribed:
             zdd = np.concatenate(([sysm.drive.motion(t)[2]], yd[n : 2 * n]))
@@ -81,45 +96,69 @@ class ImpactMethod:
             zdd = np.append(zdd, yd[sysm.support_index + 1])
         return float(J @ zdd + gamma)
 
-    def approaching(self, t: float, y: np.ndarray, located: bool = False) -> bool:
-        """Does a contact start here?  The gap is closed and P moves into the obstacle, or rests on it
-        (|delta'| below ``grazing_speed``) while free motion would press it in.
+    def approaching(self, t: float, y: np.ndarray, pair: int = 0, located: bool = False,
+                    contacts: np.ndarray | None = None) -> bool:  # fmt: skip
+        """Does a pair's contact start here?  Its gap is closed and its point moves into the obstacle, or rests
+        on it (|delta'| below ``grazing_speed``) while the motion (under the phase's other ``contacts``) would
+        press it in.
 
         ``located``: the gap's zero was just located as an event, so it is zero to within round-off and only
         the motion decides.
         """
-        delta, vn = self.gap_event(t, y)
+        delta, vn = self.gap_event(t, y, pair)
         if not (located or delta <= self.gap_tolerance):
             return False
         if vn < -self.grazing_speed:
             return True
-        return abs(vn) <= self.grazing_speed and self.gap_acceleration(t, y) < 0.0
+        return abs(vn) <= self.grazing_speed and self.gap_acceleration(t, y, pair, contacts) < 0.0
 
-    def holds(self, t: float, y: np.ndarray) -> bool:
-        """Would the closed contact push (multiplier >= 0) at this state?"""
-        return self.system.rhs(t, y, ContactMode.CONSTRAINT, self.baumgarte)[1] >= 0.0
+    def held_set(self, t: float, y: np.ndarray, candidates, phase: Phase | None = None) -> list[int]:
+        """The candidate pairs whose closed contacts push together (every multiplier >= 0), by the active-set
+        method: hold all, release the most tensile, repeat (exact for one pair; for several it finds a set whose
+        multipliers are all compressive).  Pairs under a law in ``phase`` keep acting."""
+        S = self.system.pairs
+        held = sorted(set(candidates))
+        base = [ContactMode.NONE] * S if phase is None else list(phase.modes)
+        params = np.zeros((S, 4)) if phase is None else phase.parameters
+        while held:
+            modes = [ContactMode.CONSTRAINT if k in held else (m if m == ContactMode.FORCE else ContactMode.NONE)
+                     for k, m in enumerate(base)]  # fmt: skip
+            F = self.system.rhs(t, y, self.system.contacts(modes, params, *self.baumgarte))[1]
+            worst = min(held, key=lambda k: F[k])
+            if F[worst] >= 0.0:
+                return held
+            held.remove(worst)
+        return []
+
+    def holds(self, t: float, y: np.ndarray, pair: int = 0) -> bool:
+        """Would the closed contact of ``pair`` (alone) push (multiplier >= 0) at this state?"""
+        return self.held_set(t, y, [pair]) == [pair]
 
     # the contact log -----------------------------------------------------------
-    def new_contact(self, t: float, y: np.ndarray) -> ContactEvent:
-        """Log a contact onset, stopping the run past ``solver.max_contacts``."""
+    def new_contact(self, t: float, y: np.ndarray, pair: int = 0) -> ContactEvent:
+        """Log a contact onset of a pair, stopping the run past ``solver.max_contacts``."""
         if len(self.contacts) >= self.case.solver.max_contacts:
             raise Stop(
                 "max-contacts",
                 f"stopped at t = {t:.9g} s after {len(self.contacts)} contacts "
                 f"(solver.max_contacts); the contacts accumulate (Zeno-like)",
             )
-        ev = ContactEvent(index=len(self.contacts), onset=t, velocity_before=self.gap_event(t, y)[1])
+        ev = ContactEvent(index=len(self.contacts), onset=t, velocity_before=self.gap_event(t, y, pair)[1], pair=pair)
         self.contacts.append(ev)
         return ev
 
-    def log_jump(self, t: float, jump: Jump) -> ContactEvent:
-        """Log an instantaneous impact (IMM, or the e = 0 onset step of CCM): its impulse and kinetic energies (the
-        Solution adds the potential energy and a following phase's force integral when the record is completed)."""
-        ev = self.new_contact(t, jump.y)
-        ev.velocity_before = jump.velocity_before
-        ev.impulse = ev.jump_impulse = jump.impulse
-        ev.energy_before, ev.energy_after = jump.kinetic_before, jump.kinetic_after
-        return ev
+    def log_jump(self, t: float, jump: Jump, pairs=(0,)) -> list[ContactEvent]:
+        """Log an instantaneous impact (IMM, or the e = 0 onset step of CCM) at each of ``pairs``: its impulse
+        and the kinetic energies (the Solution adds the potential energy and a following phase's force integral
+        when the record is completed)."""
+        out = []
+        for i, k in enumerate(pairs):
+            ev = self.new_contact(t, jump.y, k)
+            ev.velocity_before = float(jump.velocities_before[i])
+            ev.impulse = ev.jump_impulse = float(jump.impulses[i])
+            ev.energy_before, ev.energy_after = jump.kinetic_before, jump.kinetic_after
+            out.append(ev)
+        return out
 
     @staticmethod
     def contact_time(speed: float, m_eff: float, stiffness: float, exponent: float) -> float:
@@ -130,24 +169,50 @@ class ImpactMethod:
         return rigid_hertz_impact(m_eff, abs(speed), stiffness, exponent)[2]
 
     # phase machine ----------------------------------------------------------------
-    def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        """Phase and state right after an impact."""
+    def on_impact(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int]) -> tuple[Phase, np.ndarray]:
+        """Phase and state right after the impact of ``pairs`` (from ``phase``)."""
         raise NotImplementedError
 
-    def start(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        if self.approaching(t, y):
-            return self.on_impact(t, y)
-        return self.free_phase(), y
+    def impacting(self, phase: Phase, t: float, y: np.ndarray, first: int | None = None) -> list[int]:
+        """The free pairs of ``phase`` whose contacts start now (``first``: just located as an event)."""
+        out = []
+        for k, m in enumerate(phase.modes):
+            if m != ContactMode.NONE:
+                continue
+            if self.approaching(t, y, k, located=k == first, contacts=phase.buffer):
+                out.append(k)
+        return out
 
-    def transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        """IMPACT: the method's contact starts (a grazing touch keeps flying); SEPARATION and RELEASE: the
-        contact ends and free flight resumes."""
+    def start(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        free = self.free_phase()
+        pairs = self.impacting(free, t, y)
+        return self.on_impact(free, t, y, pairs) if pairs else (free, y)
+
+    def end_contact(self, phase: Phase, pair: int, t: float, y: np.ndarray) -> Phase:
+        """Close pair ``pair``'s contact record and free the pair."""
+        rec = phase.records[pair]
+        if rec is not None:
+            rec.end = t
+            rec.velocity_after = self.gap_event(t, y, pair)[1]
+        modes = list(phase.modes)
+        modes[pair] = ContactMode.NONE
+        records = list(phase.records)
+        records[pair] = None
+        params = phase.parameters.copy()
+        params[pair] = 0.0
+        return self.phase(modes, params, records)
+
+    def transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
+                   ) -> tuple[Phase, np.ndarray]:  # fmt: skip
+        """IMPACT of a pair: the method's contact starts there and at every other free pair closing at this
+        instant (a grazing touch keeps the phase); SEPARATION and RELEASE: that pair's contact ends."""
         if event == EventKind.IMPACT:
-            if self.approaching(t, y, located=True):
-                return self.on_impact(t, y)
-            return self.free_phase(), y
-        if event in (EventKind.SEPARATION, EventKind.RELEASE) and phase.contact is not None:
-            phase.contact.end = t
-            phase.contact.velocity_after = self.gap_event(t, y)[1]
-            return self.free_phase(), y
-        raise ValueError(f"{self.name}: phase '{phase.name}' cannot end on {event.name}")
+            if phase.modes[pair] != ContactMode.NONE:
+                raise ValueError(f"{self.name}: pair {pair} is in contact in phase '{phase.name}'; it cannot impact")
+            pairs = self.impacting(phase, t, y, first=pair)
+            if pair in pairs:
+                return self.on_impact(phase, t, y, pairs)
+            return phase, y
+        if event in (EventKind.SEPARATION, EventKind.RELEASE) and phase.modes[pair] != ContactMode.NONE:
+            return self.end_contact(phase, pair, t, y), y
+        raise ValueError(f"{self.name}: phase '{phase.name}' cannot end on {event.name} of pair {pair}")

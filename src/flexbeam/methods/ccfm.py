@@ -1,18 +1,19 @@
 """CCFM: continuous contact force method.
 
-While the gap delta is closed the contact force F = L(delta)[F_k + F_d] of the chosen law
+While a pair's gap delta is closed the contact force F = L(delta)[F_k + F_d] of its law
 (:mod:`flexbeam.contact.laws`) acts on the beam as the generalised force J^T F (Duan, Zhang & Hong 2013,
-Sec. 3.1).  The phase starts when delta crosses zero downwards and ends when it crosses zero upwards; both
-instants are located as events.  The damping reference velocity d'_0 of the hysteresis laws is the approach
-speed at the onset of each contact, and the linear law's effective mass 1/(J M^-1 J^T) is taken there too.
+Sec. 3.1); several pairs in contact add their forces.  A pair's contact starts when its delta crosses zero
+downwards and ends when it crosses zero upwards; both instants are located as events.  The damping reference
+velocity d'_0 of the hysteresis laws is the approach speed at the onset of each contact, and the linear law's
+effective mass 1/(J M^-1 J^T) is taken there too.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..phases import ContactMode, EventKind, Phase
-from .base import CONTACT_STEPS, ImpactMethod
+from ..phases import ContactMode, Phase
+from .base import ImpactMethod
 
 
 class CCFM(ImpactMethod):
@@ -20,20 +21,13 @@ class CCFM(ImpactMethod):
 
     name = "ccfm"
 
-    def contact_phase(self, t: float, y: np.ndarray) -> Phase:
-        ev = self.new_contact(t, y)
-        m_eff = self.system.effective_mass(t, y)
-        p = self.system.law.parameters(-ev.velocity_before, m_eff)
-        step = self.contact_time(-ev.velocity_before, m_eff, float(p[0]), float(p[1])) / CONTACT_STEPS
-        return Phase(
-            "contact",
-            ContactMode.FORCE,
-            (EventKind.SEPARATION,),
-            self.case.solver.contact_sample_step,
-            p,
-            ev,
-            max_step=step,
-        )
-
-    def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        return self.contact_phase(t, y), y
+    def on_impact(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int]) -> tuple[Phase, np.ndarray]:
+        modes, params, records = list(phase.modes), phase.parameters.copy(), list(phase.records)
+        for k in pairs:
+            ev = self.new_contact(t, y, k)
+            m_eff = self.system.effective_mass(t, y, k)
+            law = self.system.contact.pairs[k].law
+            params[k] = law.parameters(-ev.velocity_before, m_eff)
+            ev.time_scale = self.contact_time(-ev.velocity_before, m_eff, float(params[k][0]), float(params[k][1]))
+            modes[k], records[k] = ContactMode.FORCE, ev
+        return self.phase(modes, params, records), y

@@ -1,22 +1,22 @@
 """IMM: impulse-momentum method with a coefficient of restitution.
 
 Each impact is instantaneous: M (z'^+ - z'^-) = J^T P with J z'^+ = -e J z'^-, the coordinates unchanged
-(:func:`flexbeam.methods.impulse.impulse_jump`); no force history exists.  Every contact of the run is treated
-the same way.
+(:func:`flexbeam.methods.impulse.impulse_jump`; pairs impacting at the same instant share one impact LCP, Newton's
+restitution per pair); no force history exists.  Every contact of the run is treated the same way.
 
 Accumulating impacts (e < 1 with gravity pressing P onto the obstacle: a Zeno sequence whose impact speeds
 shrink geometrically) are ended deliberately: once an impact's rebound speed ``e |delta'^-|`` falls below
 ``solver.rest_velocity`` (always for e = 0: a plastic impact leaves P on the surface) the velocity is cancelled
-(e = 0) and P rests on the obstacle if the contact would push -- the contact is then
-held by the unilateral constraint of the CCM phase (phase "resting", the force is its multiplier) until that
-force would turn tensile, when free motion resumes.
+(e = 0) and P rests on the obstacle if the contact would push -- the contact is then held by the unilateral
+constraint of the CCM phase (phase "resting", the force is its multiplier) until that force would turn tensile,
+when free motion resumes.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..phases import Phase
+from ..phases import ContactMode, Phase
 from .base import ImpactMethod
 from .impulse import impulse_jump
 
@@ -25,14 +25,28 @@ class IMM(ImpactMethod):
     """Impulse-momentum method."""
 
     name = "imm"
+    held_name = "resting"
 
-    def on_impact(self, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        speed = -self.gap_event(t, y)[1]
-        resting = self.case.contact.restitution * speed < self.case.solver.rest_velocity
-        jump = impulse_jump(self.system, t, y, 0.0 if resting else self.case.contact.restitution)
-        ev = self.log_jump(t, jump)
-        if resting and self.holds(t, jump.y):
-            return self.constrained_phase(ev, name="resting"), jump.y
-        ev.end = t
-        ev.velocity_after = jump.velocity_after
-        return self.free_phase(), jump.y
+    def on_impact(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int]) -> tuple[Phase, np.ndarray]:
+        rest = self.case.solver.rest_velocity
+        e = np.array([self.system.contact.pairs[k].restitution for k in pairs])
+        speed = np.array([-self.gap_event(t, y, k)[1] for k in pairs])
+        resting = e * speed < rest
+        jump = impulse_jump(self.system, t, y, np.where(resting, 0.0, e), pairs)
+        events = self.log_jump(t, jump, pairs)
+        held_before = [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT]
+        candidates = [k for k, r in zip(pairs, resting) if r]
+        held = self.held_set(t, jump.y, [*held_before, *candidates], phase) if candidates or held_before else []
+        modes, records = list(phase.modes), list(phase.records)
+        for k, ev in zip(pairs, events):
+            if k in held:
+                modes[k], records[k] = ContactMode.CONSTRAINT, ev
+            else:
+                ev.end = t
+                ev.velocity_after = float(jump.velocities_after[pairs.index(k)])
+                modes[k], records[k] = ContactMode.NONE, None
+        for k in held_before:
+            if k not in held:
+                self.end_contact(phase, k, t, jump.y)
+                modes[k], records[k] = ContactMode.NONE, None
+        return self.phase(modes, phase.parameters, records), jump.y

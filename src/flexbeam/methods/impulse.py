@@ -1,17 +1,24 @@
-"""Impulse-momentum map of an instantaneous impact (IMM; Khulief & Shabana 1987).
+"""Impulse-momentum map of an instantaneous impact, at one contact pair or several at once (IMM; Khulief &
+Shabana 1987; several contacts: Pfeiffer & Glocker 1996, Ch. 7).
 
-With generalised mass M, contact Jacobian J (delta' = J z') and restitution e,
+With generalised mass M, the impacting pairs' Jacobians J (rows; delta' = J z'), their restitution e_i and the
+Delassus matrix W = J M^-1 J^T, the impulses P solve the linear complementarity problem
 
-    W = J M^-1 J^T,   P = -(1 + e) (J z'^-) / W,   z'^+ = z'^- + M^-1 J^T P,
+    v+ = v- + W P,    P >= 0,    v+_i + e_i v-_i >= 0,    P_i (v+_i + e_i v-_i) = 0,
 
-so that J z'^+ = -e J z'^- and the coordinates do not change.  The contact impulse
-does the work W_c = P (v^- + v^+)/2 = -(1 - e^2) (v^-)^2 / (2 W) <= 0.  When theta(t)
-is prescribed only the modal velocities jump (M and J restricted to the modal
-block) and the joint's impulsive torque does the rest of the kinetic-energy change.
+and z'^+ = z'^- + M^-1 J^T P; the coordinates do not change.  For one pair this is P = -(1 + e) v- / W, so that
+v+ = -e v-, and the impulse does the work W_c = -(1 - e^2) (v-)^2 / (2 W) <= 0.  For several pairs with one common
+e the impulses are (1 + e) times those of the plastic (e = 0) problem, whose map is a projection in the kinetic
+metric, so the energy never increases (Glocker's energetic consistency); with different e_i it can (a known limit
+of Newton's law at simultaneous impacts).  A pair that the solution leaves with v+_i > -e_i v-_i separates
+without impulse.  The LCP is solved by enumerating the active sets (at most 8 pairs).  When theta(t) is
+prescribed only the modal velocities jump (M and J restricted to the modal block) and the joint's impulsive torque
+does the rest of the kinetic-energy change.
 """
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,41 +28,82 @@ from ..model.system import BeamSystem
 
 @dataclass(frozen=True)
 class Jump:
-    """Result of an impulse-momentum step."""
+    """Result of an impulse-momentum step (arrays over the pairs given)."""
 
     y: np.ndarray  # state after the jump (bookkeeping integrals updated)
-    impulse: float  # P [N s]
-    velocity_before: float  # J z'^- [m/s]
-    velocity_after: float  # J z'^+ [m/s]
+    impulses: np.ndarray  # P_i [N s]
+    velocities_before: np.ndarray  # J z'^- [m/s]
+    velocities_after: np.ndarray  # J z'^+ [m/s]
     kinetic_before: float  # [J]
     kinetic_after: float  # [J]
 
+    @property
+    def impulse(self) -> float:
+        """The first pair's impulse [N s] (the only one for a single pair)."""
+        return float(self.impulses[0])
 
-def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution: float) -> Jump:
-    """Apply the impulse-momentum map with coefficient of restitution ``restitution``.
+    @property
+    def velocity_before(self) -> float:
+        return float(self.velocities_before[0])
 
-    The energy the impulse removes is added to the dissipated-energy integral and the
-    impulsive joint work (prescribed theta only) to the drive-work integral, so that
-    the total energy stays continuous across the jump.
+    @property
+    def velocity_after(self) -> float:
+        return float(self.velocities_after[0])
+
+
+def solve_impact_lcp(W: np.ndarray, v_minus: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """Impulses P >= 0 with v+ = v- + W P, v+ + e v- >= 0 and P (v+ + e v-) = 0 (see the module docstring).
+
+    The active set A (P_A > 0) solves W_AA P_A = -(1 + e_A) v-_A; the smallest consistent set is returned (for a
+    positive definite W the solution is unique).
     """
+    s = v_minus.size
+    target = -(1.0 + e) * v_minus  # W P must reach this on the active set
+    scale = max(float(np.max(np.abs(target), initial=0.0)), 1e-300)
+    for size in range(s + 1):
+        for active in itertools.combinations(range(s), size):
+            idx = list(active)
+            P = np.zeros(s)
+            if idx:
+                try:
+                    P[idx] = np.linalg.solve(W[np.ix_(idx, idx)], target[idx])
+                except np.linalg.LinAlgError:
+                    continue
+                if np.any(P[idx] < 0.0):
+                    continue
+            slack = W @ P - target  # = v+ + e v-
+            if np.all(slack >= -1e-12 * scale):
+                return P
+    raise ValueError("no solution of the impact LCP (W not positive definite?)")
+
+
+def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs=(0,)) -> Jump:
+    """Apply the impulse-momentum map at the given contact ``pairs`` with their coefficients of ``restitution``
+    (one number for all, or one per pair).
+
+    The energy the impulses remove is added to the dissipated-energy integral and the impulsive joint work
+    (prescribed theta only) to the drive-work integral, so that the total energy stays continuous across the jump.
+    """
+    pairs = list(pairs)
+    e = np.broadcast_to(np.asarray(restitution, float), (len(pairs),)).copy()
     M = system.mass_matrix(t, y)
-    J = system.gap(t, y)[3]
+    J = np.array([system.gap(t, y, k)[3] for k in pairs])
     zd = system.velocities(t, y)
-    v_minus = float(J @ zd)
+    v_minus = J @ zd
     free = slice(1, None) if system.prescribed else slice(None)
-    Mr, Jr = M[free, free], J[free]
+    Mr, Jr = M[free, free], J[:, free]
     T_minus = system.energies(t, y)["kinetic"]
-    if Jr.size == 0:
-        return Jump(y.copy(), 0.0, v_minus, v_minus, T_minus, T_minus)
-    MinvJ = np.linalg.solve(Mr, Jr)
-    W = float(Jr @ MinvJ)
-    P = -(1.0 + restitution) * v_minus / W
+    if Jr.shape[1] == 0:
+        return Jump(y.copy(), np.zeros(len(pairs)), v_minus, v_minus, T_minus, T_minus)
+    MinvJ = np.linalg.solve(Mr, Jr.T)
+    W = Jr @ MinvJ
+    P = solve_impact_lcp(W, v_minus, e)
     zd_plus = zd.copy()
-    zd_plus[free] += MinvJ * P
+    zd_plus[free] += MinvJ @ P
     y_plus = system.with_velocities(t, y, zd_plus)
-    v_plus = float(J @ zd_plus)
+    v_plus = J @ zd_plus
     T_plus = system.energies(t, y_plus)["kinetic"]
-    work_contact = 0.5 * P * (v_minus + v_plus)
+    work_contact = float(0.5 * P @ (v_minus + v_plus))
     y_plus[-2] += -work_contact
     y_plus[-1] += (T_plus - T_minus) - work_contact
     return Jump(y_plus, P, v_minus, v_plus, T_minus, T_plus)

@@ -22,15 +22,13 @@ from functools import cached_property
 import numpy as np
 
 from ..contact.setup import ContactSetup
-from ..kernels import OUTPUT_COLUMNS, core, pack_model
+from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS, core, pack_contacts, pack_model
 from ..parameters.case import Case
-from ..phases import ContactMode
 from .beam import ModalBeam, PointData, build_modal_beam
 from .drive import JointDrive
 
 #: columns of :meth:`BeamSystem.outputs` that exist only for a compliant obstacle support
 SUPPORT_COLUMNS = ("support_displacement", "sensor_force")
-_NO_PARAMETERS = np.zeros(4)
 
 
 @dataclass
@@ -46,22 +44,50 @@ class BeamSystem:
     contact: ContactSetup
     point: PointData
     measuring: list[PointData] = field(default_factory=list)
+    pair_points: list[PointData] = field(default_factory=list)
 
     @classmethod
     def from_case(cls, case: Case, contact: ContactSetup | None = None) -> BeamSystem:
-        """Modal matrices of the case's frame, the contact point and the drive."""
+        """Modal matrices of the case's frame, the contact points and the drive."""
         beam = build_modal_beam(case)
         contact = contact or ContactSetup.from_case(case)
         P = beam.point(contact.position, offset=contact.offset)
         drive = JointDrive(case.drive, theta0=_initial_angle_guess(case))
         measuring = [beam.point(x, 0.0) for x in case.output.measuring_points]
-        return cls(case, beam, drive, contact, P, measuring)
+        others = [beam.point(p.position, offset=p.offset) for p in contact.pairs[1:]]
+        return cls(case, beam, drive, contact, P, measuring, others)
 
     @cached_property
     def kernel(self) -> np.ndarray:
-        """The packed model buffer of the compiled kernels (points: P, tip, measuring points)."""
-        points = [self.point, self.beam.point(self.beam.length), *self.measuring]
-        return pack_model(self.beam, self.case.drive, self.drive.theta0, self.g, points, [self.contact.obstacle])
+        """The packed model buffer of the compiled kernels (points: P, tip, measuring points, the other pairs'
+        contact points)."""
+        points = [self.point, self.beam.point(self.beam.length), *self.measuring, *self.pair_points]
+        pairs = [(self.pair_point(k), p.obstacle) for k, p in enumerate(self.contact.pairs)]
+        return pack_model(
+            self.beam, self.case.drive, self.drive.theta0, self.g, points, list(self.contact.obstacles), pairs
+        )
+
+    @property
+    def pairs(self) -> int:
+        """Number of contact pairs."""
+        return len(self.contact.pairs)
+
+    def pair_point(self, pair: int) -> int:
+        """Index (for :meth:`point_state`) of a pair's contact point."""
+        return 0 if pair == 0 else 2 + len(self.measuring) + pair - 1
+
+    @cached_property
+    def free_contacts(self) -> np.ndarray:
+        """The contacts buffer with every pair free."""
+        return self.contacts()
+
+    def contacts(self, modes=None, parameters=None, alpha: float = 0.0, beta: float = 0.0) -> np.ndarray:
+        """The kernels' contacts buffer: per pair its :class:`~flexbeam.phases.ContactMode` (default: free) and
+        law parameters [K, n, chi/d'_0, C] (rows), and the constraints' Baumgarte alpha and beta."""
+        S = self.pairs
+        modes = [0] * S if modes is None else [int(m) for m in modes]
+        parameters = np.zeros((S, 4)) if parameters is None else parameters
+        return pack_contacts(modes, parameters, alpha, beta)
 
     @property
     def n(self) -> int:
@@ -141,47 +167,38 @@ class BeamSystem:
         return y
 
     # ----------------------------------------------------------- equations
-    def rhs(self, t: float, y: np.ndarray, mode: int = ContactMode.NONE, p: np.ndarray | None = None):
-        """(dy/dt, contact force, joint torque) in contact ``mode`` with parameters ``p``.
-
-        ``mode``: :class:`~flexbeam.phases.ContactMode`: no contact; CCFM, the law force F(d, d') of
-        ``p = [K, n, chi/d'_0, C]`` acting as J^T F; CCM, the unilateral constraint held closed by its
-        multiplier with Baumgarte stabilisation ``p = [alpha, beta, 0, 0]``.
-        """
-        dy = np.empty(self.size)
-        F, torque = core.rhs(
+    def rhs(self, t: float, y: np.ndarray, contacts: np.ndarray | None = None):
+        """(dy/dt, the pairs' contact forces, joint torque) with the ``contacts`` buffer (:meth:`contacts`; default:
+        every pair free): a pair under its law contributes J^T F(d, d'), a held pair its multiplier of the
+        unilateral constraint with Baumgarte stabilisation."""
+        dy, F = np.empty(self.size), np.empty(self.pairs)
+        torque = core.rhs(
             self.kernel,
             float(t),
             np.ascontiguousarray(y, float),
-            int(mode),
-            _NO_PARAMETERS if p is None else np.ascontiguousarray(p, float),
+            self.free_contacts if contacts is None else contacts,
             dy,
+            F,
         )
         return dy, F, torque
 
-    def rhs_function(self, mode: int = ContactMode.NONE, p: np.ndarray | None = None):
+    def rhs_function(self, contacts: np.ndarray | None = None):
         """A fast ``fun(t, y)`` for scipy's solvers (arrays bound once)."""
         kernel, size, rhs = self.kernel, self.size, core.rhs
-        p = _NO_PARAMETERS if p is None else np.ascontiguousarray(p, float)
-        mode = int(mode)
+        contacts = self.free_contacts if contacts is None else contacts
+        F = np.empty(self.pairs)
 
         def fun(t: float, y: np.ndarray) -> np.ndarray:
             dy = np.empty(size)
-            rhs(
-                kernel,
-                t,
-                y if y.flags.c_contiguous and y.dtype == float else np.ascontiguousarray(y, float),
-                mode,
-                p,
-                dy,
-            )
+            rhs(kernel, t, y if y.flags.c_contiguous and y.dtype == float else np.ascontiguousarray(y, float),
+                contacts, dy, F)  # fmt: skip
             return dy
 
         return fun
 
-    def joint_torque(self, t: float, y: np.ndarray, mode: int = ContactMode.NONE, p: np.ndarray | None = None) -> float:
+    def joint_torque(self, t: float, y: np.ndarray, contacts: np.ndarray | None = None) -> float:
         """Joint torque: applied tau (free/torque) or the reaction needed for theta(t)."""
-        return float(self.rhs(t, y, mode, p)[2])
+        return float(self.rhs(t, y, contacts)[2])
 
     def _equations(self, t: float, y: np.ndarray):
         N = self.n + 1
@@ -206,18 +223,19 @@ class BeamSystem:
 
     # ---------------------------------------------------------- kinematics
     def point_state(self, t: float, y: np.ndarray, index: int = 0):
-        """(r, v, a0, dr/dz) of point ``index`` (0: P, 1: tip, 2..: measuring points); a0 = acceleration at z''=0."""
+        """(r, v, a0, dr/dz) of point ``index`` (0: P, 1: tip, 2..: measuring points, then the other pairs'
+        contact points); a0 = acceleration at z''=0."""
         out = np.empty(6 + 2 * (self.n + 1))
         core.kinematics(self.kernel, int(index), float(t), np.ascontiguousarray(y, float), out)
         return out[0:2], out[2:4], out[4:6], out[6:].reshape(2, self.n + 1)
 
-    def gap(self, t: float, y: np.ndarray) -> tuple[float, float, float, np.ndarray]:
-        """(delta, delta', gamma, J): gap, its rate, J' z' and the Jacobian d delta/dz.
+    def gap(self, t: float, y: np.ndarray, pair: int = 0) -> tuple[float, float, float, np.ndarray]:
+        """(delta, delta', gamma, J) of contact pair ``pair``: gap, its rate, J' z' and the Jacobian d delta/dz.
 
-        For a compliant support z includes s and J ends with d delta/d s.
+        For a compliant support z includes s and J ends with d delta/d s (zero for a pair on another obstacle).
         """
         J = np.empty(self.n + 1 + (1 if self.compliant else 0))
-        delta, rate, gamma, _, _ = core.gap(self.kernel, float(t), np.ascontiguousarray(y, float), J)
+        delta, rate, gamma, _, _ = core.gap(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J)
         return delta, rate, gamma, J
 
     def sensor_force(self, y: np.ndarray) -> float:
@@ -226,15 +244,20 @@ class BeamSystem:
         sup = self.contact.obstacle.support
         return -(sup[1] * s + sup[2] * sd)
 
-    def effective_mass(self, t: float, y: np.ndarray) -> float:
-        """Effective mass at P along the contact normal, 1/(J M^-1 J^T) [kg]."""
-        J = self.gap(t, y)[3]
+    def effective_mass(self, t: float, y: np.ndarray, pair: int = 0) -> float:
+        """Effective mass at a pair's contact point along its normal, 1/(J M^-1 J^T) [kg]."""
+        W = self.delassus(t, y, [pair])
+        return math.inf if W[0, 0] <= 0.0 else float(1.0 / W[0, 0])
+
+    def delassus(self, t: float, y: np.ndarray, pairs) -> np.ndarray:
+        """The Delassus matrix W = J M^-1 J^T of the given pairs (rows of J: their gap Jacobians) [1/kg]."""
+        J = np.array([self.gap(t, y, k)[3] for k in pairs])
         M = self.mass_matrix(t, y)
         if self.prescribed:
-            J, M = J[1:], M[1:, 1:]
-            if J.size == 0:
-                return math.inf
-        return float(1.0 / (J @ np.linalg.solve(M, J)))
+            J, M = J[:, 1:], M[1:, 1:]
+            if J.shape[1] == 0:
+                return np.zeros((len(pairs), len(pairs)))
+        return J @ np.linalg.solve(M, J.T)
 
     # ------------------------------------------------------------- energies
     def energies(self, t: float, y: np.ndarray) -> dict[str, float]:
@@ -254,27 +277,30 @@ class BeamSystem:
         }
 
     def outputs(
-        self, times: np.ndarray, states: np.ndarray, mode: int = ContactMode.NONE, p: np.ndarray | None = None
-    ) -> tuple[dict[str, np.ndarray], np.ndarray]:
-        """Output columns (:data:`~flexbeam.kernels.OUTPUT_COLUMNS`) and measuring-point normal velocities.
+        self, times: np.ndarray, states: np.ndarray, contacts: np.ndarray | None = None
+    ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
+        """Output columns (:data:`~flexbeam.kernels.OUTPUT_COLUMNS`), measuring-point normal velocities and the
+        pairs' columns (samples x pairs x :data:`~flexbeam.kernels.PAIR_COLUMNS`).
 
         ``theta``/``theta_rate`` are the hub angle and rate; ``tip_deflection`` is the tip's distance from the
-        hub's radial line; the measuring points' velocities are normal to that line.
+        hub's radial line; the measuring points' velocities are normal to that line; ``gap``, ``normal_velocity``
+        and ``contact_force`` are the first pair's.
         """
         times = np.ascontiguousarray(times, float)
         m = times.size
         cols = np.empty((m, len(OUTPUT_COLUMNS)))
         mv = np.empty((m, len(self.measuring)))
+        pc = np.empty((m, self.pairs, len(PAIR_COLUMNS)))
         core.outputs(
             self.kernel,
             times,
             np.ascontiguousarray(states, float).reshape(m, self.size),
-            int(mode),
-            _NO_PARAMETERS if p is None else np.ascontiguousarray(p, float),
+            self.free_contacts if contacts is None else contacts,
             cols,
             mv,
+            pc,
         )
-        return {name: cols[:, i] for i, name in enumerate(OUTPUT_COLUMNS)}, mv
+        return {name: cols[:, i] for i, name in enumerate(OUTPUT_COLUMNS)}, mv, pc
 
     # ----------------------------------------------------------- initial state
     def state(self, theta: float, omega: float, q=None, qd=None) -> np.ndarray:

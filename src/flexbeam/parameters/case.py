@@ -242,14 +242,52 @@ class Obstacle(_Section):
         return self
 
 
+SIDES = {"below": 1.0, "above": -1.0, "centre": 0.0}  # the contact point's offset from the centre line, in c
+
+
 class Contact(_Section):
-    """Contact point P on the beam and the continuous contact force law (CCFM)."""
+    """Contact point P on the beam and the continuous contact force law (CCFM).
+
+    ``side``: the surface P lies on -- ``"below"`` (the side the hub's normal e2 points away from, where the
+    obstacle of a falling beam is), ``"above"``, or ``"centre"`` (the centre line, e.g. the middle of the tip's
+    end face).
+    """
 
     law: Literal[LAW_NAMES] = Field("lankarani_nikravesh", description="contact force law")
     position: NonNegative = Field(description="material coordinate x_P of the contact point [m]")
+    side: Literal["below", "above", "centre"] = Field("below", description="the beam surface P lies on")
     stiffness: Positive | None = Field(None, description="contact stiffness K [N/m^n] (omitted = Hertz theory)")
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = Field(1.5, description="force exponent n (1.5 = Hertz)")
     restitution: Annotated[float, Field(ge=0.0, le=1.0)] = Field(0.8, description="coefficient of restitution e [-]")
+
+
+class PairContact(_Section):
+    """Where the beam touches an additional obstacle, and the law of that pair; an omitted field takes the
+    ``[contact]`` section's value (``stiffness`` omitted and no ``[contact]`` stiffness: Hertz theory for this
+    obstacle's sphere on the beam's cylinder)."""
+
+    position: NonNegative | None = Field(None, description="material coordinate of the contact point [m]")
+    side: Literal["below", "above", "centre"] | None = Field(None, description="the beam surface it lies on")
+    law: Literal[LAW_NAMES] | None = Field(None, description="contact force law")
+    stiffness: Positive | None = Field(None, description="contact stiffness K [N/m^n]")
+    exponent: Annotated[float, Field(ge=1.0, le=3.0)] | None = Field(None, description="force exponent n")
+    restitution: Annotated[float, Field(ge=0.0, le=1.0)] | None = Field(
+        None, description="coefficient of restitution e [-]"
+    )
+
+
+class ExtraObstacle(Obstacle):
+    """One more obstacle (``[[obstacles]]``), rigidly held, with its ``centre`` given and the contact pair
+    ``[obstacles.contact]`` through which the beam can touch it."""
+
+    centre: tuple[Finite, Finite] = Field(description="obstacle centre (sphere) or a point of the plane [m]")
+    contact: PairContact = Field(default_factory=PairContact)
+
+    @model_validator(mode="after")
+    def _rigid(self) -> ExtraObstacle:
+        if self.support.compliant:
+            raise ValueError("obstacles.support: only [obstacle] may stand on a compliant support")
+        return self
 
 
 class Initial(_Section):
@@ -346,6 +384,9 @@ class Case(_Section):
     model: Model = Field(default_factory=Model)
     drive: Drive = Field(default_factory=Drive)
     obstacle: Obstacle = Field(default_factory=Obstacle)
+    obstacles: list[ExtraObstacle] = Field(
+        default_factory=list, description="more obstacles, each with its own contact pair (at most 7)"
+    )
     contact: Contact
     initial: Initial = Field(default_factory=Initial)
     solver: Solver = Field(default_factory=Solver)
@@ -385,4 +426,25 @@ class Case(_Section):
                 f"contact.restitution: must be in (0, 1] for contact.law = "
                 f"'{self.contact.law}' (its damping is infinite at e = 0)"
             )
+        if len(self.obstacles) > 7:
+            raise ValueError(f"obstacles: at most 7 more obstacles (got {len(self.obstacles)})")
+        for i, ob in enumerate(self.obstacles):
+            pc = ob.contact
+            x = self.contact.position if pc.position is None else pc.position
+            if not x <= L:
+                raise ValueError(
+                    f"obstacles[{i}].contact.position: must lie on the beam, 0 <= x <= {L:g} m (got {x:g})"
+                )
+            law = pc.law or self.contact.law
+            e = self.contact.restitution if pc.restitution is None else pc.restitution
+            if law in NEEDS_RESTITUTION and e == 0.0:
+                raise ValueError(
+                    f"obstacles[{i}].contact.restitution: must be in (0, 1] for law '{law}' (its damping is "
+                    f"infinite at e = 0)"
+                )
+            if ob.kind == "half-plane" and pc.stiffness is None and self.contact.stiffness is None:
+                raise ValueError(
+                    f"obstacles[{i}].contact.stiffness: required for a half-plane obstacle (a cylinder on a plane "
+                    f"is a line contact, not a Hertzian point contact)"
+                )
         return self

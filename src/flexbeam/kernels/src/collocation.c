@@ -6,8 +6,9 @@
  *   M0 M^-1 x = x - c e0 (row0 . x),  c = ds / (1 + ds (M0^-1)_00),  row0 = e0^T M0^-1.
  * In modal coordinates z = Psi eta: eta'' + diag(w^2) eta = f = Psi^T R (exact propagation, propagation.c)
  * with f the interpolant of its values at the FB_P Gauss nodes, found by fixed-point iteration; the contact
- * force (CCFM) or multiplier (CCM) at the nodes is solved inside each sweep by Newton's method with its exact
- * linear modal response, so a stiff contact needs no small step.  With theta(t) prescribed, z = q and
+ * forces (CCFM) or multipliers (CCM) of the pairs in contact at the nodes are solved inside each sweep by Newton's
+ * method with their exact linear modal response (pairs and nodes together), so a stiff contact needs no small
+ * step.  With theta(t) prescribed, z = q and
  * M = M_qq is constant: R = Q_q - m_tq theta'' + K q.  A compliant support is one more mode sqrt(m_s) s.
  */
 #include <string.h>
@@ -26,12 +27,31 @@
 #define MULTIPLIER_RTOL 100.0
 #define MULTIPLIER_NOISE 1e-7
 
-void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double *v, int want_gap, fb_node *out) {
-    fb_eval_node_acc(ph, t, eta, v, want_gap, 0, out);
+void fb_phase_init(fb_phase *ph, const fb_model *m, const fb_basis *b, const fb_contacts *c, double rtol,
+                   double atol, double omega_rigid) {
+    ph->m = m;
+    ph->b = b;
+    ph->c = *c;
+    ph->contact = ph->force = ph->held = 0;
+    for (int k = 0; k < c->npairs; k++) {
+        ph->force |= c->mode[k] == FB_MODE_FORCE;
+        ph->held |= c->mode[k] == FB_MODE_CONSTRAINT;
+    }
+    ph->contact = ph->force || ph->held;
+    ph->rtol = rtol;
+    ph->atol = atol;
+    ph->omega_rigid = omega_rigid;
+    ph->row0_q = 0;
+    for (int i = 1; i < b->nz && !m->prescribed; i++)
+        if (b->row0[i] != 0.0) ph->row0_q = 1;
 }
 
-/* As fb_eval_node; ``want_acc``: also the gap's velocity-product acceleration gamma (an n x n product more). */
-void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const double *v, int want_gap, int want_acc,
+void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double *v, int want, fb_node *out) {
+    fb_eval_node_acc(ph, t, eta, v, want, 0, out);
+}
+
+/* As fb_eval_node; ``want_acc``: also the gaps' velocity-product accelerations gamma (an n x n product more each). */
+void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const double *v, int want, int want_acc,
                       fb_node *out) {
     const fb_model *m = ph->m;
     const fb_basis *b = ph->b;
@@ -71,46 +91,41 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
         for (int i = 0; i < nz; i++) R[i] = Q[i];
         R[0] -= c * r0;
     }
-    const fb_obstacle *o = m->nobstacles ? &m->obstacles[0] : NULL;
     double s = 0.0, sd = 0.0;
     if (compliant) {
+        const fb_obstacle *o = &m->obstacles[0];
         s = z[N - 1];
         sd = zd[N - 1];
         R[N - 1] = -o->cs * sd; /* the support's dashpot (its spring is in the linear part) */
     }
     fb_project(b, R, out->smooth);
-    out->delta = out->rate = out->gamma = 0.0;
-    out->gap.delta = INFINITY;
-    if (!want_gap || !o) return;
-    double dr[2 * FB_MAXN], J[FB_MAXN], Jx[FB_MAXN];
-    fb_kin k = {.want_acc = want_acc};
-    fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &k, dr);
-    fb_gap gp = fb_gap_state(o, &k, dr, n + 1, s, sd, J);
-    out->gap = gp;
-    out->delta = gp.delta;
-    out->rate = gp.rate;
-    out->gamma = gp.gamma;
-    /* J in the integrator's coordinates: [theta, q] or q, then the support */
-    for (int i = 0; i < nz; i++) Jx[i] = J[i + (pre ? 1 : 0)];
-    if (compliant) Jx[N - 1] = gp.Js;
-    fb_project(b, Jx, out->jm);
-    if (!pre && c != 0.0) {
-        double r0 = 0.0;
-        for (int i = 0; i < nz; i++) r0 += b->row0[i] * Jx[i];
-        Jx[0] -= c * r0;
-        fb_project(b, Jx, out->b);
-    } else {
-        memcpy(out->b, out->jm, sizeof(double) * N);
+    if (want == FB_WANT_NONE) return;
+    for (int k = 0; k < m->npairs; k++) {
+        int active = ph->c.mode[k] != FB_MODE_NONE, jac = active || want == FB_WANT_JM;
+        double J[FB_MAXN], Jx[FB_MAXN];
+        out->gap[k] = fb_pair_gap(m, k, th, thd, q, qd, s, sd, want_acc, jac ? J : NULL);
+        if (!jac) continue;
+        /* J in the integrator's coordinates: [theta, q] or q, then the support */
+        for (int i = 0; i < nz; i++) Jx[i] = J[i + (pre ? 1 : 0)];
+        if (compliant) Jx[N - 1] = out->gap[k].Js;
+        fb_project(b, Jx, out->jm[k]);
+        if (!active) continue;
+        if (!pre && c != 0.0) {
+            double r0 = 0.0;
+            for (int i = 0; i < nz; i++) r0 += b->row0[i] * Jx[i];
+            Jx[0] -= c * r0;
+            fb_project(b, Jx, out->b[k]);
+        } else {
+            memcpy(out->b[k], out->jm[k], sizeof(double) * N);
+        }
     }
 }
 
-/* The gap at a modal state (the point kinematics alone, no forces); no obstacle: an infinite gap. */
-fb_gap fb_gap_at(const fb_phase *ph, double t, const double *eta, const double *v) {
+/* The gap of pair ``pair`` at a modal state (the point kinematics alone, no forces). */
+fb_gap fb_gap_at(const fb_phase *ph, int pair, double t, const double *eta, const double *v) {
     const fb_model *m = ph->m;
     const fb_basis *b = ph->b;
-    int n = m->n, N = b->N, pre = m->prescribed, compliant = fb_compliant(m);
-    fb_gap none = {INFINITY, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    if (!m->nobstacles) return none;
+    int N = b->N, pre = m->prescribed, compliant = fb_compliant(m);
     double z[FB_MAXN], zd[FB_MAXN], th, thd, thdd;
     fb_to_physical(b, eta, z);
     fb_to_physical(b, v, zd);
@@ -121,10 +136,7 @@ fb_gap fb_gap_at(const fb_phase *ph, double t, const double *eta, const double *
         th = z[0];
         thd = zd[0];
     }
-    fb_kin k = {.want_acc = 0};
-    fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &k, NULL);
-    return fb_gap_state(&m->obstacles[0], &k, NULL, n + 1, compliant ? z[N - 1] : 0.0, compliant ? zd[N - 1] : 0.0,
-                        NULL);
+    return fb_pair_gap(m, pair, th, thd, q, qd, compliant ? z[N - 1] : 0.0, compliant ? zd[N - 1] : 0.0, 0, NULL);
 }
 
 static void ensure_weights(const fb_phase *ph, fb_work *w, double h) {
@@ -139,72 +151,108 @@ static void ensure_weights(const fb_phase *ph, fb_work *w, double h) {
     w->h = h;
 }
 
-/* The modal response at node i to the nodal values of a scalar force F_j along the directions b_j, seen through
- * jm_i: A[i][j] (gap) and B[i][j] (gap rate). */
-static void contact_response(const fb_phase *ph, const fb_work *w, double A[FB_P][FB_P], double B[FB_P][FB_P]) {
-    int N = ph->b->N;
-    for (int i = 0; i < FB_P; i++)
-        for (int j = 0; j < FB_P; j++) {
-            double a = 0.0, bb = 0.0;
-            const double *jm = w->node[i].jm, *bj = w->node[j].b;
-            for (int k = 0; k < N; k++) {
-                double x = jm[k] * bj[k];
-                a += x * w->W[k][i].RE[j];
-                bb += x * w->W[k][i].RV[j];
+/* The contact unknowns of a step: (pair, node) for the pairs in contact, pair-major. */
+typedef struct {
+    int count, pair[FB_MAX_PAIRS * FB_P], node[FB_MAX_PAIRS * FB_P];
+} unknowns;
+
+static void list_unknowns(const fb_phase *ph, unknowns *u) {
+    u->count = 0;
+    for (int k = 0; k < ph->c.npairs; k++)
+        if (ph->c.mode[k] != FB_MODE_NONE)
+            for (int i = 0; i < FB_P; i++) {
+                u->pair[u->count] = k;
+                u->node[u->count++] = i;
             }
-            A[i][j] = a;
-            B[i][j] = bb;
-        }
 }
 
-/* CCFM: Newton's method on F_i = law(-delta_i(F), -rate_i(F)) with delta and its rate linear in F. */
-static void solve_law(const fb_phase *ph, fb_work *w, double A[FB_P][FB_P], double B[FB_P][FB_P]) {
-    double F0[FB_P], F[FB_P], d0[FB_P], r0[FB_P];
-    for (int i = 0; i < FB_P; i++) {
-        F0[i] = F[i] = w->F[i];
-        d0[i] = w->node[i].delta;
-        r0[i] = w->node[i].rate;
+#define MAXU (FB_MAX_PAIRS * FB_P)
+
+/* The modal response of unknown a's gap (pair k at node i, seen through jm_k at node i) to unknown b's force (pair l
+ * at node j, along b_l at node j): A[a][b] (gap) and B[a][b] (gap rate). */
+static void contact_response(const fb_phase *ph, const fb_work *w, const unknowns *u, double *A, double *B) {
+    int N = ph->b->N, U = u->count;
+    for (int a = 0; a < U; a++) {
+        int k = u->pair[a], i = u->node[a];
+        const double *jm = w->node[i].jm[k];
+        for (int c = 0; c < U; c++) {
+            int l = u->pair[c], j = u->node[c];
+            const double *bj = w->node[j].b[l];
+            double sa = 0.0, sb = 0.0;
+            for (int q = 0; q < N; q++) {
+                double x = jm[q] * bj[q];
+                sa += x * w->W[q][i].RE[j];
+                sb += x * w->W[q][i].RV[j];
+            }
+            A[a * U + c] = sa;
+            B[a * U + c] = sb;
+        }
+    }
+}
+
+/* The contact unknowns, each gap and rate linear in them through (A, B): a FORCE pair's F = law(-delta(F),
+ * -rate(F)) and a CONSTRAINT pair's multiplier keeping g = delta' + kappa delta on g(t0) exp(-kappa (t - t0)) at
+ * the nodes, by Newton's method (one linear solve when no pair is under a law). */
+static void solve_contacts(const fb_phase *ph, fb_work *w, const unknowns *u, const double *A, const double *B,
+                           double h, const double *g0) {
+    const fb_tables *tb = fb_gauss();
+    int U = u->count;
+    double kappa = ph->c.alpha, F0[MAXU], F[MAXU], d0[MAXU], r0[MAXU];
+    for (int a = 0; a < U; a++) {
+        int k = u->pair[a], i = u->node[a];
+        F0[a] = F[a] = w->F[k][i];
+        d0[a] = w->node[i].gap[k].delta;
+        r0[a] = w->node[i].gap[k].rate;
+    }
+    if (!ph->force) { /* only constraints: linear, M F = target - g(F0) + M F0 in one solve */
+        double M[MAXU * MAXU], rhs[MAXU];
+        for (int a = 0; a < U; a++) {
+            int k = u->pair[a], i = u->node[a];
+            rhs[a] = g0[k] * exp(-kappa * tb->c[i] * h) - (r0[a] + kappa * d0[a]);
+            for (int c = 0; c < U; c++) {
+                M[a * U + c] = B[a * U + c] + kappa * A[a * U + c];
+                rhs[a] += M[a * U + c] * F0[c];
+            }
+            w->Fk[k][i] = 0.0;
+        }
+        if (fb_solve(M, rhs, U) == 0)
+            for (int a = 0; a < U; a++) w->F[u->pair[a]][u->node[a]] = rhs[a];
+        return;
     }
     for (int it = 0; it < NEWTON_MAX; it++) {
-        double Jac[FB_P * FB_P], res[FB_P], big = 0.0, step = 0.0;
-        for (int i = 0; i < FB_P; i++) {
-            double d = d0[i], r = r0[i];
-            for (int j = 0; j < FB_P; j++) {
-                d += A[i][j] * (F[j] - F0[j]);
-                r += B[i][j] * (F[j] - F0[j]);
+        double Jac[MAXU * MAXU], res[MAXU], big = 0.0, step = 0.0;
+        for (int a = 0; a < U; a++) {
+            int k = u->pair[a], i = u->node[a];
+            double d = d0[a], r = r0[a];
+            for (int c = 0; c < U; c++) {
+                d += A[a * U + c] * (F[c] - F0[c]);
+                r += B[a * U + c] * (F[c] - F0[c]);
             }
-            double gd, gr, fk;
-            double law = fb_law_force(ph->p, -d, -r, &fk, &gd, &gr);
-            w->Fk[i] = fk;
-            res[i] = -(F[i] - law);
-            for (int j = 0; j < FB_P; j++) Jac[i * FB_P + j] = (i == j ? 1.0 : 0.0) + gd * A[i][j] + gr * B[i][j];
-            big = fmax(big, fabs(law));
+            if (ph->c.mode[k] == FB_MODE_FORCE) {
+                double gd, gr, fk;
+                double law = fb_law_force(ph->c.p[k], -d, -r, &fk, &gd, &gr);
+                w->Fk[k][i] = fk;
+                res[a] = -(F[a] - law);
+                for (int c = 0; c < U; c++)
+                    Jac[a * U + c] = (a == c ? 1.0 : 0.0) + gd * A[a * U + c] + gr * B[a * U + c];
+                big = fmax(big, fabs(law));
+            } else {
+                res[a] = g0[k] * exp(-kappa * tb->c[i] * h) - (r + kappa * d);
+                for (int c = 0; c < U; c++) Jac[a * U + c] = B[a * U + c] + kappa * A[a * U + c];
+                w->Fk[k][i] = 0.0;
+            }
         }
-        if (fb_solve(Jac, res, FB_P)) break;
-        for (int i = 0; i < FB_P; i++) {
-            F[i] += res[i];
-            step = fmax(step, fabs(res[i]));
+        if (fb_solve(Jac, res, U)) break;
+        for (int a = 0; a < U; a++) {
+            F[a] += res[a];
+            step = fmax(step, fabs(res[a]));
         }
         if (step <= 1e-13 * big || big == 0.0) break;
     }
-    for (int i = 0; i < FB_P; i++) w->F[i] = F[i] > 0.0 ? F[i] : 0.0;
-}
-
-/* CCM: the multiplier keeping g = delta' + kappa delta on g(t0) exp(-kappa (t - t0)) at the nodes (linear). */
-static void solve_constraint(const fb_phase *ph, fb_work *w, double A[FB_P][FB_P], double B[FB_P][FB_P], double h,
-                             double g0) {
-    const fb_tables *tb = fb_gauss();
-    double kappa = ph->p[0], M[FB_P * FB_P], rhs[FB_P];
-    for (int i = 0; i < FB_P; i++) {
-        double g = w->node[i].rate + kappa * w->node[i].delta, target = g0 * exp(-kappa * tb->c[i] * h);
-        rhs[i] = target - g;
-        for (int j = 0; j < FB_P; j++) {
-            M[i * FB_P + j] = B[i][j] + kappa * A[i][j];
-            rhs[i] += M[i * FB_P + j] * w->F[j];
-        }
+    for (int a = 0; a < U; a++) {
+        int k = u->pair[a];
+        w->F[k][u->node[a]] = ph->c.mode[k] == FB_MODE_FORCE && F[a] < 0.0 ? 0.0 : F[a];
     }
-    if (fb_solve(M, rhs, FB_P) == 0)
-        for (int i = 0; i < FB_P; i++) w->F[i] = rhs[i];
 }
 
 /* One step from (eta0, v0) over [t0, t0 + h].  f (FB_P x N) holds the guess of the nodal forcing and returns the
@@ -212,13 +260,16 @@ static void solve_constraint(const fb_phase *ph, fb_work *w, double A[FB_P][FB_P
 int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const double *eta0, const double *v0,
                  double *f, fb_step *out) {
     const fb_tables *tb = fb_gauss();
-    int N = ph->b->N, contact = ph->mode != FB_MODE_NONE;
+    int N = ph->b->N, S = ph->c.npairs;
     ensure_weights(ph, w, h);
-    double g0 = 0.0;
-    if (ph->mode == FB_MODE_CONSTRAINT) {
-        fb_gap gp = fb_gap_at(ph, t0, eta0, v0);
-        g0 = gp.rate + ph->p[0] * gp.delta;
-    }
+    double g0[FB_MAX_PAIRS];
+    for (int k = 0; k < S; k++)
+        if (ph->c.mode[k] == FB_MODE_CONSTRAINT) {
+            fb_gap gp = fb_gap_at(ph, k, t0, eta0, v0);
+            g0[k] = gp.rate + ph->c.alpha * gp.delta;
+        }
+    unknowns u;
+    list_unknowns(ph, &u);
     double tol = fb_tolerance(ph, eta0, v0, eta0, v0), prev = INFINITY;
     out->converged = 0;
     for (int it = 0; it < ITER_MAX; it++) {
@@ -226,22 +277,21 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
         for (int i = 0; i < FB_P; i++) {
             double eta[FB_MAXN], v[FB_MAXN];
             fb_propagate(ph->b, &w->W[0][i], FB_NPTS, eta0, v0, f, eta, v);
-            fb_eval_node(ph, t0 + tb->c[i] * h, eta, v, contact, &w->node[i]);
+            fb_eval_node(ph, t0 + tb->c[i] * h, eta, v, ph->contact ? FB_WANT_GAP : FB_WANT_NONE, &w->node[i]);
         }
-        if (contact) {
-            double A[FB_P][FB_P], B[FB_P][FB_P];
-            contact_response(ph, w, A, B);
-            if (ph->mode == FB_MODE_FORCE)
-                solve_law(ph, w, A, B);
-            else
-                solve_constraint(ph, w, A, B, h, g0);
+        if (u.count) {
+            double A[MAXU * MAXU], B[MAXU * MAXU];
+            contact_response(ph, w, &u, A, B);
+            solve_contacts(ph, w, &u, A, B, h, g0);
         }
         /* new forcing, how far it moves the step end and how far the forcing itself does (energy norm) */
         double change = 0.0, size = 0.0;
         for (int k = 0; k < N; k++) {
             double de = 0.0, dv = 0.0, fe = 0.0, fv = 0.0;
             for (int j = 0; j < FB_P; j++) {
-                double fn = w->node[j].smooth[k] + (contact ? w->node[j].b[k] * w->F[j] : 0.0);
+                double fn = w->node[j].smooth[k];
+                for (int l = 0; l < S; l++)
+                    if (ph->c.mode[l] != FB_MODE_NONE) fn += w->node[j].b[l][k] * w->F[l][j];
                 double df = fn - f[j * N + k];
                 f[j * N + k] = fn;
                 de += w->W[k][FB_P].RE[j] * df;
@@ -272,16 +322,21 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
      * d min(h^2 / ((p + 1)(p + 2)), 2 / w^2).  The collocation end state itself is superconvergent (order 2p),
      * so this estimate is conservative. */
     fb_node *end = &w->end;
-    fb_eval_node_acc(ph, t0 + h, out->eta1, out->v1, 1, 1, end);
-    double Fe = 0.0;
-    if (ph->mode == FB_MODE_FORCE) {
-        Fe = fb_law_force(ph->p, -end->delta, -end->rate, NULL, NULL, NULL);
-    } else if (ph->mode == FB_MODE_CONSTRAINT) {
-        for (int j = 0; j < FB_P; j++) Fe += fb_lagrange(j, 1.0) * w->F[j];
+    fb_eval_node_acc(ph, t0 + h, out->eta1, out->v1, FB_WANT_GAP, 1, end);
+    double Fe[FB_MAX_PAIRS];
+    for (int l = 0; l < S; l++) {
+        Fe[l] = 0.0;
+        if (ph->c.mode[l] == FB_MODE_FORCE) {
+            Fe[l] = fb_law_force(ph->c.p[l], -end->gap[l].delta, -end->gap[l].rate, NULL, NULL, NULL);
+        } else if (ph->c.mode[l] == FB_MODE_CONSTRAINT) {
+            for (int j = 0; j < FB_P; j++) Fe[l] += fb_lagrange(j, 1.0) * w->F[l][j];
+        }
     }
     double e2 = 0.0, lim0 = h * h / ((FB_P + 1.0) * (FB_P + 2.0));
     for (int k = 0; k < N; k++) {
-        double d = end->smooth[k] + (contact ? end->b[k] * Fe : 0.0);
+        double d = end->smooth[k];
+        for (int l = 0; l < S; l++)
+            if (ph->c.mode[l] != FB_MODE_NONE) d += end->b[l][k] * Fe[l];
         for (int j = 0; j < FB_P; j++) d -= tb->lend[j] * f[j * N + k];
         double om = ph->b->omega[k], lim = om > 0.0 ? fmin(lim0, 2.0 / (om * om)) : lim0;
         double dv = h * fabs(d) / (FB_P + 1.0), de = fabs(d) * lim;
@@ -290,11 +345,12 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
     }
     tol = fb_tolerance(ph, eta0, v0, out->eta1, out->v1);
     out->err = sqrt(e2) / tol;
-    if (ph->mode == FB_MODE_CONSTRAINT) { /* the multiplier is algebraic: hold its interpolant's top term too */
+    for (int l = 0; l < S; l++) { /* a multiplier is algebraic: hold its interpolant's top term too */
+        if (ph->c.mode[l] != FB_MODE_CONSTRAINT) continue;
         double L = 0.0, big = w->lambda_scale;
         for (int j = 0; j < FB_P; j++) {
-            L += tb->top[j] * w->F[j];
-            big = fmax(big, fabs(w->F[j]));
+            L += tb->top[j] * w->F[l][j];
+            big = fmax(big, fabs(w->F[l][j]));
         }
         out->err = fmax(out->err, fabs(L) / (ph->atol + fmax(MULTIPLIER_RTOL * ph->rtol, MULTIPLIER_NOISE) * big));
     }

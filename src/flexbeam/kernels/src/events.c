@@ -28,7 +28,7 @@ void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
 static double gap_x(const fb_dense *d, double x, double *rate) {
     double eta[FB_MAXN], v[FB_MAXN];
     fb_dense_state(d, x, eta, v);
-    fb_gap g = fb_gap_at(d->ph, d->t0 + x * d->h, eta, v);
+    fb_gap g = fb_gap_at(d->ph, d->pair, d->t0 + x * d->h, eta, v);
     if (rate) *rate = g.rate;
     return g.delta;
 }
@@ -92,7 +92,7 @@ static double brent(const fb_dense *d, double a, double b, double fa, double fb)
 /* The contact law's unclipped value K d^n (1 + chi' d') + C d' at the fraction x (d = -delta; -1 out of contact). */
 static double law_raw_x(const fb_dense *d, double x) {
     double rate, delta = gap_x(d, x, &rate), pen = -delta;
-    const double *p = d->ph->p;
+    const double *p = d->ph->c.p[d->pair];
     if (pen <= 0.0) return -1.0;
     return p[0] * pow(pen, p[1]) * (1.0 + p[2] * (-rate)) + p[3] * (-rate);
 }
@@ -101,7 +101,7 @@ static double law_raw_x(const fb_dense *d, double x) {
  * which the collocation polynomial cannot follow): the first sign change of the unclipped law value among the
  * given points, located by Brent's method; FB_NO_EVENT if none. */
 double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, int count) {
-    const double *p = d->ph->p;
+    const double *p = d->ph->c.p[d->pair];
     double prev = 0.0;
     for (int i = 0; i < count; i++) {
         double pen = -known[i].delta, rate = -known[i].rate;
@@ -222,7 +222,8 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
         double th, thd0, thd1, thdd;
         fb_drive_motion(d->ph->m, d->t0, &th, &thd0, &thdd);
         fb_drive_motion(d->ph->m, d->t0 + d->h, &th, &thd1, &thdd);
-        double rP = d->ph->m->points[0].base + fabs(d->ph->m->points[0].offset);
+        const fb_point *P = &d->ph->m->points[d->ph->m->pairs[d->pair].point];
+        double rP = P->base + fabs(P->offset);
         R += rP * fmax(fabs(thd0), fabs(thd1));
     }
     return gap0 > 2.0 * R * d->h;
@@ -254,7 +255,7 @@ static double bounds(const fb_dense *d, const double *jm, double gamma, double d
  * two samples: P may move at most max(R / 4, gap / 2) between them (the reference integrator's rule), at the
  * largest sampled speed with a margin of 2.  No limit for a half-plane. */
 static double safe_spacing(const fb_dense *d, const fb_gap *g, int count) {
-    const fb_obstacle *o = &d->ph->m->obstacles[0];
+    const fb_obstacle *o = &d->ph->m->obstacles[d->ph->m->pairs[d->pair].obstacle];
     if (o->kind != FB_SPHERE) return 1.0;
     double speed = 0.0, gap = INFINITY;
     for (int i = 0; i < count; i++) {
@@ -289,7 +290,7 @@ static void sample_hops(const fb_dense *d, const double *A, const double *jm, in
     for (int i = 1; i <= m; i++) {
         fb_hop_advance(b, H, A, (double)(i - 1) / m, 1.0 / m, eta, v);
         x[i] = (double)i / m;
-        g[i] = fb_gap_at(d->ph, d->t0 + x[i] * d->h, eta, v);
+        g[i] = fb_gap_at(d->ph, d->pair, d->t0 + x[i] * d->h, eta, v);
         fast[i] = fast_part(d, jm, eta, d->h / m);
     }
 }

@@ -12,10 +12,11 @@
 #include <math.h>
 #include <stddef.h>
 
-#define FB_LAYOUT_VERSION 1
+#define FB_LAYOUT_VERSION 2
 #define FB_PI 3.14159265358979323846
 #define FB_MAX_POINTS 64
 #define FB_MAX_OBSTACLES 8
+#define FB_MAX_PAIRS 8
 #define FB_P 4          /* Gauss-Legendre collocation nodes per step */
 #define FB_NPTS (FB_P + 1) /* the nodes and the step end */
 
@@ -39,6 +40,12 @@ typedef struct {
     double ms, ks, cs, ux, uy;
 } fb_obstacle;
 
+/* A contact pair: a material point of the beam (index into points) against an obstacle (index into obstacles).
+ * Only obstacle 0 may stand on a compliant support. */
+typedef struct {
+    int point, obstacle;
+} fb_pair;
+
 typedef struct {
     int n;          /* flexible modes */
     int prescribed; /* theta(t) given: coordinates q only */
@@ -46,10 +53,24 @@ typedef struct {
     int profile;    /* FB_PROFILE_* (prescribed) */
     double Jc, m1, g, torque, spin_rate, spin_up_time, theta0;
     const double *Mc, *Mqq, *mtq, *K, *sf, *G, *d; /* n x n, n x n, n, n x n, n, n x n, n */
-    int npoints, nobstacles;
-    fb_point points[FB_MAX_POINTS];       /* points[0]: the contact point P */
+    int npoints, nobstacles, npairs;
+    fb_point points[FB_MAX_POINTS];       /* points[0]: the first pair's contact point P, points[1]: the tip */
     fb_obstacle obstacles[FB_MAX_OBSTACLES];
+    fb_pair pairs[FB_MAX_PAIRS];
 } fb_model;
+
+/* How the contacts act during a phase, pair by pair: FB_MODE_NONE (free), FB_MODE_FORCE (the law
+ * p = [K, n, chi/d'_0, C]: F = max(0, K d^n (1 + chi' d') + C d')) or FB_MODE_CONSTRAINT (held closed by a
+ * multiplier; Baumgarte's alpha, beta in the reference integrator, the decay rate alpha in the collocation). */
+typedef struct {
+    int npairs;
+    int mode[FB_MAX_PAIRS];
+    double p[FB_MAX_PAIRS][4];
+    double alpha, beta;
+} fb_contacts;
+
+/* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair]. */
+int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf);
 
 /* Number of generalised coordinates of the beam: [theta, q] or q. */
 static inline int fb_nz(const fb_model *m) { return m->prescribed ? m->n : m->n + 1; }
@@ -87,15 +108,18 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double
                          const double *qd, fb_kin *out, double *dr);
 fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int nz, double s, double sd,
                     double *J);
+fb_gap fb_pair_gap(const fb_model *m, int pair, double th, double thd, const double *q, const double *qd, double s,
+                   double sd, int want_acc, double *J);
 double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd);
 double fb_law_potential(const double *p, double d);
 int fb_solve(double *A, double *b, int n);
-int fb_rhs(const fb_model *m, double t, const double *y, int mode, const double *p, double *dy, double *F,
+int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, double *dy, double *F,
            double *torque);
-void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, int mode, const double *p,
-                double *cols, double *mv);
+void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, const fb_contacts *c, double *cols,
+                double *mv, double *pcols);
 
 #define FB_NCOLS 15 /* columns of fb_outputs, in the order of flexbeam.kernels.OUTPUT_COLUMNS */
+#define FB_PAIR_COLS 3 /* per pair: gap, its rate, the contact force (flexbeam.kernels.PAIR_COLUMNS) */
 
 /* ------------------------------------------------------------------ modal basis (propagation.c) */
 /* The linearisation about the undeformed beam at rest, M0 z'' + K0 z = R, in modal coordinates

@@ -6,33 +6,42 @@
 
 #define FB_MAXN 66 /* modal coordinates: n <= 64 modes, theta, a support coordinate */
 
-/* What a phase integrates: the model in its modal basis, the contact mode and its parameters. */
+/* What a phase integrates: the model in its modal basis and how each contact pair acts. */
 typedef struct {
     const fb_model *m;
     const fb_basis *b;
-    int mode;        /* FB_MODE_NONE, FB_MODE_FORCE (law p = [K, n, chi/d'_0, C]), FB_MODE_CONSTRAINT */
-    double p[4];     /* law parameters, or [kappa, ...]: the constraint's Baumgarte decay rate */
+    fb_contacts c;      /* per pair: FB_MODE_*, the law (FORCE); c.alpha: the constraints' decay rate kappa */
+    int contact;        /* some pair is in contact (FORCE or CONSTRAINT) */
+    int force, held;    /* some pair is under its law / held by its constraint */
     double rtol, atol;
     double omega_rigid; /* the frequency that weighs a rigid-mode angle error in the energy norm [rad/s] */
     int row0_q;         /* (M0^-1)_0q != 0: the Sherman-Morrison correction needs K0 z (hub frame) */
 } fb_phase;
 
-/* The model evaluated at one modal state: the smooth modal forcing, the contact direction and the gap. */
+void fb_phase_init(fb_phase *ph, const fb_model *m, const fb_basis *b, const fb_contacts *c, double rtol,
+                   double atol, double omega_rigid);
+
+/* What fb_eval_node evaluates besides the smooth forcing: */
+enum {
+    FB_WANT_NONE = 0,
+    FB_WANT_GAP = 1, /* every pair's gap, and J (jm, b) of the pairs in contact */
+    FB_WANT_JM = 2,  /* ... and jm of every pair (the event search's bounds at a free step's first node) */
+};
+
+/* The model evaluated at one modal state: the smooth modal forcing, the contact directions and the gaps. */
 typedef struct {
     double t, th, thd, thdd;
-    double smooth[FB_MAXN]; /* Psi^T R without the contact force */
-    double b[FB_MAXN];      /* Psi^T M0 M^-1 J^T: modal forcing per unit contact force */
-    double jm[FB_MAXN];     /* Psi^T J^T: d delta / d eta */
-    double delta, rate;     /* gap and its rate */
-    double gamma;           /* the gap's acceleration at z'' = 0 (velocity-product terms) */
-    fb_gap gap;             /* all of the gap state */
+    double smooth[FB_MAXN];           /* Psi^T R without the contact forces */
+    double b[FB_MAX_PAIRS][FB_MAXN];  /* Psi^T M0 M^-1 J_k^T: modal forcing per unit force of pair k (in contact) */
+    double jm[FB_MAX_PAIRS][FB_MAXN]; /* Psi^T J_k^T: d delta_k / d eta (in contact; every pair with FB_WANT_JM) */
+    fb_gap gap[FB_MAX_PAIRS];         /* every pair's gap state (delta, rate, gamma = delta'' at z'' = 0, ...) */
     double z[FB_MAXN], zd[FB_MAXN];
 } fb_node;
 
-void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double *v, int want_gap, fb_node *out);
-void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const double *v, int want_gap, int want_acc,
+void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double *v, int want, fb_node *out);
+void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const double *v, int want, int want_acc,
                       fb_node *out);
-fb_gap fb_gap_at(const fb_phase *ph, double t, const double *eta, const double *v);
+fb_gap fb_gap_at(const fb_phase *ph, int pair, double t, const double *eta, const double *v);
 
 /* Work space of one phase: the step's weights (cached for its length h), the node evaluations. */
 typedef struct {
@@ -40,9 +49,9 @@ typedef struct {
     fb_weight W[FB_MAXN][FB_NPTS]; /* per mode: the FB_P nodes and the end */
     fb_node node[FB_P];
     fb_node end;                   /* the model at the step end (error estimate, events) */
-    double F[FB_P];                /* contact force (or multiplier) at the nodes */
-    double Fk[FB_P];               /* its elastic part (CCFM) */
-    double lambda_scale;           /* the largest multiplier of the phase so far (CCM) */
+    double F[FB_MAX_PAIRS][FB_P];  /* contact force (or multiplier) of each pair at the nodes */
+    double Fk[FB_MAX_PAIRS][FB_P]; /* its elastic part (FORCE) */
+    double lambda_scale;           /* the largest multiplier of the phase so far (CONSTRAINT) */
     int iterations;
 } fb_work;
 
@@ -66,10 +75,11 @@ double fb_next_step(double h, double err, int accepted);
 #define FB_UNDECIDED -1.0
 enum { FB_EVENT_IMPACT = 1, FB_EVENT_SEPARATION = 2, FB_EVENT_RELEASE = 3 };
 
-typedef struct { /* a step's dense output, for the event search */
+typedef struct { /* a step's dense output, for the event search of one pair */
     const fb_phase *ph;
     double t0, h;
     const double *eta0, *v0, *f; /* f: FB_P x N nodal forcing */
+    int pair;
 } fb_dense;
 
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v);

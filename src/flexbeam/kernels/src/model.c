@@ -18,14 +18,14 @@
 
 #define MAXZ 66 /* n <= 64 modes, theta, and a support coordinate */
 
-/* Model buffer: [version, n, prescribed, drive, profile, npoints, nobstacles, obstacle kinds (nobstacles),
+/* Model buffer: [version, n, prescribed, drive, profile, npoints, nobstacles, npairs, obstacle kinds (nobstacles),
  * Jc, m1, g, torque, spin_rate, spin_up_time, theta0, Mc, Mqq, mtq, K, sf, G, d,
- * per point: base, offset, phi, dphi, H; per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy]
- * (flexbeam.kernels.layout.pack_model writes it). */
+ * per point: base, offset, phi, dphi, H; per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy;
+ * per pair: point, obstacle] (flexbeam.kernels.layout.pack_model writes it). */
 int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     const double *ints = buf;
-    size_t nints = 7;
-    if (nbuf < 7 || (int)ints[0] != FB_LAYOUT_VERSION) return -1;
+    size_t nints = 8;
+    if (nbuf < nints || (int)ints[0] != FB_LAYOUT_VERSION) return -1;
     int n = (int)ints[1];
     m->n = n;
     m->prescribed = (int)ints[2];
@@ -33,14 +33,16 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     m->profile = (int)ints[4];
     m->npoints = (int)ints[5];
     m->nobstacles = (int)ints[6];
+    m->npairs = (int)ints[7];
     if (n < 0 || n > 64 || m->npoints < 1 || m->npoints > FB_MAX_POINTS || m->nobstacles < 0 ||
-        m->nobstacles > FB_MAX_OBSTACLES || nbuf < (size_t)(7 + m->nobstacles))
+        m->nobstacles > FB_MAX_OBSTACLES || m->npairs < 0 || m->npairs > FB_MAX_PAIRS ||
+        nbuf < nints + (size_t)m->nobstacles)
         return -1;
     nints += (size_t)m->nobstacles;
     const double *f = buf + nints;
     size_t nf = nbuf - nints;
     size_t need = 7 + 4 * (size_t)n * n + 3 * (size_t)n + (size_t)m->npoints * (2 + 2 * n + (size_t)n * n) +
-                  10 * (size_t)m->nobstacles;
+                  10 * (size_t)m->nobstacles + 2 * (size_t)m->npairs;
     if (nf != need) return -2;
     const double *p = f;
     m->Jc = *p++;
@@ -67,9 +69,32 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     }
     for (int i = 0; i < m->nobstacles; i++) {
         fb_obstacle *o = &m->obstacles[i];
-        o->kind = (int)ints[7 + i];
+        o->kind = (int)ints[8 + i];
         o->cx = *p++; o->cy = *p++; o->radius = *p++; o->nx = *p++; o->ny = *p++;
         o->ms = *p++; o->ks = *p++; o->cs = *p++; o->ux = *p++; o->uy = *p++;
+        if (i > 0 && o->ms > 0.0) return -3; /* only obstacle 0 may stand on a support */
+    }
+    for (int k = 0; k < m->npairs; k++) {
+        m->pairs[k].point = (int)*p++;
+        m->pairs[k].obstacle = (int)*p++;
+        if (m->pairs[k].point < 0 || m->pairs[k].point >= m->npoints || m->pairs[k].obstacle < 0 ||
+            m->pairs[k].obstacle >= m->nobstacles)
+            return -3;
+    }
+    return 0;
+}
+
+int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf) {
+    if (nbuf < 3) return -1;
+    c->npairs = (int)buf[0];
+    c->alpha = buf[1];
+    c->beta = buf[2];
+    if (c->npairs != m->npairs || nbuf != 3 + 5 * (size_t)c->npairs) return -1;
+    for (int k = 0; k < c->npairs; k++) {
+        const double *r = buf + 3 + 5 * k;
+        c->mode[k] = (int)r[0];
+        if (c->mode[k] < FB_MODE_NONE || c->mode[k] > FB_MODE_CONSTRAINT) return -1;
+        for (int j = 0; j < 4; j++) c->p[k][j] = r[1 + j];
     }
     return 0;
 }
@@ -261,6 +286,19 @@ fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int
     if (J && dr)
         for (int i = 0; i < nz; i++) J[i] = out.nx * dr[i] + out.ny * dr[nz + i];
     return out;
+}
+
+/* The gap state of contact pair ``pair`` at (theta, theta', q, q'), the support at (s, s') (used only if the pair's
+ * obstacle is the compliant obstacle 0), and J = d delta / d[theta, q] (n + 1 entries; NULL: not wanted). */
+fb_gap fb_pair_gap(const fb_model *m, int pair, double th, double thd, const double *q, const double *qd, double s,
+                   double sd, int want_acc, double *J) {
+    const fb_pair *pr = &m->pairs[pair];
+    const fb_obstacle *o = &m->obstacles[pr->obstacle];
+    double dr[2 * MAXZ];
+    fb_kin k = {.want_acc = want_acc};
+    fb_point_kinematics(m, &m->points[pr->point], th, thd, q, qd, &k, J ? dr : NULL);
+    if (o->ms <= 0.0) s = sd = 0.0;
+    return fb_gap_state(o, &k, J ? dr : NULL, m->n + 1, s, sd, J);
 }
 
 /* Contact law F = max(0, K d^n (1 + chi' d') + C d') with p = [K, n, chi / d'_0, C]; d = -delta >= 0.

@@ -5,14 +5,7 @@
 #include <Python.h>
 #include <string.h>
 
-#include "integrator.h"
-
-int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, double *state, double t_end,
-               double *records, int capacity, int *nrec, double *info);
-int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, int nrec, const double *times,
-                  int count, double *Y);
-int fb_record_size(int N);
-int fb_state_buffer_size(int N);
+#include "phase.h"
 
 typedef struct {
     Py_buffer view;
@@ -53,6 +46,14 @@ static int model_from(buf_t *b, fb_model *m) {
     return 0;
 }
 
+static int contacts_from(buf_t *b, const fb_model *m, fb_contacts *c) {
+    if (fb_contacts_unpack(c, m, PTR(*b), LEN(*b))) {
+        PyErr_SetString(PyExc_ValueError, "contacts: buffer does not match the model's pairs");
+        return -1;
+    }
+    return 0;
+}
+
 static int basis_from(buf_t *b, fb_basis *bs) {
     if (fb_basis_unpack(bs, PTR(*b), LEN(*b))) {
         PyErr_SetString(PyExc_ValueError, "basis: buffer does not match the kernel layout");
@@ -61,56 +62,57 @@ static int basis_from(buf_t *b, fb_basis *bs) {
     return 0;
 }
 
-/* rhs(model, t, y, mode, p, dy) -> (F, torque) */
+/* rhs(model, t, y, contacts, dy, F) -> torque; F (npairs) the pairs' forces */
 static PyObject *py_rhs(PyObject *self, PyObject *args) {
-    PyObject *om, *oy, *op, *ody;
+    PyObject *om, *oy, *oc, *ody, *oF;
     double t;
-    int mode;
-    if (!PyArg_ParseTuple(args, "OdOiOO", &om, &t, &oy, &mode, &op, &ody)) return NULL;
-    buf_t b[4];
+    if (!PyArg_ParseTuple(args, "OdOOOO", &om, &t, &oy, &oc, &ody, &oF)) return NULL;
+    buf_t b[5];
     memset(b, 0, sizeof b);
     fb_model m;
-    if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(op, &b[2], 0, "p") ||
-        get_buf(ody, &b[3], 1, "dy") || model_from(&b[0], &m))
+    fb_contacts c;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oc, &b[2], 0, "contacts") ||
+        get_buf(ody, &b[3], 1, "dy") || get_buf(oF, &b[4], 1, "F") || model_from(&b[0], &m) ||
+        contacts_from(&b[2], &m, &c))
         goto fail;
-    if (LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[3]) != LEN(b[1]) || LEN(b[2]) < 4) {
-        PyErr_SetString(PyExc_ValueError, "rhs: y, dy must have the state size and p four entries");
+    if (LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[3]) != LEN(b[1]) || LEN(b[4]) != (size_t)m.npairs) {
+        PyErr_SetString(PyExc_ValueError, "rhs: y, dy must have the state size and F one entry per pair");
         goto fail;
     }
-    double F, torque;
-    fb_rhs(&m, t, PTR(b[1]), mode, PTR(b[2]), PTR(b[3]), &F, &torque);
-    release(b, 4);
-    return Py_BuildValue("dd", F, torque);
+    double torque;
+    fb_rhs(&m, t, PTR(b[1]), &c, PTR(b[3]), PTR(b[4]), &torque);
+    release(b, 5);
+    return PyFloat_FromDouble(torque);
 fail:
-    release(b, 4);
+    release(b, 5);
     return NULL;
 }
 
-/* outputs(model, times, Y, mode, p, cols, mv) */
+/* outputs(model, times, Y, contacts, cols, mv, pcols) */
 static PyObject *py_outputs(PyObject *self, PyObject *args) {
-    PyObject *om, *ot, *oY, *op, *oc, *omv;
-    int mode;
-    if (!PyArg_ParseTuple(args, "OOOiOOO", &om, &ot, &oY, &mode, &op, &oc, &omv)) return NULL;
-    buf_t b[6];
+    PyObject *om, *ot, *oY, *oc, *ocols, *omv, *opc;
+    if (!PyArg_ParseTuple(args, "OOOOOOO", &om, &ot, &oY, &oc, &ocols, &omv, &opc)) return NULL;
+    buf_t b[7];
     memset(b, 0, sizeof b);
     fb_model m;
+    fb_contacts c;
     if (get_buf(om, &b[0], 0, "model") || get_buf(ot, &b[1], 0, "times") || get_buf(oY, &b[2], 0, "Y") ||
-        get_buf(op, &b[3], 0, "p") || get_buf(oc, &b[4], 1, "cols") || get_buf(omv, &b[5], 1, "mv") ||
-        model_from(&b[0], &m))
+        get_buf(oc, &b[3], 0, "contacts") || get_buf(ocols, &b[4], 1, "cols") || get_buf(omv, &b[5], 1, "mv") ||
+        get_buf(opc, &b[6], 1, "pcols") || model_from(&b[0], &m) || contacts_from(&b[3], &m, &c))
         goto fail;
     size_t count = LEN(b[1]);
     if (LEN(b[2]) != count * fb_state_size(&m) || LEN(b[4]) != count * FB_NCOLS ||
-        LEN(b[5]) != count * (size_t)(m.npoints - 2) || LEN(b[3]) < 4) {
+        LEN(b[5]) != count * (size_t)(m.npoints - 2) || LEN(b[6]) != count * m.npairs * FB_PAIR_COLS) {
         PyErr_SetString(PyExc_ValueError, "outputs: array sizes do not match");
         goto fail;
     }
     Py_BEGIN_ALLOW_THREADS
-    fb_outputs(&m, PTR(b[1]), PTR(b[2]), (int)count, mode, PTR(b[3]), PTR(b[4]), PTR(b[5]));
+    fb_outputs(&m, PTR(b[1]), PTR(b[2]), (int)count, &c, PTR(b[4]), PTR(b[5]), PTR(b[6]));
     Py_END_ALLOW_THREADS
-    release(b, 6);
+    release(b, 7);
     Py_RETURN_NONE;
 fail:
-    release(b, 6);
+    release(b, 7);
     return NULL;
 }
 
@@ -143,11 +145,12 @@ fail:
     return NULL;
 }
 
-/* gap(model, t, y, J) -> (delta, rate, gamma, nx, ny); J (n + 1 [+ 1 with a support]) = d delta / dz */
+/* gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny); J (n + 1 [+ 1 with a support]) = d delta / dz */
 static PyObject *py_gap(PyObject *self, PyObject *args) {
     PyObject *om, *oy, *oJ;
+    int pair;
     double t;
-    if (!PyArg_ParseTuple(args, "OdOO", &om, &t, &oy, &oJ)) return NULL;
+    if (!PyArg_ParseTuple(args, "OidOO", &om, &pair, &t, &oy, &oJ)) return NULL;
     buf_t b[3];
     memset(b, 0, sizeof b);
     fb_model m;
@@ -155,18 +158,17 @@ static PyObject *py_gap(PyObject *self, PyObject *args) {
         model_from(&b[0], &m))
         goto fail;
     int compliant = fb_compliant(&m), N = m.n + 1;
-    if (m.nobstacles < 1 || LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[2]) != (size_t)(N + compliant)) {
-        PyErr_SetString(PyExc_ValueError, "gap: no obstacle, or array sizes do not match");
+    if (pair < 0 || pair >= m.npairs || LEN(b[1]) != (size_t)fb_state_size(&m) ||
+        LEN(b[2]) != (size_t)(N + compliant)) {
+        PyErr_SetString(PyExc_ValueError, "gap: no such pair, or array sizes do not match");
         goto fail;
     }
-    double th, thd, thdd, dr[2 * FB_MAXN], *J = PTR(b[2]);
+    double th, thd, thdd, *J = PTR(b[2]);
     const double *q, *qd, *y = PTR(b[1]);
     fb_state_split(&m, t, y, &th, &thd, &thdd, &q, &qd);
     int nb = 2 * fb_nz(&m);
     double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
-    fb_kin k = {.want_acc = 1};
-    fb_point_kinematics(&m, &m.points[0], th, thd, q, qd, &k, dr);
-    fb_gap g = fb_gap_state(&m.obstacles[0], &k, dr, N, s, sd, J);
+    fb_gap g = fb_pair_gap(&m, pair, th, thd, q, qd, s, sd, 1, J);
     if (compliant) J[N] = g.Js;
     release(b, 3);
     return Py_BuildValue("ddddd", g.delta, g.rate, g.gamma, g.nx, g.ny);
@@ -235,17 +237,22 @@ static PyObject *py_advance(PyObject *self, PyObject *args) {
         get_buf(os, &b[3], 1, "state") || get_buf(orec, &b[4], 1, "records") || get_buf(oi, &b[5], 1, "info") ||
         model_from(&b[0], &m) || basis_from(&b[1], &bs))
         goto fail;
-    int R = fb_record_size(bs.N);
-    if (LEN(b[2]) < 10 || LEN(b[3]) != (size_t)fb_state_buffer_size(bs.N) || LEN(b[4]) % R || LEN(b[5]) < 4 ||
+    int R = fb_record_size(bs.N, m.npairs);
+    if (LEN(b[3]) != (size_t)fb_state_buffer_size(bs.N, m.npairs) || LEN(b[4]) % R || LEN(b[5]) < 5 ||
         bs.N > FB_MAXN) {
         PyErr_SetString(PyExc_ValueError, "advance: array sizes do not match");
         goto fail;
     }
     int nrec = 0, code;
     Py_BEGIN_ALLOW_THREADS
-    code = fb_advance(&m, &bs, PTR(b[2]), PTR(b[3]), t_end, PTR(b[4]), (int)(LEN(b[4]) / R), &nrec, PTR(b[5]));
+    code = fb_advance(&m, &bs, PTR(b[2]), LEN(b[2]), PTR(b[3]), t_end, PTR(b[4]), (int)(LEN(b[4]) / R), &nrec,
+                      PTR(b[5]));
     Py_END_ALLOW_THREADS
     release(b, 6);
+    if (code < 0) {
+        PyErr_SetString(PyExc_ValueError, "advance: ctrl does not match the model's pairs");
+        return NULL;
+    }
     return Py_BuildValue("ii", code, nrec);
 fail:
     release(b, 6);
@@ -266,7 +273,8 @@ static PyObject *py_dense(PyObject *self, PyObject *args) {
         basis_from(&b[1], &bs))
         goto fail;
     size_t count = LEN(b[3]);
-    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs.N) || LEN(b[4]) != count * fb_state_size(&m)) {
+    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs.N, m.npairs) ||
+        LEN(b[4]) != count * fb_state_size(&m)) {
         PyErr_SetString(PyExc_ValueError, "dense: array sizes do not match");
         goto fail;
     }
@@ -305,16 +313,16 @@ static PyObject *py_nodes(PyObject *self, PyObject *args) {
 }
 
 static PyObject *py_sizes(PyObject *self, PyObject *args) {
-    int N;
-    if (!PyArg_ParseTuple(args, "i", &N)) return NULL;
-    return Py_BuildValue("iiii", fb_record_size(N), fb_state_buffer_size(N), FB_P, FB_NCOLS);
+    int N, S;
+    if (!PyArg_ParseTuple(args, "ii", &N, &S)) return NULL;
+    return Py_BuildValue("iiiii", fb_record_size(N, S), fb_state_buffer_size(N, S), FB_P, FB_NCOLS, FB_PAIR_COLS);
 }
 
 static PyMethodDef methods[] = {
-    {"rhs", py_rhs, METH_VARARGS, "rhs(model, t, y, mode, p, dy) -> (F, torque)"},
-    {"outputs", py_outputs, METH_VARARGS, "outputs(model, times, Y, mode, p, cols, mv)"},
+    {"rhs", py_rhs, METH_VARARGS, "rhs(model, t, y, contacts, dy, F) -> torque"},
+    {"outputs", py_outputs, METH_VARARGS, "outputs(model, times, Y, contacts, cols, mv, pcols)"},
     {"kinematics", py_kinematics, METH_VARARGS, "kinematics(model, point, t, y, out)"},
-    {"gap", py_gap, METH_VARARGS, "gap(model, t, y, J) -> (delta, rate, gamma, nx, ny)"},
+    {"gap", py_gap, METH_VARARGS, "gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny)"},
     {"equations", py_equations, METH_VARARGS, "equations(model, t, y, M, Q, E)"},
     {"law_force", py_law_force, METH_VARARGS, "law_force(p, d, dd) -> (F, Fk, dF/dd, dF/ddd)"},
     {"advance", py_advance, METH_VARARGS, "advance(model, basis, ctrl, state, t_end, records, info) -> (code, nrec)"},
@@ -322,7 +330,8 @@ static PyMethodDef methods[] = {
     {"moments", py_moments, METH_VARARGS, "moments(theta) -> (Cm, Sm)"},
     {"weights", py_weights, METH_VARARGS, "weights(w, h, s) -> (C, SW, WS, RE, RV)"},
     {"nodes", py_nodes, METH_NOARGS, "nodes() -> the collocation's Gauss nodes on (0, 1)"},
-    {"sizes", py_sizes, METH_VARARGS, "sizes(N) -> (record size, state buffer size, nodes, output columns)"},
+    {"sizes", py_sizes, METH_VARARGS,
+     "sizes(N, npairs) -> (record size, state buffer size, nodes, output columns, columns per pair)"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -12,15 +12,16 @@ static double dot(const double *a, const double *b, int n) {
     return acc;
 }
 
-/* Right-hand side dy/dt of the reference-layout state in a contact mode (see flexbeam.kernels.rhs):
- * FB_MODE_FORCE: the law force F(d, d') of p = [K, n, chi/d'_0, C] acts as J^T F;
- * FB_MODE_CONSTRAINT: the multiplier of [M J^T; J 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
- * with p = [alpha, beta, ., .] (Baumgarte).  A compliant support adds m_s s'' = -k_s s - c_s s' + Js F.
- * With theta(t) prescribed only the modal rows are solved and the joint torque is the theta row's residual.
- * Returns 0, or -1 for a non-finite state or a singular system (dy then NaN). */
-int fb_rhs(const fb_model *m, double t, const double *y, int mode, const double *p, double *dy, double *F_out,
+/* Right-hand side dy/dt of the reference-layout state with the contacts c (see flexbeam.kernels.rhs), pair k:
+ * FB_MODE_FORCE: the law force F_k(d_k, d_k') of p_k acts as J_k^T F_k;
+ * FB_MODE_CONSTRAINT: the multipliers of [M J_c^T; J_c 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
+ * over the constrained pairs c (Baumgarte).  A compliant support (obstacle 0) adds m_s s'' = -k_s s - c_s s' +
+ * sum_k Js_k F_k over the pairs on it.  With theta(t) prescribed only the modal rows are solved and the joint torque
+ * is the theta row's residual.  F (npairs) returns each pair's force.  Returns 0, or -1 for a non-finite state or a
+ * singular system (dy then NaN). */
+int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, double *dy, double *F_out,
            double *torque_out) {
-    int n = m->n, N = n + 1, size = fb_state_size(m), nb = 2 * fb_nz(m);
+    int n = m->n, N = n + 1, size = fb_state_size(m), nb = 2 * fb_nz(m), S = m->npairs;
     for (int i = 0; i < size; i++)
         if (!isfinite(y[i])) goto fail;
     double th, thd, thdd;
@@ -29,50 +30,65 @@ int fb_rhs(const fb_model *m, double t, const double *y, int mode, const double 
     const fb_obstacle *o = m->nobstacles ? &m->obstacles[0] : NULL;
     int compliant = fb_compliant(m);
     double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
-    double Fs = compliant ? -o->ks * s - o->cs * sd : 0.0;
+    double Fsup = compliant ? -o->ks * s - o->cs * sd : 0.0; /* the force on the support's mass */
     double tau = m->prescribed ? 0.0 : fb_drive_torque(m, t);
-    double M[MAXZ * MAXZ], Q[MAXZ], J[MAXZ], dr[2 * MAXZ];
+    double M[MAXZ * MAXZ], Q[MAXZ], J[FB_MAX_PAIRS][MAXZ];
     fb_mass_matrix(m, q, M);
     fb_forces(m, th, thd, q, qd, tau, 1, Q);
-    double F = 0.0, diss = 0.0, Js = 0.0;
-    memset(J, 0, sizeof(double) * N);
-    if (mode != FB_MODE_NONE && o) {
-        fb_kin k = {.want_acc = 1};
-        fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &k, dr);
-        fb_gap gp = fb_gap_state(o, &k, dr, N, s, sd, J);
-        Js = gp.Js;
-        if (mode == FB_MODE_FORCE) {
-            double fk;
-            F = fb_law_force(p, -gp.delta, -gp.rate, &fk, NULL, NULL);
-            diss = (F - fk) * (-gp.rate);
-        } else {
-            double rhs_c = -gp.gamma - 2.0 * p[0] * gp.rate - p[1] * p[1] * gp.delta, inv_mass = 0.0;
-            if (compliant) {
-                rhs_c -= Js * Fs / o->ms;
-                inv_mass = Js * Js / o->ms;
-            }
-            double A[MAXZ * MAXZ], a[MAXZ], b[MAXZ];
-            int off = m->prescribed ? 1 : 0, nn = N - off;
-            if (m->prescribed) rhs_c -= J[0] * thdd;
-            for (int i = 0; i < nn; i++) {
-                a[i] = Q[i + off] - (m->prescribed ? M[(i + 1) * N] * thdd : 0.0);
-                b[i] = J[i + off];
-            }
-            double A2[MAXZ * MAXZ];
-            for (int i = 0; i < nn; i++)
-                for (int j = 0; j < nn; j++) A[i * nn + j] = A2[i * nn + j] = M[(i + off) * N + j + off];
-            if (nn > 0) {
-                if (fb_solve(A, a, nn) || fb_solve(A2, b, nn)) goto fail;
-                rhs_c -= dot(J + off, a, nn);
-                inv_mass += dot(J + off, b, nn);
-            }
-            if (inv_mass > 0.0) F = rhs_c / inv_mass;
+    double F[FB_MAX_PAIRS], diss = 0.0;
+    fb_gap gp[FB_MAX_PAIRS];
+    int con[FB_MAX_PAIRS], ncon = 0;
+    for (int k = 0; k < S; k++) {
+        F[k] = 0.0;
+        if (c->mode[k] == FB_MODE_NONE) continue;
+        gp[k] = fb_pair_gap(m, k, th, thd, q, qd, s, sd, 1, J[k]);
+        if (c->mode[k] == FB_MODE_CONSTRAINT) {
+            con[ncon++] = k;
+            continue;
         }
-        for (int i = 0; i < N; i++) Q[i] += J[i] * F;
+        double fk;
+        F[k] = fb_law_force(c->p[k], -gp[k].delta, -gp[k].rate, &fk, NULL, NULL);
+        diss += (F[k] - fk) * (-gp[k].rate);
+        for (int i = 0; i < N; i++) Q[i] += J[k][i] * F[k];
+        Fsup += gp[k].Js * F[k];
+    }
+    if (ncon) {
+        int off = m->prescribed ? 1 : 0, nn = N - off;
+        double a[MAXZ], B[FB_MAX_PAIRS][MAXZ], W[FB_MAX_PAIRS * FB_MAX_PAIRS], r[FB_MAX_PAIRS];
+        double A[MAXZ * MAXZ];
+        for (int i = 0; i < nn; i++) a[i] = Q[i + off] - (m->prescribed ? M[(i + 1) * N] * thdd : 0.0);
+        for (int i = 0; i < nn; i++)
+            for (int j = 0; j < nn; j++) A[i * nn + j] = M[(i + off) * N + j + off];
+        if (nn > 0 && fb_solve(A, a, nn)) goto fail;
+        for (int ia = 0; ia < ncon; ia++) {
+            for (int i = 0; i < nn; i++) B[ia][i] = J[con[ia]][i + off];
+            for (int i = 0; i < nn; i++)
+                for (int j = 0; j < nn; j++) A[i * nn + j] = M[(i + off) * N + j + off];
+            if (nn > 0 && fb_solve(A, B[ia], nn)) goto fail;
+        }
+        for (int ia = 0; ia < ncon; ia++) {
+            int k = con[ia];
+            r[ia] = -gp[k].gamma - 2.0 * c->alpha * gp[k].rate - c->beta * c->beta * gp[k].delta -
+                    dot(J[k] + off, a, nn);
+            if (m->prescribed) r[ia] -= J[k][0] * thdd;
+            if (compliant) r[ia] -= gp[k].Js * Fsup / o->ms;
+            for (int ib = 0; ib < ncon; ib++) {
+                double wab = dot(J[k] + off, B[ib], nn);
+                if (compliant) wab += gp[k].Js * gp[con[ib]].Js / o->ms;
+                W[ia * ncon + ib] = wab;
+            }
+        }
+        if (fb_solve(W, r, ncon)) goto fail;
+        for (int ia = 0; ia < ncon; ia++) {
+            int k = con[ia];
+            F[k] = r[ia];
+            for (int i = 0; i < N; i++) Q[i] += J[k][i] * F[k];
+            Fsup += gp[k].Js * F[k];
+        }
     }
     if (compliant) {
         dy[nb] = sd;
-        dy[nb + 1] = (Fs + Js * F) / o->ms;
+        dy[nb + 1] = Fsup / o->ms;
         diss += o->cs * sd * sd;
     }
     double torque;
@@ -100,44 +116,47 @@ int fb_rhs(const fb_model *m, double t, const double *y, int mode, const double 
         torque = tau;
         dy[size - 1] = tau * (thd + dot(m->d, qd, n));
     }
-    if (F_out) *F_out = F;
+    if (F_out)
+        for (int k = 0; k < S; k++) F_out[k] = F[k];
     if (torque_out) *torque_out = torque;
     return 0;
 fail:
     for (int i = 0; i < size; i++) dy[i] = NAN;
-    if (F_out) *F_out = NAN;
+    if (F_out)
+        for (int k = 0; k < S; k++) F_out[k] = NAN;
     if (torque_out) *torque_out = NAN;
     return -1;
 }
 
-/* Output columns (FB_NCOLS per sample, see flexbeam.kernels.OUTPUT_COLUMNS) and the normal velocities of
- * the measuring points (points[2:]) for reference-layout states Y at times T, all in one contact mode. */
-void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, int mode, const double *p,
-                double *cols, double *mv) {
-    int n = m->n, N = n + 1, size = fb_state_size(m), nb = 2 * fb_nz(m), nmeas = m->npoints - 2;
-    int compliant = fb_compliant(m);
+/* Output columns (FB_NCOLS per sample, see flexbeam.kernels.OUTPUT_COLUMNS: gap, normal velocity and contact
+ * force are the first pair's, the contact energy all pairs'), the normal velocities of the measuring points
+ * (points[2:]) and per pair [gap, rate, force] (pcols, FB_PAIR_COLS x npairs per sample) for reference-layout
+ * states Y at times T, all with the contacts c. */
+void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, const fb_contacts *c, double *cols,
+                double *mv, double *pcols) {
+    int n = m->n, size = fb_state_size(m), nb = 2 * fb_nz(m), nmeas = m->npoints - 2, S = m->npairs;
+    int compliant = fb_compliant(m), held = 0;
     const fb_obstacle *o = m->nobstacles ? &m->obstacles[0] : NULL;
-    double dr[2 * MAXZ], J[MAXZ], dy[2 * MAXZ + 4];
-    for (int k = 0; k < count; k++) {
-        const double *y = Y + (size_t)k * size;
-        double *out = cols + (size_t)k * FB_NCOLS;
-        double t = T[k], th, thd, thdd;
+    for (int k = 0; k < S; k++) held |= c->mode[k] == FB_MODE_CONSTRAINT;
+    double dy[2 * MAXZ + 4], F[FB_MAX_PAIRS];
+    for (int i = 0; i < count; i++) {
+        const double *y = Y + (size_t)i * size;
+        double *out = cols + (size_t)i * FB_NCOLS, *pc = pcols + (size_t)i * S * FB_PAIR_COLS;
+        double t = T[i], th, thd, thdd;
         const double *q, *qd;
         fb_state_split(m, t, y, &th, &thd, &thdd, &q, &qd);
         double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
-        double F = 0.0, Uc = 0.0, torque = m->prescribed ? 0.0 : fb_drive_torque(m, t);
-        fb_gap gp = {0};
-        if (o) {
-            fb_kin kin = {.want_acc = 1};
-            fb_point_kinematics(m, &m->points[0], th, thd, q, qd, &kin, dr);
-            gp = fb_gap_state(o, &kin, dr, N, s, sd, J);
+        double Uc = 0.0, torque = m->prescribed ? 0.0 : fb_drive_torque(m, t);
+        fb_gap gp[FB_MAX_PAIRS];
+        for (int k = 0; k < S; k++) {
+            gp[k] = fb_pair_gap(m, k, th, thd, q, qd, s, sd, 0, NULL);
+            F[k] = 0.0;
+            if (c->mode[k] == FB_MODE_FORCE) {
+                F[k] = fb_law_force(c->p[k], -gp[k].delta, -gp[k].rate, NULL, NULL, NULL);
+                Uc += fb_law_potential(c->p[k], -gp[k].delta);
+            }
         }
-        if (m->prescribed || mode == FB_MODE_CONSTRAINT) {
-            fb_rhs(m, t, y, mode, p, dy, &F, &torque);
-        } else if (mode == FB_MODE_FORCE) {
-            F = fb_law_force(p, -gp.delta, -gp.rate, NULL, NULL, NULL);
-        }
-        if (mode == FB_MODE_FORCE) Uc = fb_law_potential(p, -gp.delta);
+        if (m->prescribed || held) fb_rhs(m, t, y, c, dy, F, &torque);
         double Tk, Ve, Vg;
         fb_energies(m, th, thd, q, qd, &Tk, &Ve, &Vg);
         if (compliant) {
@@ -150,9 +169,9 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
         fb_point_kinematics(m, &m->points[1], th, thd, q, qd, &tip, NULL);
         out[0] = phi;
         out[1] = phid;
-        out[2] = gp.delta;
-        out[3] = gp.rate;
-        out[4] = F;
+        out[2] = S ? gp[0].delta : INFINITY;
+        out[3] = S ? gp[0].rate : 0.0;
+        out[4] = S ? F[0] : 0.0;
         out[5] = Uc;
         out[6] = Tk;
         out[7] = Ve;
@@ -163,10 +182,15 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
         out[12] = e2x * tip.r[0] + e2y * tip.r[1];
         out[13] = s;
         out[14] = compliant ? -(o->ks * s + o->cs * sd) : 0.0;
+        for (int k = 0; k < S; k++) {
+            pc[FB_PAIR_COLS * k] = gp[k].delta;
+            pc[FB_PAIR_COLS * k + 1] = gp[k].rate;
+            pc[FB_PAIR_COLS * k + 2] = F[k];
+        }
         for (int j = 0; j < nmeas; j++) {
             fb_kin kin = {.want_acc = 0};
             fb_point_kinematics(m, &m->points[2 + j], th, thd, q, qd, &kin, NULL);
-            mv[(size_t)k * nmeas + j] = e2x * kin.v[0] + e2y * kin.v[1];
+            mv[(size_t)i * nmeas + j] = e2x * kin.v[0] + e2y * kin.v[1];
         }
     }
 }

@@ -1,0 +1,151 @@
+/* Bookkeeping of a run: the energy it dissipates and the work its joint receives, at the nodes, over a step and on
+ * the dense output; the mechanical energy of an evaluated state.
+ *
+ *   E_d = int sum_k (F_k - F_k,elastic)(-delta_k') + c_s s'^2 dt over the pairs under a law (Gauss quadrature of
+ *   the nodal rates); the joint work W of a free or torque-driven joint is tau (phi1 - phi0), exact for the
+ *   constant torque (phi the hub angle); with theta(t) prescribed W = int tau_joint theta' dt with the
+ *   modal-acceleration part m_tq q'' theta' integrated by parts (its rapidly oscillating integrand is not
+ *   quadrature material):
+ *     W(t) = W0 + int [(M_tt theta'' - Q_t - sum_k J_k,t F_k) theta' - m_tq q' theta''] dt + [m_tq q' theta']_t0^t.
+ */
+#include <string.h>
+
+#include "integrator.h"
+#include "phase.h"
+
+/* Node j's rates of E_d and (prescribed theta) of W, with the nodal contact forces F[k][j] and their elastic parts
+ * Fk[k][j] of the pairs. */
+void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P], const double Fk[][FB_P], int j,
+                   double *ed, double *wd) {
+    const fb_model *m = ph->m;
+    int n = m->n, S = ph->c.npairs;
+    *ed = 0.0;
+    for (int k = 0; k < S; k++)
+        if (ph->c.mode[k] == FB_MODE_FORCE) *ed += (F[k][j] - Fk[k][j]) * (-nd->gap[k].rate);
+    if (fb_compliant(m)) {
+        double sd = nd->zd[ph->b->N - 1];
+        *ed += m->obstacles[0].cs * sd * sd;
+    }
+    *wd = 0.0;
+    if (!m->prescribed) return;
+    const double *q = nd->z, *qd = nd->zd;
+    double Q[FB_MAXN], J[FB_MAXN];
+    fb_forces(m, nd->th, nd->thd, q, qd, 0.0, 1, Q);
+    double Mtt = m->Jc + fb_quad(m->Mc, q, n), mq = 0.0, JF = 0.0;
+    for (int i = 0; i < n; i++) mq += m->mtq[i] * qd[i];
+    for (int k = 0; k < S; k++) {
+        if (ph->c.mode[k] == FB_MODE_NONE) continue;
+        fb_pair_gap(m, k, nd->th, nd->thd, q, qd, 0.0, 0.0, 0, J);
+        JF += J[0] * F[k][j];
+    }
+    *wd = (Mtt * nd->thdd - Q[0] - JF) * nd->thd - mq * nd->thdd;
+}
+
+double fb_boundary_work(const fb_phase *ph, double t, const double *v) {
+    const fb_model *m = ph->m;
+    if (!m->prescribed) return 0.0;
+    double z[FB_MAXN], th, thd, thdd, acc = 0.0;
+    fb_to_physical(ph->b, v, z);
+    fb_drive_motion(m, t, &th, &thd, &thdd);
+    for (int i = 0; i < m->n; i++) acc += m->mtq[i] * z[i];
+    return acc * thd;
+}
+
+double fb_hub_angle(const fb_phase *ph, const double *eta) {
+    const fb_model *m = ph->m;
+    double z[FB_MAXN], acc;
+    fb_to_physical(ph->b, eta, z);
+    acc = z[0];
+    for (int i = 0; i < m->n; i++) acc += m->d[i] * z[i + 1];
+    return acc;
+}
+
+/* T + V_e + V_g (+ the pairs' contact potentials under a law, + the support's energy) at an evaluated node, and
+ * *scale = T + V_e (+ the support's), the energy the step's state error is measured against. */
+double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale) {
+    const fb_model *m = ph->m;
+    const double *q = m->prescribed ? nd->z : nd->z + 1, *qd = m->prescribed ? nd->zd : nd->zd + 1;
+    double T, Ve, Vg;
+    fb_energies(m, nd->th, nd->thd, q, qd, &T, &Ve, &Vg);
+    if (fb_compliant(m)) {
+        const fb_obstacle *o = &m->obstacles[0];
+        double s = nd->z[ph->b->N - 1], sd = nd->zd[ph->b->N - 1];
+        T += 0.5 * o->ms * sd * sd;
+        Ve += 0.5 * o->ks * s * s;
+    }
+    *scale = T + Ve;
+    double E = T + Ve + Vg;
+    for (int k = 0; k < ph->c.npairs; k++)
+        if (ph->c.mode[k] == FB_MODE_FORCE) E += fb_law_potential(ph->c.p[k], -nd->gap[k].delta);
+    return E;
+}
+
+/* The bookkeeping over a step [t, t + h] whose nodes and end are in w and st: the nodal rates of E_d and W (red,
+ * rwd) and their increments, E_d by Gauss quadrature, W as documented at the top of this file. */
+void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, const double *eta, const double *v,
+                   const fb_step *st, double *red, double *rwd, double *dEd, double *dW) {
+    const fb_tables *tb = fb_gauss();
+    const fb_model *m = ph->m;
+    double ed = 0.0, wd = 0.0;
+    for (int j = 0; j < FB_P; j++) {
+        fb_node_rates(ph, &w->node[j], w->F, w->Fk, j, &red[j], &rwd[j]);
+        ed += tb->w[j] * red[j];
+        wd += tb->w[j] * rwd[j];
+    }
+    *dEd = h * ed;
+    if (m->prescribed)
+        *dW = h * wd + fb_boundary_work(ph, t + h, st->v1) - fb_boundary_work(ph, t, v);
+    else if (m->drive == FB_DRIVE_TORQUE)
+        *dW = m->torque * (fb_hub_angle(ph, st->eta1) - fb_hub_angle(ph, eta));
+    else
+        *dW = 0.0;
+}
+
+/* Reference-layout states [z, z', (s, s'), E_d, W] at sorted times from a phase's records (each time inside
+ * [t0, t0 + h] of some record); W for a free/torque joint from the hub angle, as in fb_advance. */
+int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, int nrec, const double *times,
+                  int count, double *Y) {
+    int N = b->N, nz = b->nz, S = m->npairs, R = fb_record_size(N, S), size = fb_state_size(m), r = 0;
+    fb_phase ph;
+    fb_contacts none;
+    memset(&none, 0, sizeof none);
+    none.npairs = S;
+    fb_phase_init(&ph, m, b, &none, 0.0, 0.0, 0.0);
+    for (int i = 0; i < count; i++) {
+        double t = times[i];
+        while (r + 1 < nrec && t > records[(size_t)r * R] + records[(size_t)r * R + 1]) r++;
+        const double *rec = records + (size_t)r * R;
+        double x = (t - rec[0]) / rec[1];
+        if (x < 0.0) x = 0.0;
+        if (x > 1.0) x = 1.0;
+        const double *eta0 = rec + 4, *v0 = eta0 + N, *f = v0 + N, *red = f + FB_P * N + S * FB_P, *rwd = red + FB_P;
+        double eta[FB_MAXN], v[FB_MAXN], z[FB_MAXN], zd[FB_MAXN];
+        fb_dense dd = {&ph, rec[0], rec[1], eta0, v0, f, 0};
+        fb_dense_state(&dd, x, eta, v);
+        fb_to_physical(b, eta, z);
+        fb_to_physical(b, v, zd);
+        double *y = Y + (size_t)i * size;
+        for (int k = 0; k < nz; k++) {
+            y[k] = z[k];
+            y[nz + k] = zd[k];
+        }
+        if (N > nz) {
+            y[2 * nz] = z[N - 1];
+            y[2 * nz + 1] = zd[N - 1];
+        }
+        double Ed = rec[2], W = rec[3];
+        for (int j = 0; j < FB_P; j++) {
+            double li = fb_lagrange_integral(j, x);
+            Ed += rec[1] * li * red[j];
+            W += rec[1] * li * rwd[j];
+        }
+        if (m->prescribed) {
+            W += fb_boundary_work(&ph, t, v) - fb_boundary_work(&ph, rec[0], v0);
+        } else if (m->drive == FB_DRIVE_TORQUE) {
+            W = rec[3] + m->torque * (fb_hub_angle(&ph, eta) - fb_hub_angle(&ph, eta0));
+        }
+        y[size - 2] = Ed;
+        y[size - 1] = W;
+    }
+    return 0;
+}

@@ -1,0 +1,27 @@
+/* The phase driver's interface (phase.c) and its bookkeeping (bookkeeping.c). */
+#ifndef FLEXBEAM_PHASE_H
+#define FLEXBEAM_PHASE_H
+
+#include "integrator.h"
+
+/* record row: [t0, h, Ed0, W0, eta0 (N), v0 (N), f (P x N), F (S x P), Ed rates (P), W rates (P)], S pairs */
+int fb_record_size(int N, int S);
+/* state buffer: [t, h, Ed, W, have_guess, eta (N), v (N), f (P x N), F (S x P)] */
+int fb_state_buffer_size(int N, int S);
+/* control buffer: [rtol, atol, hmax, omega_rigid, events (bits), contacts (fb_contacts_unpack)] */
+#define FB_CTRL_HEAD 5
+
+int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t nctrl, double *state, double t_end,
+               double *records, int capacity, int *nrec, double *info);
+int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, int nrec, const double *times,
+                  int count, double *Y);
+
+void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P], const double Fk[][FB_P], int j,
+                   double *ed, double *wd);
+double fb_boundary_work(const fb_phase *ph, double t, const double *v);
+double fb_hub_angle(const fb_phase *ph, const double *eta);
+double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale);
+void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, const double *eta, const double *v,
+                   const fb_step *st, double *red, double *rwd, double *dEd, double *dW);
+
+#endif
