@@ -1,0 +1,107 @@
+"""Reading a result for an animation: :class:`History`, the samples of the hub angle, the modal coordinates and the
+contact force, the contact intervals and the case, from a :class:`~flexbeam.solution.Solution`, its
+:meth:`~flexbeam.solution.Solution.to_xarray` dataset or a saved ``result.nc``.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..errors import ParameterError
+
+if TYPE_CHECKING:
+    from ..parameters.case import Case
+    from ..solution import Solution
+
+
+@dataclass
+class History:
+    """What an animation needs of a result: samples of the hub angle, the modal coordinates and the contact
+    force, the contact intervals, and the case."""
+
+    time: np.ndarray
+    phi: np.ndarray
+    q: np.ndarray
+    force: np.ndarray
+    support: np.ndarray | None
+    contacts: list[tuple[float, float]]
+    case: Case
+    label: str
+
+    @classmethod
+    def from_solution(cls, sol: Solution, case: Case | None = None) -> History:
+        """The arrays and contact log of a :class:`~flexbeam.solution.Solution`."""
+        case = case if case is not None else _case_from_toml(sol.provenance.get("case_toml"))
+        support = sol.arrays.get("support_displacement")
+        return cls(
+            np.asarray(sol.time, float),
+            np.asarray(sol["theta"], float),
+            np.asarray(sol["q"], float),
+            np.asarray(sol["contact_force"], float),
+            None if support is None else np.asarray(support, float),
+            [(c.onset, c.end) for c in sol.contacts],
+            case,
+            f"{case.name} [{sol.method}]",
+        )
+
+    @classmethod
+    def from_dataset(cls, ds: Any, case: Case | None = None) -> History:
+        """The variables of a result dataset (:meth:`~flexbeam.solution.Solution.to_xarray`, or ``result.nc``)."""
+        for name in ("time", "theta", "q", "contact_force"):
+            if name not in ds.variables:
+                raise ParameterError(f"result: the dataset has no variable '{name}' (not a flexbeam result)")
+        case = case if case is not None else _case_from_toml(ds.attrs.get("case_toml"))
+        onset = np.asarray(ds["contact_onset"].values, float) if "contact_onset" in ds.variables else np.empty(0)
+        end = (
+            np.asarray(ds["contact_end"].values, float)
+            if "contact_end" in ds.variables
+            else np.full_like(onset, np.nan)
+        )
+        support = np.asarray(ds["support_displacement"].values, float) if "support_displacement" in ds else None
+        method = str(ds.attrs.get("method", ""))
+        return cls(
+            np.asarray(ds["time"].values, float),
+            np.asarray(ds["theta"].values, float),
+            np.asarray(ds["q"].values, float).reshape(ds["time"].size, -1),
+            np.asarray(ds["contact_force"].values, float),
+            support,
+            [(float(a), float(b)) for a, b in zip(onset, end)],
+            case,
+            f"{case.name} [{method}]",
+        )
+
+    @classmethod
+    def load(cls, result: Solution | Any | str | Path, case: Case | None = None) -> History:
+        """From a Solution, an :class:`xarray.Dataset` or the path of a ``result.nc``."""
+        if isinstance(result, (str, Path)):
+            import xarray as xr
+
+            path = Path(result)
+            if not path.is_file():
+                raise ParameterError(f"result: no such file '{path}'")
+            try:
+                with xr.open_dataset(path) as ds:
+                    data = ds.load()
+            except (OSError, ValueError) as exc:
+                raise ParameterError(f"result: cannot read '{path}' as NetCDF: {_one_line(exc)}") from None
+            return cls.from_dataset(data, case)
+        if hasattr(result, "arrays") and hasattr(result, "contacts"):
+            return cls.from_solution(result, case)
+        return cls.from_dataset(result, case)
+
+
+def _one_line(message: object) -> str:
+    return str(message).replace("\r", " ").replace("\n", " ")
+
+
+def _case_from_toml(text: Any) -> Case:
+    from ..parameters.io import load_case
+
+    if not isinstance(text, str) or not text:
+        raise ParameterError("result: it records no case (provenance 'case_toml'); pass case=")
+    return load_case(tomllib.loads(text))

@@ -1,0 +1,125 @@
+"""What each frame of an animation draws, as numbers: :class:`Scene` holds, per frame, the beam's band with its
+deflection magnified about the rigid reference line, the contact point, the reference line, the drawn hub angle,
+the obstacle's displacement and the contact force, built from a :class:`~flexbeam.animation.history.History` by
+the geometry of :mod:`flexbeam.animation.geometry`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..errors import ModelError, ParameterError
+from .geometry import auto_scale, beam_shape, frame_times, reference_angle
+from .history import History
+
+if TYPE_CHECKING:
+    from ..model.system import BeamSystem
+
+#: material points drawn along the beam
+BEAM_POINTS = 121
+
+
+@dataclass
+class Scene:
+    """Everything drawn, frame by frame: magnified beam outlines, hub angles, obstacle positions, force."""
+
+    history: History
+    times: np.ndarray
+    density: np.ndarray
+    scale: float
+    reference: str
+    centre: np.ndarray  # (m, k, 2) magnified centre line
+    upper: np.ndarray  # (m, k, 2) band edges (half-thickness c on either side)
+    lower: np.ndarray
+    contact_point: np.ndarray  # (m, 2) the contact point on the lower surface
+    chord: np.ndarray  # (m, 2, 2) the rigid reference line from O to r_h + L
+    hub_angle: np.ndarray  # (m,) drawn hub angle
+    obstacle_shift: np.ndarray  # (m, 2) compliant support's displacement
+    force: np.ndarray  # (m,) contact force at the frames
+    system: BeamSystem
+
+    @classmethod
+    def build(
+        cls,
+        history: History,
+        window: tuple[float, float] | None,
+        frames: int,
+        contact_share: float,
+        reference: str,
+        scale: float | str,
+    ) -> Scene:
+        """The scene of ``frames`` frames of ``history`` over ``window`` (default: all of it).
+
+        Frame times by :func:`~flexbeam.animation.geometry.frame_times`; hub angle, modal coordinates, support
+        displacement and force interpolated linearly between the samples; the centre line by
+        :func:`~flexbeam.animation.geometry.beam_shape` at :data:`BEAM_POINTS` points and the contact point;
+        its deviation from the rigid line at :func:`~flexbeam.animation.geometry.reference_angle` magnified by
+        ``scale`` (``"auto"``: :func:`~flexbeam.animation.geometry.auto_scale` of its largest norm over the
+        frames); the band's edges offset by the contact offset c along the magnified line's normal.
+        """
+        from ..model.system import BeamSystem
+
+        t = history.time
+        if t.size < 2:
+            raise ParameterError("result: fewer than two samples, nothing to animate")
+        system = BeamSystem.from_case(history.case)
+        beam = system.beam
+        if history.q.shape[1] != beam.n:
+            raise ModelError(
+                f"animate: the result has {history.q.shape[1]} modal coordinates, its case "
+                f"{beam.n} (a finite-element result has none: animate a modal run)"
+            )
+        ta, tb = float(t[0]), float(t[-1])
+        t0, t1 = (ta, tb) if window is None else (float(window[0]), float(window[1]))
+        slack = 1e-9 * max(abs(ta), abs(tb), tb - ta)
+        if not (math.isfinite(t0) and math.isfinite(t1) and ta - slack <= t0 < t1 <= tb + slack):
+            raise ParameterError(
+                f"window: must satisfy {ta:g} <= t0 < t1 <= {tb:g} s, the simulated time (got {t0:g},{t1:g})"
+            )
+        t0, t1 = max(t0, ta), min(t1, tb)
+        times, density = frame_times((t0, t1), history.contacts, frames, contact_share)
+
+        phi = np.interp(times, t, history.phi)
+        q = np.column_stack([np.interp(times, t, col) for col in history.q.T]) if beam.n else np.zeros((frames, 0))
+        xP, c, L, rh = system.contact.position, system.contact.offset, beam.length, beam.hub_radius
+        x = np.union1d(np.linspace(0.0, L, BEAM_POINTS), [xP])
+        iP = int(np.searchsorted(x, xP))
+        X, Y = beam_shape(system, phi, q, x)
+        r = np.stack((X, Y), axis=-1)  # (m, k, 2)
+        alpha = reference_angle(reference, phi, r[:, iP], rh + xP, rh + L)
+        e1 = np.stack((np.cos(alpha), np.sin(alpha)), axis=-1)
+        rigid = (rh + x)[None, :, None] * e1[:, None, :]
+        deviation = r - rigid
+        k = auto_scale(float(np.max(np.linalg.norm(deviation, axis=-1))), L) if scale == "auto" else float(scale)
+        centre = rigid + k * deviation
+        tangent = np.gradient(centre, x, axis=1)
+        tangent /= np.maximum(np.linalg.norm(tangent, axis=-1, keepdims=True), 1e-300)
+        normal = np.stack((-tangent[..., 1], tangent[..., 0]), axis=-1)  # e2 of the magnified line
+        upper, lower = centre + c * normal, centre - c * normal
+        chord = np.stack((np.zeros_like(e1), (rh + L) * e1), axis=1)
+        hub_angle = alpha + k * (phi - alpha)
+        shift = np.zeros((frames, 2))
+        obstacle = system.contact.obstacle
+        if history.support is not None and obstacle.compliant:
+            shift = np.interp(times, t, history.support)[:, None] * np.asarray(obstacle.support[3:5])[None, :]
+        force = np.interp(times, t, history.force)
+        return cls(
+            history,
+            times,
+            density,
+            k,
+            reference,
+            centre,
+            upper,
+            lower,
+            lower[:, iP],
+            chord,
+            hub_angle,
+            shift,
+            force,
+            system,
+        )
