@@ -57,25 +57,24 @@ def strict_json(text: str) -> Any:
     return json.loads(text, parse_constant=refuse)
 
 
-def assert_metrics_equal(got: dict[str, Any], expected: dict[str, Any], exclude: set[str] = frozenset()) -> None:
-    """``got`` (parsed JSON) equals ``expected`` (Solution.metrics()): NaN as null, floats to REL."""
-    assert set(got) == set(expected)
-    for key, want in expected.items():
-        if key in exclude:
-            continue
-        have = got[key]
-        if isinstance(want, list):
-            assert isinstance(have, list) and len(have) == len(want), key
-            pairs = list(zip(have, want))
-        else:
-            pairs = [(have, want)]
-        for h, w in pairs:
-            if isinstance(w, float) and math.isnan(w):
-                assert h is None, (key, h)
-            elif isinstance(w, float):
-                assert isinstance(h, float) and math.isclose(h, w, rel_tol=REL, abs_tol=0.0), (key, h, w)
-            else:
-                assert h == w and type(h) is type(w), (key, h, w)
+def assert_metrics_equal(got: Any, expected: Any, exclude: set[str] = frozenset(), key: str = "") -> None:
+    """``got`` (parsed JSON) equals ``expected`` (Solution.metrics()): NaN as null, floats to REL, lists and the
+    per-pair records item by item."""
+    if isinstance(expected, dict):
+        assert isinstance(got, dict) and set(got) == set(expected), key
+        for k, want in expected.items():
+            if k not in exclude:
+                assert_metrics_equal(got[k], want, key=f"{key}.{k}" if key else k)
+    elif isinstance(expected, list):
+        assert isinstance(got, list) and len(got) == len(expected), key
+        for h, w in zip(got, expected):
+            assert_metrics_equal(h, w, key=key)
+    elif isinstance(expected, float) and math.isnan(expected):
+        assert got is None, (key, got)
+    elif isinstance(expected, float):
+        assert isinstance(got, float) and math.isclose(got, expected, rel_tol=REL, abs_tol=0.0), (key, got, expected)
+    else:
+        assert got == expected and type(got) is type(expected), (key, got, expected)
 
 
 def assert_documented_types(data: dict[str, Any]) -> None:
@@ -88,9 +87,17 @@ def assert_documented_types(data: dict[str, Any]) -> None:
     assert len(data["force_peaks"]) == len(data["force_peak_times"])
     for key in STR_KEYS:
         assert isinstance(data[key], str), (key, data[key])
+    # pairs: one record per contact pair, the first pair's metrics repeated in the first one
+    assert isinstance(data["pairs"], list) and data["pairs"] and data["pairs"][0]["pair"] == 0
+    for record in data["pairs"]:
+        assert type(record["pair"]) is int and type(record["contacts"]) is int and isinstance(record["obstacle"], str)
+        for key in ("peak_force", "contact_duration", "impulse", "impact_velocity"):
+            assert record[key] is None or type(record[key]) is float, (key, record)
+    for key in ("peak_force", "contact_duration", "impulse"):
+        assert data["pairs"][0][key] == data[key]
     # every other metric is a number or null too (the contract may grow, by adding keys)
     for key, value in data.items():
-        if key not in (*INT_KEYS, *LIST_KEYS, *STR_KEYS):
+        if key not in (*INT_KEYS, *LIST_KEYS, *STR_KEYS, "pairs"):
             assert value is None or type(value) in (float, int), (key, value)
 
 

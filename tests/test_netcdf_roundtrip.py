@@ -32,19 +32,23 @@ def strict_json(text: str) -> Any:
     return json.loads(text, parse_constant=refuse)
 
 
-def assert_same_metrics(got: dict[str, Any], expected: dict[str, Any]) -> None:
-    """Parsed metrics equal Solution.metrics(): NaN as null, floats to REL, the rest exactly."""
-    assert set(got) == set(expected)
-    for key, want in expected.items():
-        have = got[key]
-        pairs = list(zip(have, want, strict=True)) if isinstance(want, list) else [(have, want)]
-        for h, w in pairs:
-            if isinstance(w, float) and math.isnan(w):
-                assert h is None, key
-            elif isinstance(w, float):
-                assert math.isclose(h, w, rel_tol=REL, abs_tol=0.0), (key, h, w)
-            else:
-                assert h == w and type(h) is type(w), (key, h, w)
+def assert_same_metrics(got: Any, expected: Any, key: str = "") -> None:
+    """Parsed metrics equal Solution.metrics(): NaN as null, floats to REL, the rest (lists and the per-pair
+    records item by item) exactly."""
+    if isinstance(expected, dict):
+        assert isinstance(got, dict) and set(got) == set(expected), key
+        for k, want in expected.items():
+            assert_same_metrics(got[k], want, f"{key}.{k}" if key else k)
+    elif isinstance(expected, list):
+        assert isinstance(got, list) and len(got) == len(expected), key
+        for h, w in zip(got, expected, strict=True):
+            assert_same_metrics(h, w, key)
+    elif isinstance(expected, float) and math.isnan(expected):
+        assert got is None, key
+    elif isinstance(expected, float):
+        assert math.isclose(got, expected, rel_tol=REL, abs_tol=0.0), (key, got, expected)
+    else:
+        assert got == expected and type(got) is type(expected), (key, got, expected)
 
 
 @pytest.mark.parametrize(

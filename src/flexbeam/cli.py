@@ -140,6 +140,12 @@ def _print_metrics(metrics: dict[str, Any], title: str) -> None:
     table.add_column("metric")
     table.add_column("value", justify="right")
     for key, value in metrics.items():
+        if key == "pairs":  # one row per contact pair with several: its contacts and first peak
+            for p in value if len(value) > 1 else []:
+                peak = p.get("peak_force", math.nan)
+                text = f"{p['contacts']} contacts, first peak " + ("-" if math.isnan(peak) else f"{peak:.6g} N")
+                table.add_row(f"pair {p['pair']} ({p['obstacle']})", text)
+            continue
         if isinstance(value, float):
             text = "-" if math.isnan(value) else f"{value:.6g}"
         elif isinstance(value, list):

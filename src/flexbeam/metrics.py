@@ -1,7 +1,8 @@
 """The run metrics by name: one registry that ``Solution.metrics``, the ``--json`` output, sweeps and calibration
 read.  The names are a contract users script against: add, never rename.
 
-Each metric has its units, a long name, a kind (``number``, ``count``, ``numbers`` for a list, ``text``) and a
+Each metric has its units, a long name, a kind (``number``, ``count``, ``numbers`` for a list, ``text``,
+``records`` for a list of per-pair dicts) and a
 scope: ``first contact`` (computed from the first contact alone; a calibration of such features may stop the run
 after it), ``sensor`` (the first sensor pulse of a compliant obstacle support: present only with one), ``run``.
 ``fittable`` metrics can be calibration features; ``second_peak`` ones read 0 in a fit when a trial's force has a
@@ -53,6 +54,9 @@ METRICS: dict[str, Metric] = {
     "sensor_duration": Metric("s", "Duration of the first sensor pulse (force > 0)", scope="sensor"),
     "tip_deflection_min": Metric("m", "Smallest tip deflection", scope="run"),
     "tip_deflection_max": Metric("m", "Largest tip deflection", scope="run"),
+    "pairs": Metric(
+        "", "Per contact pair: its number of contacts and its first contact's metrics", "records", "run", False
+    ),  # fmt: skip
 }
 
 #: metrics that are plain numbers (variables of a sweep's Dataset)

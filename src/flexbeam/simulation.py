@@ -33,6 +33,23 @@ def initial_state(system: BeamSystem, case: Case) -> tuple[np.ndarray, dict[str,
       angle (:func:`release_state`); the release angle, when not given, is solved for (shooting with
       :func:`scipy.optimize.brentq` on the free flight) so that P reaches the obstacle at the impact velocity.
     """
+    y, info = _initial_state(system, case)
+    for k, pair in enumerate(system.contact.pairs):  # no pair may start inside its obstacle
+        delta = system.gap(0.0, y, k)[0]
+        if delta < -START_INSIDE:
+            field = "obstacle" if pair.obstacle == 0 else f"obstacles[{pair.obstacle - 1}]"
+            raise ParameterError(
+                f"{field}.centre: the beam starts {-delta:.3g} m inside this obstacle (its contact point at "
+                f"x = {pair.position:g} m); move the obstacle or the initial state"
+            )
+    return y, info
+
+
+#: a contact point may start this far inside an obstacle (round-off of the placement) [m]
+START_INSIDE = 1e-9
+
+
+def _initial_state(system: BeamSystem, case: Case) -> tuple[np.ndarray, dict[str, float]]:
     init = case.initial
     if system.prescribed:
         th, thd, _ = system.drive.motion(0.0)
@@ -200,6 +217,7 @@ def collect(
         "contact_stiffness": system.law.stiffness,
         "contact_exponent": system.law.exponent,
         "compliant_support": int(system.compliant),
+        "contact_pairs": [p.label for p in system.contact.pairs],
         **info,
     }
     return Solution(

@@ -45,7 +45,12 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "tip_deflection": ("m", "Tip deflection in the rotating frame"),
     "support_displacement": ("m", "Displacement s of the compliant obstacle along its support axis"),
     "sensor_force": ("N", "Force read under the compliant obstacle support, -(k_s s + c_s s')"),
+    "pair_gap": ("m", "Gap of each contact pair"),
+    "pair_normal_velocity": ("m/s", "Normal velocity of each contact pair's point"),
+    "pair_contact_force": ("N", "Contact force of each contact pair"),
 }
+#: variables (time x pair) present only when a case has several contact pairs
+PAIR_VARIABLES = ("pair_gap", "pair_normal_velocity", "pair_contact_force")
 
 
 @dataclass
@@ -242,7 +247,7 @@ class Solution:
             ev.energy_before += potential
             ev.energy_after += potential
         if end > ev.onset:
-            ev.impulse = (ev.jump_impulse if jumped else 0.0) + src.impulse(ev.onset, end)
+            ev.impulse = (ev.jump_impulse if jumped else 0.0) + src.impulse(ev.onset, end, ev.pair)
             if not jumped:
                 ev.energy_before = src.mechanical_energy(ev.onset, after=True)
             ev.energy_after = src.mechanical_energy(end)
@@ -285,12 +290,13 @@ class Solution:
         scale = max(abs(E[0]), float(np.max(T)), 1e-300)
         return float((E[-1] - E[0]) / scale), float(np.max(np.abs(E - E[0])) / scale)
 
-    def _refine_max(self, t_guess: float, h: float, lo: float, hi: float) -> tuple[float, float]:
+    def _refine_max(self, t_guess: float, h: float, lo: float, hi: float, pair: int = 0) -> tuple[float, float]:
         if self.source is not None:
             a, b = max(lo, t_guess - h), min(hi, t_guess + h)
+            force = lambda t: self.source.force_many(t, pair)  # noqa: E731
             if b <= a:
-                return t_guess, float(self.source.force_many(np.array([t_guess]))[0])
-            return zoom_max(self.source.force_many, a, b, xtol=PEAK_XTOL)
+                return t_guess, float(force(np.array([t_guess]))[0])
+            return zoom_max(force, a, b, xtol=PEAK_XTOL)
         if self._force_at is None:
             i = int(np.argmin(np.abs(self.time - t_guess)))
             return float(self.time[i]), float(self.arrays["contact_force"][i])
@@ -307,9 +313,12 @@ class Solution:
         """(times, force) of one contact: on the dense output (a run) or at the samples."""
         end = ev.end if math.isfinite(ev.end) else math.inf
         if self.source is not None:
-            return self.source.force_profile(ev.onset, end if math.isfinite(end) else self.source.run.t_final)
+            t1 = end if math.isfinite(end) else self.source.run.t_final
+            return self.source.force_profile(ev.onset, t1, ev.pair)
         t = self.time
         sel = np.nonzero((t >= ev.onset) & (t <= end) & self._in_contact)[0]
+        if "pair_contact_force" in self.arrays:
+            return t[sel], self.arrays["pair_contact_force"][sel, ev.pair]
         return t[sel], self.arrays["contact_force"][sel]
 
     def force_peaks(self, contact: int = 0, threshold: float = 0.05) -> list[tuple[float, float]]:
@@ -332,7 +341,7 @@ class Solution:
         end = ev.end if math.isfinite(ev.end) else float(tt[-1])
         h = float(np.median(np.diff(tt))) if tt.size > 1 else 0.0
         idx = interior_maxima(f, start=True)
-        return [self._refine_max(float(tt[i]), h, ev.onset, end) for i in idx]
+        return [self._refine_max(float(tt[i]), h, ev.onset, end, ev.pair) for i in idx]
 
     def sensor_pulse(self, threshold: float = 0.05) -> tuple[list[tuple[float, float]], float]:
         """Peaks (time [s], force [N]) and duration [s] of the first sensor-force pulse.
@@ -364,6 +373,36 @@ class Solution:
         top = max(p[1] for p in peaks)
         return [p for p in peaks if p[1] > threshold * top], end - onset
 
+    def _contact_metrics(self, i: int) -> dict[str, Any]:
+        """The per-contact metrics of contact ``i`` (impact and post-impact velocity, duration, impulse, energies,
+        peak force and its time, local force maxima, second peak)."""
+        ev = self.contact(i)
+        out: dict[str, Any] = {
+            "impact_velocity": ev.velocity_before,
+            "post_impact_velocity": ev.velocity_after,
+            "contact_duration": ev.duration,
+            "impulse": ev.impulse,
+            "energy_before": ev.energy_before,
+            "energy_after": ev.energy_after,
+            "peak_force": math.nan,
+            "peak_time": math.nan,
+            "force_peaks": [],
+            "force_peak_times": [],
+            "second_peak_force": math.nan,
+        }
+        peaks = self.force_peaks(i)
+        if peaks:
+            tp, fp = max(peaks, key=lambda p: p[1])
+            others = [p[1] for p in peaks if p[0] != tp]
+            out.update(
+                peak_force=fp,
+                peak_time=tp - ev.onset,
+                force_peaks=[p[1] for p in peaks],
+                force_peak_times=[p[0] - ev.onset for p in peaks],
+                second_peak_force=max(others) if others else math.nan,
+            )
+        return out
+
     def metrics(self) -> dict[str, Any]:
         """The run's summary numbers (the ``--json`` contract of ``flexbeam run``), in the order, units and
         meaning of the registry :data:`flexbeam.metrics.METRICS` (NaN or an empty list when not defined).
@@ -371,13 +410,17 @@ class Solution:
         ``peak_force`` [N], ``peak_time`` [s after the first onset], ``contact_duration`` [s], ``force_peaks``
         (list of local maxima [N] above 5 % of the peak) with ``force_peak_times`` [s after onset],
         ``contacts``, ``post_impact_velocity`` (P's normal velocity at the end of the first contact [m/s],
-        positive away from the obstacle), ``energy_drift``, ``wall_time`` [s], ``steps``; with a compliant
+        positive away from the obstacle), ``energy_drift``, ``wall_time`` [s], ``steps``; the per-contact ones are
+        those of the first contact of pair 0 (``[contact]`` against ``[obstacle]``), and ``pairs`` lists them for
+        the first contact of every pair with the pair's number of contacts; with a compliant
         obstacle support also ``sensor_peak_force``, ``sensor_second_peak_force`` [N] and ``sensor_duration``
         [s] of the first sensor-force pulse (:meth:`sensor_pulse`).
         """
         drift, drift_max = self.energy_drift()
         out: dict[str, Any] = {
-            name: ([] if m.kind == "numbers" else math.nan) for name, m in METRICS.items() if m.scope != "sensor"
+            name: ([] if m.kind in ("numbers", "records") else math.nan)
+            for name, m in METRICS.items()
+            if m.scope != "sensor"
         }
         out.update(
             method=self.method,
@@ -390,23 +433,15 @@ class Solution:
             steps=int(self.stats.get("steps", 0)),
             nfev=int(self.stats.get("nfev", 0)),
         )
-        if self._contacts:
-            ev = self.contact(0)
-            out["impact_velocity"] = ev.velocity_before
-            out["post_impact_velocity"] = ev.velocity_after
-            out["contact_duration"] = ev.duration
-            out["impulse"] = ev.impulse
-            out["energy_before"] = ev.energy_before
-            out["energy_after"] = ev.energy_after
-            peaks = self.force_peaks(0)
-            if peaks:
-                tp, fp = max(peaks, key=lambda p: p[1])
-                out["peak_force"] = fp
-                out["peak_time"] = tp - ev.onset
-                out["force_peaks"] = [p[1] for p in peaks]
-                out["force_peak_times"] = [p[0] - ev.onset for p in peaks]
-                others = [p[1] for p in peaks if p[0] != tp]
-                out["second_peak_force"] = max(others) if others else math.nan
+        labels = self._provenance.get("contact_pairs") or ["obstacle"]
+        firsts = [next((i for i, ev in enumerate(self._contacts) if ev.pair == k), None) for k in range(len(labels))]
+        if firsts[0] is not None:
+            out.update(self._contact_metrics(firsts[0]))
+        out["pairs"] = [
+            {"pair": k, "obstacle": label, "contacts": sum(ev.pair == k for ev in self._contacts),
+             **(self._contact_metrics(i) if i is not None else {})}
+            for k, (label, i) in enumerate(zip(labels, firsts))
+        ]  # fmt: skip
         if self._provenance.get("compliant_support") or (self._samples is not None and "sensor_force" in self.arrays):
             peaks, duration = self.sensor_pulse()
             ranked = sorted((p[1] for p in peaks), reverse=True)
@@ -444,6 +479,8 @@ class Solution:
                 dims: tuple[str, ...] = ("time", "mode")
             elif name == "measuring_velocity":
                 dims = ("time", "point")
+            elif name.startswith("pair_"):
+                dims = ("time", "pair")
             else:
                 dims = ("time",)
             data_vars[name] = (dims, arr, {"units": units, "long_name": long_name})
@@ -456,6 +493,7 @@ class Solution:
             "contact_velocity_after": ("m/s", "Normal velocity of P after contact", [e.velocity_after for e in c]),
             "contact_impulse": ("N s", "Contact impulse", [e.impulse for e in c]),
             "contact_peak_force": ("N", "Peak contact force", [e.peak_force for e in c]),
+            "contact_pair": ("1", "Contact pair of the contact (0: [contact] against [obstacle])", [e.pair for e in c]),
         }
         for name, (units, long_name, values) in contact_fields.items():
             data_vars[name] = (("contact",), np.asarray(values, float), {"units": units, "long_name": long_name})
@@ -465,6 +503,9 @@ class Solution:
             "point": ("point", self.measuring_points, {"units": "m", "long_name": "Measuring point x"}),
             "contact": ("contact", np.arange(len(c)), {"long_name": "Contact index"}),
         }
+        if any(name.startswith("pair_") for name in self.arrays):
+            labels = self._provenance.get("contact_pairs") or []
+            coords["pair"] = ("pair", np.asarray(labels, str), {"long_name": "Contact pair (its obstacle)"})
         attrs = {
             "title": "flexbeam simulation",
             "status": self.status,

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..parameters.case import SIDES, Case, Obstacle, PairContact
 from .hertz import effective_modulus, sphere_on_cylinder_stiffness
 from .laws import ContactLaw, make_law
@@ -51,6 +52,7 @@ class ContactPair:
     law: ContactLaw
     restitution: float
     label: str
+    anywhere: bool = False  #: the contact point is found on the deformed beam (position, offset: a start)
 
 
 @dataclass(frozen=True)
@@ -90,7 +92,7 @@ class ContactSetup:
         pairs = [
             ContactPair(
                 float(case.contact.position), float(offset), 0, contact_law(case), case.contact.restitution,
-                "obstacle",
+                "obstacle", case.contact.anywhere,
             )
         ]  # fmt: skip
         for i, ob in enumerate(case.obstacles):
@@ -100,8 +102,37 @@ class ContactSetup:
             obstacles.append(obstacle_geometry(ob, np.array(ob.centre, float), _outward(case, side)))
             law = contact_law(case, ob, pc)
             e = case.contact.restitution if pc.restitution is None else pc.restitution
-            pairs.append(ContactPair(float(x), float(SIDES[side] * c), i + 1, law, e, f"obstacles[{i}]"))
+            anywhere = case.contact.anywhere if pc.anywhere is None else pc.anywhere
+            pairs.append(ContactPair(float(x), float(SIDES[side] * c), i + 1, law, e, f"obstacles[{i}]", anywhere))
+        check_overlaps(obstacles)
         return cls(tuple(pairs), tuple(obstacles))
+
+
+def _name(i: int) -> str:
+    return "obstacle" if i == 0 else f"obstacles[{i - 1}]"
+
+
+def check_overlaps(obstacles) -> None:
+    """Obstacles may not overlap: two spheres closer than their radii, a sphere reaching through a plane, or two
+    planes that are not parallel (their half-spaces intersect); raises a one-line ParameterError naming the later
+    one."""
+    for j, b in enumerate(obstacles):
+        for i, a in enumerate(obstacles[:j]):
+            if a.kind == OBSTACLE_SPHERE and b.kind == OBSTACLE_SPHERE:
+                dist = float(np.hypot(*(a.centre - b.centre)))
+                bad = dist < a.radius + b.radius
+                what = f"its sphere is {dist:g} m from {_name(i)}'s, closer than the radii {a.radius + b.radius:g} m"
+            elif a.kind == OBSTACLE_PLANE and b.kind == OBSTACLE_PLANE:
+                cross = a.normal[0] * b.normal[1] - a.normal[1] * b.normal[0]
+                bad = abs(cross) > 1e-12 or float(a.normal @ b.normal) > 0.0
+                what = f"its half-plane intersects {_name(i)}'s (not parallel and facing each other)"
+            else:
+                sph, pl = (a, b) if a.kind == OBSTACLE_SPHERE else (b, a)
+                depth = float(pl.normal @ (sph.centre - pl.centre))
+                bad = depth < sph.radius
+                what = f"the sphere reaches {sph.radius - depth:g} m into the half-plane ({_name(i)} and it)"
+            if bad:
+                raise ParameterError(f"{_name(j)}.centre: overlaps {_name(i)} -- {what}")
 
 
 def contact_law(case: Case, obstacle: Obstacle | None = None, pair: PairContact | None = None) -> ContactLaw:

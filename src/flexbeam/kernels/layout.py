@@ -2,7 +2,8 @@
 
 Model buffer (float64; integers stored exactly)::
 
-    [version, n, prescribed, drive, profile, npoints, nobstacles, npairs, kind_0 .. kind_{nobstacles-1},
+    [version, n, prescribed, drive, profile, npoints, nobstacles, npairs, nmeasure,
+     kind_0 .. kind_{nobstacles-1},
      Jc, m1, g, torque, spin_rate, spin_up_time, theta0,
      Mc (n x n), Mqq (n x n), mtq (n), K (n x n), sf (n), G (n x n), d (n),
      per point:    base, offset, phi (n), dphi (n), H (n x n),
@@ -57,9 +58,11 @@ def pack_model(
     points: Sequence[PointData],
     obstacles: Sequence[ObstacleGeometry],
     pairs: Sequence[tuple[int, int]] = ((0, 0),),
+    nmeasure: int | None = None,
 ) -> np.ndarray:
     """The model buffer of a beam, its drive, points (P, tip, measuring points, other contact points), obstacles
-    and contact pairs (point index, obstacle index)."""
+    and contact pairs (point index, obstacle index); ``nmeasure`` measuring points follow P and the tip (default:
+    every point after them)."""
     n = beam.n
     head = [
         LAYOUT_VERSION,
@@ -70,6 +73,7 @@ def pack_model(
         len(points),
         len(obstacles),
         len(pairs),
+        len(points) - 2 if nmeasure is None else nmeasure,
         *[o.kind for o in obstacles],
     ]
     scalars = [

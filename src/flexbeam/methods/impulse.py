@@ -54,27 +54,35 @@ class Jump:
 def solve_impact_lcp(W: np.ndarray, v_minus: np.ndarray, e: np.ndarray) -> np.ndarray:
     """Impulses P >= 0 with v+ = v- + W P, v+ + e v- >= 0 and P (v+ + e v-) = 0 (see the module docstring).
 
-    The active set A (P_A > 0) solves W_AA P_A = -(1 + e_A) v-_A; the smallest consistent set is returned (for a
-    positive definite W the solution is unique).
+    Every active set A (P_A > 0 solving W_AA P_A = -(1 + e_A) v-_A) is tried; of the consistent ones the impulse
+    of least norm is returned: for a positive definite W the solution is unique, and when W is singular (more
+    contacts than the motion can tell apart, e.g. two stops on a rigid rod) the post-impact velocities still are,
+    while the impulses are split as the Moore-Penrose (least-norm) solution does -- equally between identical
+    pairs.
     """
     s = v_minus.size
     target = -(1.0 + e) * v_minus  # W P must reach this on the active set
     scale = max(float(np.max(np.abs(target), initial=0.0)), 1e-300)
+    tol = 1e-10 * scale
+    best: np.ndarray | None = None
     for size in range(s + 1):
         for active in itertools.combinations(range(s), size):
             idx = list(active)
             P = np.zeros(s)
             if idx:
-                try:
-                    P[idx] = np.linalg.solve(W[np.ix_(idx, idx)], target[idx])
-                except np.linalg.LinAlgError:
+                Waa = W[np.ix_(idx, idx)]
+                P[idx] = np.linalg.lstsq(Waa, target[idx], rcond=1e-12)[0]
+                if np.any(P[idx] < -tol / max(float(np.max(np.abs(Waa))), 1e-300)):
                     continue
-                if np.any(P[idx] < 0.0):
-                    continue
+                P[idx] = np.maximum(P[idx], 0.0)
             slack = W @ P - target  # = v+ + e v-
-            if np.all(slack >= -1e-12 * scale):
-                return P
-    raise ValueError("no solution of the impact LCP (W not positive definite?)")
+            if np.any(slack < -tol) or (idx and np.any(np.abs(slack[idx]) > tol)):
+                continue
+            if best is None or P @ P < best @ best - 1e-30:
+                best = P
+    if best is None:
+        raise ValueError("no solution of the impact LCP (W not positive semi-definite?)")
+    return best
 
 
 def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs=(0,)) -> Jump:

@@ -64,8 +64,9 @@ class BeamSystem:
         points = [self.point, self.beam.point(self.beam.length), *self.measuring, *self.pair_points]
         pairs = [(self.pair_point(k), p.obstacle) for k, p in enumerate(self.contact.pairs)]
         return pack_model(
-            self.beam, self.case.drive, self.drive.theta0, self.g, points, list(self.contact.obstacles), pairs
-        )
+            self.beam, self.case.drive, self.drive.theta0, self.g, points, list(self.contact.obstacles), pairs,
+            len(self.measuring),
+        )  # fmt: skip
 
     @property
     def pairs(self) -> int:

@@ -256,6 +256,11 @@ class Contact(_Section):
     law: Literal[LAW_NAMES] = Field("lankarani_nikravesh", description="contact force law")
     position: NonNegative = Field(description="material coordinate x_P of the contact point [m]")
     side: Literal["below", "above", "centre"] = Field("below", description="the beam surface P lies on")
+    anywhere: bool = Field(
+        False,
+        description="find the contact point on the deformed beam: the surface point (either side) nearest the "
+        "obstacle, moving along the beam (position then only places an obstacle without centre)",
+    )
     stiffness: Positive | None = Field(None, description="contact stiffness K [N/m^n] (omitted = Hertz theory)")
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = Field(1.5, description="force exponent n (1.5 = Hertz)")
     restitution: Annotated[float, Field(ge=0.0, le=1.0)] = Field(0.8, description="coefficient of restitution e [-]")
@@ -268,6 +273,7 @@ class PairContact(_Section):
 
     position: NonNegative | None = Field(None, description="material coordinate of the contact point [m]")
     side: Literal["below", "above", "centre"] | None = Field(None, description="the beam surface it lies on")
+    anywhere: bool | None = Field(None, description="find the contact point on the deformed beam (see contact)")
     law: Literal[LAW_NAMES] | None = Field(None, description="contact force law")
     stiffness: Positive | None = Field(None, description="contact stiffness K [N/m^n]")
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] | None = Field(None, description="force exponent n")

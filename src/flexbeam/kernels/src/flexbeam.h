@@ -53,7 +53,7 @@ typedef struct {
     int profile;    /* FB_PROFILE_* (prescribed) */
     double Jc, m1, g, torque, spin_rate, spin_up_time, theta0;
     const double *Mc, *Mqq, *mtq, *K, *sf, *G, *d; /* n x n, n x n, n, n x n, n, n x n, n */
-    int npoints, nobstacles, npairs;
+    int npoints, nobstacles, npairs, nmeasure; /* nmeasure: measuring points, points[2 .. 2 + nmeasure) */
     fb_point points[FB_MAX_POINTS];       /* points[0]: the first pair's contact point P, points[1]: the tip */
     fb_obstacle obstacles[FB_MAX_OBSTACLES];
     fb_pair pairs[FB_MAX_PAIRS];

@@ -18,13 +18,14 @@
 
 #define MAXZ 66 /* n <= 64 modes, theta, and a support coordinate */
 
-/* Model buffer: [version, n, prescribed, drive, profile, npoints, nobstacles, npairs, obstacle kinds (nobstacles),
+/* Model buffer: [version, n, prescribed, drive, profile, npoints, nobstacles, npairs, nmeasure,
+ * obstacle kinds (nobstacles),
  * Jc, m1, g, torque, spin_rate, spin_up_time, theta0, Mc, Mqq, mtq, K, sf, G, d,
  * per point: base, offset, phi, dphi, H; per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy;
  * per pair: point, obstacle] (flexbeam.kernels.layout.pack_model writes it). */
 int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     const double *ints = buf;
-    size_t nints = 8;
+    size_t nints = 9;
     if (nbuf < nints || (int)ints[0] != FB_LAYOUT_VERSION) return -1;
     int n = (int)ints[1];
     m->n = n;
@@ -34,8 +35,10 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     m->npoints = (int)ints[5];
     m->nobstacles = (int)ints[6];
     m->npairs = (int)ints[7];
+    m->nmeasure = (int)ints[8];
     if (n < 0 || n > 64 || m->npoints < 1 || m->npoints > FB_MAX_POINTS || m->nobstacles < 0 ||
-        m->nobstacles > FB_MAX_OBSTACLES || m->npairs < 0 || m->npairs > FB_MAX_PAIRS ||
+        m->nobstacles > FB_MAX_OBSTACLES || m->npairs < 0 || m->npairs > FB_MAX_PAIRS || m->nmeasure < 0 ||
+        m->nmeasure > m->npoints - 2 ||
         nbuf < nints + (size_t)m->nobstacles)
         return -1;
     nints += (size_t)m->nobstacles;
@@ -69,7 +72,7 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     }
     for (int i = 0; i < m->nobstacles; i++) {
         fb_obstacle *o = &m->obstacles[i];
-        o->kind = (int)ints[8 + i];
+        o->kind = (int)ints[9 + i];
         o->cx = *p++; o->cy = *p++; o->radius = *p++; o->nx = *p++; o->ny = *p++;
         o->ms = *p++; o->ks = *p++; o->cs = *p++; o->ux = *p++; o->uy = *p++;
         if (i > 0 && o->ms > 0.0) return -3; /* only obstacle 0 may stand on a support */

@@ -102,7 +102,7 @@ static PyObject *py_outputs(PyObject *self, PyObject *args) {
         goto fail;
     size_t count = LEN(b[1]);
     if (LEN(b[2]) != count * fb_state_size(&m) || LEN(b[4]) != count * FB_NCOLS ||
-        LEN(b[5]) != count * (size_t)(m.npoints - 2) || LEN(b[6]) != count * m.npairs * FB_PAIR_COLS) {
+        LEN(b[5]) != count * (size_t)m.nmeasure || LEN(b[6]) != count * m.npairs * FB_PAIR_COLS) {
         PyErr_SetString(PyExc_ValueError, "outputs: array sizes do not match");
         goto fail;
     }

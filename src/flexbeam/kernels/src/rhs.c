@@ -134,7 +134,7 @@ fail:
  * states Y at times T, all with the contacts c. */
 void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, const fb_contacts *c, double *cols,
                 double *mv, double *pcols) {
-    int n = m->n, size = fb_state_size(m), nb = 2 * fb_nz(m), nmeas = m->npoints - 2, S = m->npairs;
+    int n = m->n, size = fb_state_size(m), nb = 2 * fb_nz(m), nmeas = m->nmeasure, S = m->npairs;
     int compliant = fb_compliant(m), held = 0;
     const fb_obstacle *o = m->nobstacles ? &m->obstacles[0] : NULL;
     for (int k = 0; k < S; k++) held |= c->mode[k] == FB_MODE_CONSTRAINT;
