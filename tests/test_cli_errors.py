@@ -196,3 +196,42 @@ def test_a_newline_in_a_quoted_key_stays_on_one_line(tmp_path):
     path = tmp_path / "case.toml"
     path.write_text('name = "x"\n[beam]\n"len\\ngth" = 0.7\n', encoding="utf-8")  # TOML's own escape
     assert_one_line_error(flexbeam("run", str(path), "--json"), "beam.len\\ngth", "did you mean length?")
+
+
+# [[obstacles]]: one line naming the obstacle's field, exit 2 (the overlap and start-inside checks run when the
+# case's contact pairs are set up, before the run)
+OBSTACLE_CASES = [
+    # a sphere 5 mm from the seed's (placed at [0.585, -0.0245], radius 10 mm)
+    ({"kind": "sphere", "radius": 0.01, "centre": [0.59, -0.0245]}, "obstacles[0].centre", "overlaps obstacle"),
+    # the beam's lower surface at x = 0.3 is at y = -0.0145: a sphere reaching 1 mm above it
+    (
+        {"kind": "sphere", "radius": 0.01, "centre": [0.3, -0.0235], "contact": {"position": 0.3}},
+        "obstacles[0].centre",
+        "inside this obstacle",
+    ),
+    ({"kind": "sphere", "radius": 0.01, "centre": [0.3, -0.03], "contact": {"position": 0.9}}, "obstacles[0]", "0.7"),
+    (
+        {
+            "kind": "half-plane",
+            "centre": [0.3, -0.03],
+            "normal": [0.0, 1.0],
+            "contact": {"position": 0.3, "stiffness": 1e9},
+        },
+        "obstacles[0].centre",
+        "overlaps obstacle",
+    ),
+]
+
+
+@pytest.mark.parametrize("obstacle, field, fragment", OBSTACLE_CASES)
+def test_bad_obstacle_in_a_case_file(tmp_path, obstacle, field, fragment):
+    data = seed_data()
+    data["obstacles"] = [obstacle]
+    r = flexbeam("run", str(write_toml(tmp_path / "case.toml", data)), "--json")
+    assert_one_line_error(r, field, fragment)
+
+
+def test_more_than_seven_obstacles(tmp_path):
+    data = seed_data()
+    data["obstacles"] = [{"kind": "sphere", "radius": 0.001, "centre": [0.05 * k, -0.03]} for k in range(1, 9)]
+    assert_one_line_error(flexbeam("run", str(write_toml(tmp_path / "c.toml", data)), "--json"), "obstacles", "7")

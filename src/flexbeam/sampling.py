@@ -48,7 +48,8 @@ class RunSource:
         return cols, mv, Y
 
     def evaluate_pairs(self, seg: Segment, times: np.ndarray):
-        """(columns, measuring velocities, the pairs' columns (samples x pairs x 3), states) at ``times``."""
+        """(columns, measuring velocities, the pairs' columns (samples x pairs x PAIR_COLUMNS), states) at
+        ``times``."""
         Y = seg.states(times)
         cols, mv, pc = self.system.outputs(times, Y, seg.phase.buffer)
         return cols, mv, pc, Y
@@ -86,7 +87,7 @@ class RunSource:
         out["q_rate"] = np.concatenate([p[3] for p in parts])
         out["measuring_velocity"] = np.concatenate([p[1] for p in parts])
         out["total_energy"] = total_energy(out)
-        if sysm.pairs > 1:  # per pair (samples x pairs): gap, normal velocity, contact force
+        if sysm.pairs > 1 or any(p.anywhere for p in sysm.contact.pairs):  # per pair (samples x pairs)
             pc = np.concatenate([p[4] for p in parts])
             for j, name in enumerate(PAIR_COLUMNS):
                 out[f"pair_{name}"] = pc[:, :, j]

@@ -48,9 +48,10 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "pair_gap": ("m", "Gap of each contact pair"),
     "pair_normal_velocity": ("m/s", "Normal velocity of each contact pair's point"),
     "pair_contact_force": ("N", "Contact force of each contact pair"),
+    "pair_contact_position": ("m", "Material coordinate x of each contact pair's point (moves for contact anywhere)"),
 }
-#: variables (time x pair) present only when a case has several contact pairs
-PAIR_VARIABLES = ("pair_gap", "pair_normal_velocity", "pair_contact_force")
+#: variables (time x pair) present only when a case has several contact pairs or a contact anywhere
+PAIR_VARIABLES = ("pair_gap", "pair_normal_velocity", "pair_contact_force", "pair_contact_position")
 
 
 @dataclass

@@ -8,7 +8,10 @@ Model buffer (float64; integers stored exactly)::
      Mc (n x n), Mqq (n x n), mtq (n), K (n x n), sf (n), G (n x n), d (n),
      per point:    base, offset, phi (n), dphi (n), H (n x n),
      per obstacle: cx, cy, radius, nx, ny, m_s, k_s, c_s, u_x, u_y,
-     per pair:     point, obstacle]
+     per pair:     point, obstacle, anywhere,
+     hub radius, nst, surface c, first_order,
+     with nst > 0 (contact anywhere): stations x (nst), Psi, Psi', Psi'' (nst x n each), H (nst x n x n),
+                   max over the beam of |Psi_k| and |Psi'_k| (n each)]
 
 Points: 0 is the first pair's contact point P, 1 the beam tip (centre line), then the measuring points, then the
 other pairs' contact points.  Only obstacle 0 may stand on a compliant support.
@@ -33,7 +36,7 @@ import numpy as np
 
 if TYPE_CHECKING:
     from ..contact.setup import ObstacleGeometry
-    from ..model.beam import ModalBeam, PointData
+    from ..model.beam import ModalBeam, PointData, StationTable
     from ..parameters.case import Drive
 
 LAYOUT_VERSION = 2
@@ -47,7 +50,7 @@ OUTPUT_COLUMNS = (
     "joint_torque", "tip_deflection", "support_displacement", "sensor_force",
 )  # fmt: skip
 #: columns per contact pair of the kernels' ``outputs`` (``FB_PAIR_COLS`` in C)
-PAIR_COLUMNS = ("gap", "normal_velocity", "contact_force")
+PAIR_COLUMNS = ("gap", "normal_velocity", "contact_force", "contact_position")
 
 
 def pack_model(
@@ -57,12 +60,13 @@ def pack_model(
     gravity: float,
     points: Sequence[PointData],
     obstacles: Sequence[ObstacleGeometry],
-    pairs: Sequence[tuple[int, int]] = ((0, 0),),
+    pairs: Sequence[tuple[int, int, int]] = ((0, 0, 0),),
     nmeasure: int | None = None,
+    stations: StationTable | None = None,
 ) -> np.ndarray:
     """The model buffer of a beam, its drive, points (P, tip, measuring points, other contact points), obstacles
-    and contact pairs (point index, obstacle index); ``nmeasure`` measuring points follow P and the tip (default:
-    every point after them)."""
+    and contact pairs (point index, obstacle index, anywhere); ``nmeasure`` measuring points follow P and the tip
+    (default: every point after them); ``stations``: the shape tables of contact anywhere."""
     n = beam.n
     head = [
         LAYOUT_VERSION,
@@ -97,7 +101,13 @@ def pack_model(
             np.asarray(o.normal, float),
             np.asarray(o.support, float),
         ]
-    parts.append(np.asarray(pairs, float).ravel())
+    parts.append(np.asarray(pairs, float).reshape(-1, 3).ravel())
+    if stations is None:
+        parts.append(np.array([beam.hub_radius, 0.0, 0.0, float(beam.first_order)]))
+    else:
+        st = stations
+        parts += [np.array([beam.hub_radius, st.x.size, st.surface, float(beam.first_order)]), st.x, st.phi.ravel(),
+                  st.dphi.ravel(), st.ddphi.ravel(), st.H.ravel(), st.maxphi, st.maxdphi]  # fmt: skip
     return np.ascontiguousarray(np.concatenate(parts))
 
 

@@ -62,6 +62,8 @@ def solve_impact_lcp(W: np.ndarray, v_minus: np.ndarray, e: np.ndarray) -> np.nd
     """
     s = v_minus.size
     target = -(1.0 + e) * v_minus  # W P must reach this on the active set
+    if s == 1:  # one pair: P = -(1 + e) v- / W when it approaches
+        return np.array([target[0] / W[0, 0] if target[0] > 0.0 and W[0, 0] > 0.0 else 0.0])
     scale = max(float(np.max(np.abs(target), initial=0.0)), 1e-300)
     tol = 1e-10 * scale
     best: np.ndarray | None = None

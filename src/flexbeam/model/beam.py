@@ -33,6 +33,7 @@ model sets D = G = H = 0.
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -131,6 +132,53 @@ class ModalBeam:
                 H = H + (d1 * wg[:, None]).T @ d1
             H = 0.5 * (H + H.T)  # exactly symmetric: the kernels read it by columns
         return PointData(float(x), self.hub_radius + x, phi, dphi, H, float(offset))
+
+
+@dataclass(frozen=True)
+class StationTable:
+    """Mode shapes at equally spaced stations x_j along the beam, for the contact-anywhere search of the kernels
+    (``kernels/src/nearest.c``, which interpolates them by cubic Hermite polynomials): Psi, Psi', Psi'' (stations x n),
+    H (stations x n x n, H(x) = r_h d d^T + int_0^x Psi'^T Psi' in the first-order model, 0 in the zeroth), the
+    largest |Psi_k| and |Psi'_k| over the beam (with a 5 % margin for the interpolation between stations) and the
+    surface offset c."""
+
+    x: np.ndarray
+    phi: np.ndarray
+    dphi: np.ndarray
+    ddphi: np.ndarray
+    H: np.ndarray
+    maxphi: np.ndarray
+    maxdphi: np.ndarray
+    surface: float
+
+
+#: stations per wavelength of the highest mode: cubic Hermite interpolation is then exact to ~(2 pi / 32)^4 / 384
+#: = 4e-6 of a shape's amplitude
+STATIONS_PER_WAVE = 32
+
+
+def station_table(beam: ModalBeam, surface: float) -> StationTable:
+    """The :class:`StationTable` of ``beam`` (wavelength of mode n ~ 2 L / (n + 1/4))."""
+    n, L = beam.n, beam.length
+    M = max(33, int(math.ceil(STATIONS_PER_WAVE * (n + 1) / 2)) + 1)
+    x = np.linspace(0.0, L, M)
+    if n == 0:
+        z = np.zeros((M, 0))
+        return StationTable(x, z, z, z, np.zeros((M, 0, 0)), np.zeros(0), np.zeros(0), float(surface))
+    phi, dphi, ddphi = (np.ascontiguousarray(beam.shapes(x, k)) for k in (0, 1, 2))
+    H = np.zeros((M, n, n))
+    if beam.first_order:
+        acc = beam.hub_radius * np.outer(beam.d, beam.d)
+        H[0] = acc
+        for j in range(1, M):
+            xg, wg = _gauss(x[j - 1], x[j], 24)
+            d1 = beam.shapes(xg, 1)
+            acc = acc + (d1 * wg[:, None]).T @ d1
+            H[j] = 0.5 * (acc + acc.T)
+    fine = np.linspace(0.0, L, 8 * M)
+    maxphi = 1.05 * np.max(np.abs(beam.shapes(fine, 0)), axis=0)
+    maxdphi = 1.05 * np.max(np.abs(beam.shapes(fine, 1)), axis=0)
+    return StationTable(x, phi, dphi, ddphi, H, maxphi, maxdphi, float(surface))
 
 
 def _auto_points(n: int, requested: int) -> int:

@@ -24,7 +24,7 @@ import numpy as np
 from ..contact.setup import ContactSetup
 from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS, core, pack_contacts, pack_model
 from ..parameters.case import Case
-from .beam import ModalBeam, PointData, build_modal_beam
+from .beam import ModalBeam, PointData, build_modal_beam, station_table
 from .drive import JointDrive
 
 #: columns of :meth:`BeamSystem.outputs` that exist only for a compliant obstacle support
@@ -62,10 +62,13 @@ class BeamSystem:
         """The packed model buffer of the compiled kernels (points: P, tip, measuring points, the other pairs'
         contact points)."""
         points = [self.point, self.beam.point(self.beam.length), *self.measuring, *self.pair_points]
-        pairs = [(self.pair_point(k), p.obstacle) for k, p in enumerate(self.contact.pairs)]
+        pairs = [(self.pair_point(k), p.obstacle, int(p.anywhere)) for k, p in enumerate(self.contact.pairs)]
+        stations = None
+        if any(p.anywhere for p in self.contact.pairs):
+            stations = station_table(self.beam, self.case.beam.surface_offset)
         return pack_model(
             self.beam, self.case.drive, self.drive.theta0, self.g, points, list(self.contact.obstacles), pairs,
-            len(self.measuring),
+            len(self.measuring), stations,
         )  # fmt: skip
 
     @property

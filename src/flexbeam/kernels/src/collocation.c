@@ -109,6 +109,15 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
         for (int i = 0; i < nz; i++) Jx[i] = J[i + (pre ? 1 : 0)];
         if (compliant) Jx[N - 1] = out->gap[k].Js;
         fb_project(b, Jx, out->jm[k]);
+        if (m->pairs[k].anywhere) { /* its point moves: bound over all surface points, |Psi|^T env */
+            double env[FB_MAXN], ez[FB_MAXN];
+            fb_anywhere_bound(m, q, env);
+            for (int i = 0; i < nz; i++) ez[i] = env[i + (pre ? 1 : 0)];
+            if (compliant) ez[N - 1] = 1.0;
+            fb_project_abs(b, ez, out->jb[k]);
+        } else {
+            for (int i = 0; i < N; i++) out->jb[k][i] = fabs(out->jm[k][i]);
+        }
         if (!active) continue;
         if (!pre && c != 0.0) {
             double r0 = 0.0;

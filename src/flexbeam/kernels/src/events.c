@@ -222,8 +222,9 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
         double th, thd0, thd1, thdd;
         fb_drive_motion(d->ph->m, d->t0, &th, &thd0, &thdd);
         fb_drive_motion(d->ph->m, d->t0 + d->h, &th, &thd1, &thdd);
-        const fb_point *P = &d->ph->m->points[d->ph->m->pairs[d->pair].point];
-        double rP = P->base + fabs(P->offset);
+        const fb_model *m = d->ph->m;
+        const fb_point *P = &m->points[m->pairs[d->pair].point];
+        double rP = m->pairs[d->pair].anywhere ? m->points[1].base + m->surface : P->base + fabs(P->offset);
         R += rP * fmax(fabs(thd0), fabs(thd1));
     }
     return gap0 > 2.0 * R * d->h;
@@ -270,6 +271,7 @@ static double safe_spacing(const fb_dense *d, const fb_gap *g, int count) {
 static double fast_part(const fb_dense *d, const double *jm, const double *eta, double T) {
     const fb_basis *b = d->ph->b;
     double acc = 0.0;
+    if (!jm) return 0.0; /* a moving contact point: nothing subtracted, the bound covers all of it */
     for (int k = 0; k < b->N; k++)
         if (b->omega[k] * T > 0.25 * FB_PI) acc += jm[k] * eta[k];
     return acc;
@@ -298,16 +300,17 @@ static void sample_hops(const fb_dense *d, const double *A, const double *jm, in
 /* First crossing of the gap in ``direction`` (-1: closing, +1: opening) inside the step, as a fraction of it:
  * FB_NO_EVENT when the step is provably free of it, FB_UNDECIDED when it is too long to decide.
  * ``known``: the gap at the start, the FB_P nodes and the end (the points kx, modal states ``eta_known``, FB_P + 2
- * rows) that the step's evaluation has already; ``jm``: the modal gap Jacobian near the start (at the first
+ * rows) that the step's evaluation has already; ``jb``: a bound on |jm| over the step (the pair's point may move),
+ * ``jm``: the modal gap Jacobian near the start (at the first
  * node).  The gap splits into the part of the modes resolved by the samples, bounded between samples by its
  * curvature, and that of the faster modes, bounded by their amplitude B; the step is free if the resolved part
  * stays clear of zero by B.  When undecided, ``*beyond`` is the first sampled fraction found beyond the surface
  * (1 if none): an event lies before it, so the caller may shorten the step to there. */
 double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known,
-                         const double *eta_known, const double *jm, double *beyond) {
+                         const double *eta_known, const double *jm, const double *jb, double *beyond) {
     double sign = direction < 0 ? -1.0 : 1.0;
     double gap0 = known[0].delta, rate0 = known[0].rate;
-    if (direction < 0 && far(d, jm, gap0)) return FB_NO_EVENT;
+    if (direction < 0 && far(d, jb, gap0)) return FB_NO_EVENT;
     int leaving = sign < 0.0 ? (gap0 > 0.0 || rate0 > 0.0) : (gap0 < 0.0 || rate0 < 0.0);
     static const int levels[3] = {SAMPLES, 4 * SAMPLES, 16 * SAMPLES};
     int N = d->ph->b->N;
@@ -330,7 +333,7 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
             gam = fmax(gam, fabs(g[i].gamma));
             if (i) worst = fmin(worst, fmin(-sign * (gv[i - 1] - fast[i - 1]), -sign * (gv[i] - fast[i])));
         }
-        double B, curve = bounds(d, jm, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
+        double B, curve = bounds(d, jb, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
         if (dx <= safe) {
             if (leaving && worst - B - curve > 0.0) return FB_NO_EVENT;
             if (B == 0.0) return scan(d, x, gv, r, m, sign);

@@ -26,9 +26,10 @@ enum { FB_SPHERE = 0, FB_PLANE = 1 };
 enum { FB_DRIVE_FREE = 0, FB_DRIVE_TORQUE = 1, FB_DRIVE_PRESCRIBED = 2 };
 enum { FB_PROFILE_CONSTANT = 0, FB_PROFILE_KANE = 1 };
 
-/* A material point of the beam: base = r_h + x, offset c below the centre line, Psi(x), Psi'(x), H(x). */
+/* A material point of the beam: base = r_h + x, offset c below the centre line (along -n of the deformed
+ * section) and offset_t along its tangent (a point on the rounded end cap; 0 elsewhere), Psi(x), Psi'(x), H(x). */
 typedef struct {
-    double base, offset;
+    double base, offset, offset_t;
     const double *phi, *dphi, *H;
 } fb_point;
 
@@ -44,6 +45,7 @@ typedef struct {
  * Only obstacle 0 may stand on a compliant support. */
 typedef struct {
     int point, obstacle;
+    int anywhere; /* the contact point is the beam-surface point nearest the obstacle (nearest.c) */
 } fb_pair;
 
 typedef struct {
@@ -57,6 +59,13 @@ typedef struct {
     fb_point points[FB_MAX_POINTS];       /* points[0]: the first pair's contact point P, points[1]: the tip */
     fb_obstacle obstacles[FB_MAX_OBSTACLES];
     fb_pair pairs[FB_MAX_PAIRS];
+    /* stations along the beam for contact anywhere (nst = 0 if no pair needs them): x, Psi, Psi', Psi'' (nst x n),
+     * H (nst x n x n), and per mode the largest |Psi_k|, |Psi'_k| over the beam (bounds of the event search) */
+    double hub_radius; /* r_h: a point's material x is its base - r_h */
+    int nst;
+    double surface;  /* c: the beam's surface from its centre line (the capsule's radius) */
+    int first_order; /* the coupling deformation u_x = -1/2 q^T H q is kept */
+    const double *st_x, *st_phi, *st_dphi, *st_ddphi, *st_H, *st_maxphi, *st_maxdphi;
 } fb_model;
 
 /* How the contacts act during a phase, pair by pair: FB_MODE_NONE (free), FB_MODE_FORCE (the law
@@ -90,6 +99,7 @@ typedef struct {
 typedef struct {
     double delta, rate, gamma, nx, ny, Js;
     double speed; /* |r' - s' u|: P's speed relative to the obstacle */
+    double x;     /* the contact point's material coordinate (fb_pair_gap) */
 } fb_gap;
 
 void fb_drive_motion(const fb_model *m, double t, double *th, double *thd, double *thdd);
@@ -110,6 +120,18 @@ fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int
                     double *J);
 fb_gap fb_pair_gap(const fb_model *m, int pair, double th, double thd, const double *q, const double *qd, double s,
                    double sd, int want_acc, double *J);
+
+/* ------------------------------------------------------------------ nearest.c (contact anywhere) */
+/* A point of the beam's surface built on the fly: its fb_point and the arrays it points to. */
+typedef struct {
+    fb_point P;
+    double x; /* its material coordinate */
+    double phi[64], dphi[64], H[64 * 64];
+} fb_surface_point;
+
+void fb_nearest_point(const fb_model *m, const fb_obstacle *o, double th, const double *q, double s,
+                      fb_surface_point *out);
+void fb_anywhere_bound(const fb_model *m, const double *q, double *env);
 double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd);
 double fb_law_potential(const double *p, double d);
 int fb_solve(double *A, double *b, int n);
@@ -119,7 +141,7 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
                 double *mv, double *pcols);
 
 #define FB_NCOLS 15 /* columns of fb_outputs, in the order of flexbeam.kernels.OUTPUT_COLUMNS */
-#define FB_PAIR_COLS 3 /* per pair: gap, its rate, the contact force (flexbeam.kernels.PAIR_COLUMNS) */
+#define FB_PAIR_COLS 4 /* per pair: gap, its rate, the contact force, the contact point's x (kernels.PAIR_COLUMNS) */
 
 /* ------------------------------------------------------------------ modal basis (propagation.c) */
 /* The linearisation about the undeformed beam at rest, M0 z'' + K0 z = R, in modal coordinates
@@ -136,6 +158,7 @@ typedef struct {
 int fb_basis_unpack(fb_basis *b, const double *buf, size_t nbuf);
 void fb_to_physical(const fb_basis *b, const double *eta, double *z);
 void fb_project(const fb_basis *b, const double *x, double *out); /* out = Psi^T x */
+void fb_project_abs(const fb_basis *b, const double *x, double *out); /* out = |Psi|^T x */
 
 /* Gauss-Legendre tables on (0, 1) for FB_P nodes: nodes c, weights w, the Vandermonde inverse (monomial
  * coefficients from nodal values), the projection on the top Legendre polynomial (the multiplier's error), and

@@ -34,6 +34,7 @@ typedef struct {
     double smooth[FB_MAXN];           /* Psi^T R without the contact forces */
     double b[FB_MAX_PAIRS][FB_MAXN];  /* Psi^T M0 M^-1 J_k^T: modal forcing per unit force of pair k (in contact) */
     double jm[FB_MAX_PAIRS][FB_MAXN]; /* Psi^T J_k^T: d delta_k / d eta (in contact; every pair with FB_WANT_JM) */
+    double jb[FB_MAX_PAIRS][FB_MAXN]; /* a bound on |jm_k| wherever the pair's point may be (|jm| for a fixed one) */
     fb_gap gap[FB_MAX_PAIRS];         /* every pair's gap state (delta, rate, gamma = delta'' at z'' = 0, ...) */
     double z[FB_MAXN], zd[FB_MAXN];
 } fb_node;
@@ -84,7 +85,7 @@ typedef struct { /* a step's dense output, for the event search of one pair */
 
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v);
 double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known,
-                         const double *eta_known, const double *jm, double *beyond);
+                         const double *eta_known, const double *jm, const double *jb, double *beyond);
 double fb_find_release(const double *lam);
 double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, int count);
 

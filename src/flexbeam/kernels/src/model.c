@@ -9,8 +9,9 @@
  *
  * so that M z'' = Q + J^T F; the joint torque tau works on the hub angle theta + d q.
  * Energies T = 1/2 z'^T M z', V_e = 1/2 q^T K q, V_g = g [sin(theta)(m1 - 1/2 q^T G q) + cos(theta) s_f q].
- * A material point at x, offset c below the centre line along the deformed section normal (section
- * rotation a = Psi'(x) q): rho = (r_h + x - 1/2 q^T H q + c sin a, Psi q - c cos a), r = A(theta) rho.
+ * A material point at x, offset c below the centre line along the deformed section normal and c_t along its
+ * tangent (section rotation a = Psi'(x) q):
+ *   rho = (r_h + x - 1/2 q^T H q + c sin a + c_t cos a, Psi q - c cos a + c_t sin a),  r = A(theta) rho.
  */
 #include <string.h>
 
@@ -22,7 +23,8 @@
  * obstacle kinds (nobstacles),
  * Jc, m1, g, torque, spin_rate, spin_up_time, theta0, Mc, Mqq, mtq, K, sf, G, d,
  * per point: base, offset, phi, dphi, H; per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy;
- * per pair: point, obstacle] (flexbeam.kernels.layout.pack_model writes it). */
+ * per pair: point, obstacle, anywhere; hub_radius, nst, surface, first_order, then with nst > 0: x (nst), Psi, Psi', Psi'' (nst x n each),
+ * H (nst x n x n), max |Psi| (n), max |Psi'| (n)] (flexbeam.kernels.layout.pack_model writes it). */
 int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     const double *ints = buf;
     size_t nints = 9;
@@ -45,8 +47,8 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     const double *f = buf + nints;
     size_t nf = nbuf - nints;
     size_t need = 7 + 4 * (size_t)n * n + 3 * (size_t)n + (size_t)m->npoints * (2 + 2 * n + (size_t)n * n) +
-                  10 * (size_t)m->nobstacles + 2 * (size_t)m->npairs;
-    if (nf != need) return -2;
+                  10 * (size_t)m->nobstacles + 3 * (size_t)m->npairs + 4;
+    if (nf < need) return -2;
     const double *p = f;
     m->Jc = *p++;
     m->m1 = *p++;
@@ -66,6 +68,7 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
         fb_point *P = &m->points[i];
         P->base = *p++;
         P->offset = *p++;
+        P->offset_t = 0.0;
         P->phi = p; p += n;
         P->dphi = p; p += n;
         P->H = p; p += n * n;
@@ -80,10 +83,26 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     for (int k = 0; k < m->npairs; k++) {
         m->pairs[k].point = (int)*p++;
         m->pairs[k].obstacle = (int)*p++;
+        m->pairs[k].anywhere = (int)*p++;
         if (m->pairs[k].point < 0 || m->pairs[k].point >= m->npoints || m->pairs[k].obstacle < 0 ||
             m->pairs[k].obstacle >= m->nobstacles)
             return -3;
     }
+    m->hub_radius = *p++;
+    m->nst = (int)*p++;
+    m->surface = *p++;
+    m->first_order = (int)*p++;
+    size_t M = (size_t)m->nst;
+    if (nf != need + M * (1 + 3 * (size_t)n + (size_t)n * n) + (M ? 2 * (size_t)n : 0)) return -2;
+    for (int k = 0; k < m->npairs; k++)
+        if (m->pairs[k].anywhere && M < 2) return -3;
+    m->st_x = p; p += M;
+    m->st_phi = p; p += M * n;
+    m->st_dphi = p; p += M * n;
+    m->st_ddphi = p; p += M * n;
+    m->st_H = p; p += M * n * n;
+    m->st_maxphi = p; p += M ? n : 0;
+    m->st_maxdphi = p;
     return 0;
 }
 
@@ -226,7 +245,7 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double
                          const double *qd, fb_kin *out, double *dr) {
     int n = m->n, N = n + 1;
     double ang = dot(P->dphi, q, n), angd = dot(P->dphi, qd, n);
-    double sa = sin(ang), ca = cos(ang), ct = cos(th), st = sin(th), c = P->offset;
+    double sa = sin(ang), ca = cos(ang), ct = cos(th), st = sin(th), c = P->offset, ot = P->offset_t;
     double qHq = 0.0, rhod_x = 0.0, rhod_y = 0.0, qdHqd = 0.0, hq[MAXZ], hqd[MAXZ];
     fb_symv(P->H, q, n, hq);
     if (out->want_acc) {
@@ -235,8 +254,8 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double
     }
     for (int i = 0; i < n; i++) {
         qHq += q[i] * hq[i];
-        double dx = -hq[i] + c * ca * P->dphi[i];
-        double dy = P->phi[i] + c * sa * P->dphi[i];
+        double dx = -hq[i] + (c * ca - ot * sa) * P->dphi[i];
+        double dy = P->phi[i] + (c * sa + ot * ca) * P->dphi[i];
         rhod_x += dx * qd[i];
         rhod_y += dy * qd[i];
         if (dr) {
@@ -244,9 +263,9 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double
             dr[N + i + 1] = st * dx + ct * dy;
         }
     }
-    double rx = P->base - 0.5 * qHq + c * sa;
-    double ry = dot(P->phi, q, n) - c * ca;
-    double acc_x = -qdHqd - c * sa * angd * angd, acc_y = c * ca * angd * angd;
+    double rx = P->base - 0.5 * qHq + c * sa + ot * ca;
+    double ry = dot(P->phi, q, n) - c * ca + ot * sa;
+    double acc_x = -qdHqd - (c * sa + ot * ca) * angd * angd, acc_y = (c * ca - ot * sa) * angd * angd;
     if (dr) {
         dr[0] = ct * (-ry) - st * rx;
         dr[N] = st * (-ry) + ct * rx;
@@ -299,9 +318,21 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, double th, double thd, const dou
     const fb_obstacle *o = &m->obstacles[pr->obstacle];
     double dr[2 * MAXZ];
     fb_kin k = {.want_acc = want_acc};
-    fb_point_kinematics(m, &m->points[pr->point], th, thd, q, qd, &k, J ? dr : NULL);
     if (o->ms <= 0.0) s = sd = 0.0;
-    return fb_gap_state(o, &k, J ? dr : NULL, m->n + 1, s, sd, J);
+    double x;
+    if (pr->anywhere) { /* the surface point nearest the obstacle now, as a material point (envelope theorem) */
+        fb_surface_point sp;
+        fb_nearest_point(m, o, th, q, s, &sp);
+        fb_point_kinematics(m, &sp.P, th, thd, q, qd, &k, J ? dr : NULL);
+        x = sp.x;
+    } else {
+        const fb_point *P = &m->points[pr->point];
+        fb_point_kinematics(m, P, th, thd, q, qd, &k, J ? dr : NULL);
+        x = P->base - m->hub_radius;
+    }
+    fb_gap g = fb_gap_state(o, &k, J ? dr : NULL, m->n + 1, s, sd, J);
+    g.x = x;
+    return g;
 }
 
 /* Contact law F = max(0, K d^n (1 + chi' d') + C d') with p = [K, n, chi / d'_0, C]; d = -delta >= 0.

@@ -110,11 +110,12 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
         known[0] = gap0[k], known[FB_P + 1] = w->end.gap[k];
         for (int j = 0; j < FB_P; j++) known[j + 1] = w->node[j].gap[k];
         fb_dense dd = {ph, t, h, eta, v, f, k};
+        const double *jm = ph->m->pairs[k].anywhere ? NULL : w->node[0].jm[k];
         if (mode == FB_MODE_NONE && (events & EV_IMPACT)) {
-            xk = fb_find_gap_event(&dd, -1, kx, known, ek, w->node[0].jm[k], &bk);
+            xk = fb_find_gap_event(&dd, -1, kx, known, ek, jm, w->node[0].jb[k], &bk);
             if (xk <= 1.0 && xk != FB_UNDECIDED && xk < x) x = xk, *kind = FB_EVENT_IMPACT, *pair = k;
         } else if (mode == FB_MODE_FORCE && (events & EV_SEPARATION)) {
-            xk = fb_find_gap_event(&dd, 1, kx, known, ek, w->node[0].jm[k], &bk);
+            xk = fb_find_gap_event(&dd, 1, kx, known, ek, jm, w->node[0].jb[k], &bk);
             if (xk <= 1.0 && xk != FB_UNDECIDED && xk < x) x = xk, *kind = FB_EVENT_SEPARATION, *pair = k;
         } else if (mode == FB_MODE_CONSTRAINT && (events & EV_RELEASE)) {
             xk = fb_find_release(w->F[k]);

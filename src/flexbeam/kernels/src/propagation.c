@@ -225,6 +225,16 @@ void fb_to_physical(const fb_basis *b, const double *eta, double *z) {
     fb_matvec(b->Psi, eta, N, z);
 }
 
+/* out = |Psi|^T x for x >= 0: a bound on |Psi^T y| for |y| <= x elementwise. */
+void fb_project_abs(const fb_basis *b, const double *x, double *out) {
+    int N = b->N;
+    for (int k = 0; k < N; k++) {
+        double acc = 0.0;
+        for (int i = 0; i < N; i++) acc += fabs(b->Psi[i * N + k]) * x[i];
+        out[k] = acc;
+    }
+}
+
 void fb_project(const fb_basis *b, const double *x, double *out) {
     int N = b->N;
     if (b->diagonal) {

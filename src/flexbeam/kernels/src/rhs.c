@@ -186,6 +186,7 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
             pc[FB_PAIR_COLS * k] = gp[k].delta;
             pc[FB_PAIR_COLS * k + 1] = gp[k].rate;
             pc[FB_PAIR_COLS * k + 2] = F[k];
+            pc[FB_PAIR_COLS * k + 3] = gp[k].x;
         }
         for (int j = 0; j < nmeas; j++) {
             fb_kin kin = {.want_acc = 0};

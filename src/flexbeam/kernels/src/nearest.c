@@ -1,0 +1,188 @@
+/* Contact anywhere: the point of the beam's surface nearest an obstacle, on the deformed beam.
+ *
+ * The beam's surface is taken as a capsule: the tube of radius c (the surface offset) around the deformed centre
+ * line rho(x), x in [0, L], closed by hemispherical caps.  Its point nearest a sphere of centre C is rho(x*) + c u
+ * with x* the centre-line point nearest C and u = (C - rho(x*)) / |C - rho(x*)|; nearest a half-plane of outward
+ * normal n_o it is rho(x*) - c n_o with x* minimising n_o . rho.  In the body frame rho(x) = (r_h + x + u_x(x), w(x)),
+ * w = Psi(x) q, u_x = -1/2 q^T H(x) q (zero in the zeroth-order model), interpolated between the stations by cubic
+ * Hermite polynomials (Psi with Psi', Psi' with Psi'', u_x with u_x' = -1/2 (Psi' q)^2, H with H' = Psi' Psi'^T).
+ * The search: a scan of the stations (without u_x, second order), then Newton's method on f = (rho - C) . rho'
+ * (sphere) or n_o . rho' (plane), safeguarded by bisection, in the two intervals around the best station.  The
+ * result is a material point (x*, offsets along the deformed section's normal and tangent), so that the pair's gap,
+ * rate and Jacobian follow from the point kinematics of model.c: by the envelope theorem the derivative of the
+ * minimum over x is the partial derivative at x*.
+ */
+#include <string.h>
+
+#include "flexbeam.h"
+
+#define NEWTON_ITERS 60
+
+static double dot(const double *a, const double *b, int n) {
+    double acc = 0.0;
+    for (int i = 0; i < n; i++) acc += a[i] * b[i];
+    return acc;
+}
+
+/* Cubic Hermite basis on [0, 1] at s, its first and second derivatives (d/ds). */
+static void hermite(double s, double h[4], double d1[4], double d2[4]) {
+    double s2 = s * s, s3 = s2 * s;
+    h[0] = 2 * s3 - 3 * s2 + 1, h[1] = s3 - 2 * s2 + s, h[2] = -2 * s3 + 3 * s2, h[3] = s3 - s2;
+    d1[0] = 6 * s2 - 6 * s, d1[1] = 3 * s2 - 4 * s + 1, d1[2] = -6 * s2 + 6 * s, d1[3] = 3 * s2 - 2 * s;
+    d2[0] = 12 * s - 6, d2[1] = 6 * s - 4, d2[2] = -12 * s + 6, d2[3] = 6 * s - 2;
+}
+
+/* The centre line of a deformed beam, station data computed once per search. */
+typedef struct {
+    const fb_model *m;
+    const double *q;
+    int n, M;
+    double rh, dx;
+    double *w, *w1, *w2, *u; /* per station: Psi q, Psi' q, Psi'' q, u_x (NAN until needed) */
+} line_t;
+
+static double station_u(line_t *ln, int j) {
+    if (isnan(ln->u[j])) {
+        const double *H = ln->m->st_H + (size_t)j * ln->n * ln->n;
+        ln->u[j] = -0.5 * fb_quad(H, ln->q, ln->n);
+    }
+    return ln->u[j];
+}
+
+static int interval(const line_t *ln, double x, double *s) {
+    int j = (int)(x / ln->dx);
+    if (j < 0) j = 0;
+    if (j > ln->M - 2) j = ln->M - 2;
+    *s = (x - ln->m->st_x[j]) / ln->dx;
+    return j;
+}
+
+/* rho(x) and its first two x-derivatives in the body frame. */
+static void centre_line(line_t *ln, double x, double r[2], double r1[2], double r2[2]) {
+    double s, h[4], d1[4], d2[4];
+    int j = interval(ln, x, &s);
+    double D = ln->dx;
+    hermite(s, h, d1, d2);
+    double w = h[0] * ln->w[j] + D * h[1] * ln->w1[j] + h[2] * ln->w[j + 1] + D * h[3] * ln->w1[j + 1];
+    double w1 = h[0] * ln->w1[j] + D * h[1] * ln->w2[j] + h[2] * ln->w1[j + 1] + D * h[3] * ln->w2[j + 1];
+    double w2 = (d1[0] * ln->w1[j] + d1[2] * ln->w1[j + 1]) / D + d1[1] * ln->w2[j] + d1[3] * ln->w2[j + 1];
+    double u = 0.0;
+    if (ln->m->first_order) {
+        double ua = station_u(ln, j), ub = station_u(ln, j + 1);
+        u = h[0] * ua + D * h[1] * (-0.5 * ln->w1[j] * ln->w1[j]) + h[2] * ub +
+            D * h[3] * (-0.5 * ln->w1[j + 1] * ln->w1[j + 1]);
+    }
+    double u1 = ln->m->first_order ? -0.5 * w1 * w1 : 0.0, u2 = ln->m->first_order ? -w1 * w2 : 0.0;
+    r[0] = ln->rh + x + u, r[1] = w;
+    r1[0] = 1.0 + u1, r1[1] = w1;
+    r2[0] = u2, r2[1] = w2;
+}
+
+/* f = (1/2) d/dx of the search's objective: (rho - C) . rho' (sphere) or n . rho' (plane); and df/dx. */
+static double objective_slope(line_t *ln, int sphere, const double c[2], double x, double *df) {
+    double r[2], r1[2], r2[2];
+    centre_line(ln, x, r, r1, r2);
+    if (sphere) {
+        double ex = r[0] - c[0], ey = r[1] - c[1];
+        *df = r1[0] * r1[0] + r1[1] * r1[1] + ex * r2[0] + ey * r2[1];
+        return ex * r1[0] + ey * r1[1];
+    }
+    *df = c[0] * r2[0] + c[1] * r2[1];
+    return c[0] * r1[0] + c[1] * r1[1];
+}
+
+/* The minimiser of the objective on [a, b]: an end if the slope does not change sign there, else the root of the
+ * slope by Newton's method kept inside the shrinking bracket. */
+static double minimise(line_t *ln, int sphere, const double c[2], double a, double b) {
+    double dfa, dfb, fa = objective_slope(ln, sphere, c, a, &dfa), fb = objective_slope(ln, sphere, c, b, &dfb);
+    if (fa >= 0.0) return a;
+    if (fb <= 0.0) return b;
+    double x = 0.5 * (a + b), tol = 1e-13 * (ln->rh + ln->m->st_x[ln->M - 1]);
+    for (int it = 0; it < NEWTON_ITERS; it++) {
+        double df, f = objective_slope(ln, sphere, c, x, &df);
+        if (f < 0.0) a = x;
+        else b = x;
+        double xn = df > 0.0 ? x - f / df : 0.5 * (a + b);
+        if (!(xn > a && xn < b)) xn = 0.5 * (a + b);
+        if (fabs(xn - x) <= tol || b - a <= tol) return xn;
+        x = xn;
+    }
+    return x;
+}
+
+void fb_nearest_point(const fb_model *m, const fb_obstacle *o, double th, const double *q, double s,
+                      fb_surface_point *out) {
+    int n = m->n, M = m->nst;
+    double w[M], w1[M], w2[M], u[M];
+    double L = m->st_x[M - 1];
+    line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u};
+    for (int j = 0; j < M; j++) {
+        w[j] = dot(m->st_phi + (size_t)j * n, q, n);
+        w1[j] = dot(m->st_dphi + (size_t)j * n, q, n);
+        w2[j] = dot(m->st_ddphi + (size_t)j * n, q, n);
+        u[j] = NAN;
+    }
+    /* the obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction) */
+    double ct = cos(th), st = sin(th), cx = o->cx + s * o->ux, cy = o->cy + s * o->uy, c[2];
+    int sphere = o->kind == FB_SPHERE;
+    if (sphere) {
+        c[0] = ct * cx + st * cy, c[1] = -st * cx + ct * cy;
+    } else {
+        c[0] = ct * o->nx + st * o->ny, c[1] = -st * o->nx + ct * o->ny;
+    }
+    int best = 0;
+    double best_val = INFINITY;
+    for (int j = 0; j < M; j++) {
+        double rx = ln.rh + m->st_x[j], ry = w[j];
+        double val = sphere ? (rx - c[0]) * (rx - c[0]) + (ry - c[1]) * (ry - c[1]) : c[0] * rx + c[1] * ry;
+        if (val < best_val) best_val = val, best = j;
+    }
+    double a = m->st_x[best > 0 ? best - 1 : 0], b = m->st_x[best < M - 1 ? best + 1 : M - 1];
+    double x = minimise(&ln, sphere, c, a, b);
+    /* the material point: Psi, Psi', H at x by Hermite interpolation */
+    double sj, h[4], d1[4], d2[4];
+    int j = interval(&ln, x, &sj);
+    hermite(sj, h, d1, d2);
+    double D = ln.dx;
+    const double *P0 = m->st_phi + (size_t)j * n, *P1 = P0 + n, *Q0 = m->st_dphi + (size_t)j * n, *Q1 = Q0 + n;
+    const double *R0 = m->st_ddphi + (size_t)j * n, *R1 = R0 + n;
+    for (int k = 0; k < n; k++) {
+        out->phi[k] = h[0] * P0[k] + D * h[1] * Q0[k] + h[2] * P1[k] + D * h[3] * Q1[k];
+        out->dphi[k] = h[0] * Q0[k] + D * h[1] * R0[k] + h[2] * Q1[k] + D * h[3] * R1[k];
+    }
+    const double *H0 = m->st_H + (size_t)j * n * n, *H1 = H0 + (size_t)n * n;
+    for (int r = 0; r < n; r++)
+        for (int k = 0; k < n; k++)
+            out->H[r * n + k] = h[0] * H0[r * n + k] + h[2] * H1[r * n + k] +
+                                D * (h[1] * Q0[r] * Q0[k] + h[3] * Q1[r] * Q1[k]);
+    /* the direction from the centre line to the obstacle, and the offsets along the section's normal and tangent */
+    double r[2], r1[2], r2[2], dir[2];
+    centre_line(&ln, x, r, r1, r2);
+    if (sphere) {
+        double ex = c[0] - r[0], ey = c[1] - r[1], d = sqrt(ex * ex + ey * ey);
+        dir[0] = d > 0.0 ? ex / d : 0.0, dir[1] = d > 0.0 ? ey / d : -1.0;
+    } else {
+        dir[0] = -c[0], dir[1] = -c[1];
+    }
+    double ang = dot(out->dphi, q, n), sa = sin(ang), ca = cos(ang), cs = m->surface;
+    out->x = x;
+    out->P.base = ln.rh + x;
+    out->P.offset_t = cs * (dir[0] * ca + dir[1] * sa);  /* c u . t */
+    out->P.offset = -cs * (-dir[0] * sa + dir[1] * ca);  /* -c u . n */
+    out->P.phi = out->phi;
+    out->P.dphi = out->dphi;
+    out->P.H = out->H;
+}
+
+/* Per generalised coordinate [theta, q] a bound on |d delta / dz| of an anywhere pair over all the beam's surface
+ * points: |r| for theta; max|Psi_k| + c max|Psi'_k| + |(H q)_k| for q_k, with |(H(x) q)_k| <= sqrt(H_kk(L)
+ * q^T H(L) q) (H(L) - H(x) is positive semi-definite). */
+void fb_anywhere_bound(const fb_model *m, const double *q, double *env) {
+    int n = m->n, M = m->nst;
+    const double *HL = m->st_H + (size_t)(M - 1) * n * n;
+    double qHq = fb_quad(HL, q, n), reach = m->points[1].base + m->surface;
+    for (int k = 0; k < n; k++) reach += m->st_maxphi[k] * fabs(q[k]);
+    env[0] = reach;
+    for (int k = 0; k < n; k++)
+        env[k + 1] = m->st_maxphi[k] + m->surface * m->st_maxdphi[k] + sqrt(fmax(HL[k * n + k], 0.0) * fmax(qHq, 0.0));
+}

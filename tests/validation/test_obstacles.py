@@ -1,0 +1,190 @@
+"""Several obstacles and contact anywhere on the beam, checked against closed forms of a rigid rod.
+
+With ``model.modes = 0`` and no gravity the beam is a rigid rod of inertia ``J_O = rho A L^3 / 3`` about the
+joint that turns at constant rate between contacts.  Contact geometry is exact (the gaps below are written out
+in the rod's coordinates, independently of the package), so these are the truths:
+
+* **IMM between two stops** (one below and one above the same material point ``x_P``): every impact flips the
+  rate by ``-e`` (the normal velocity of a pinned rod is linear in its rate, whatever the normal's direction),
+  so the times between impacts are ``theta_u / (e^k omega_0)``, ``theta_u`` the angle at which the upper gap
+  closes.
+* **Elastic CCFM between the same stops**: each contact is a rigid-body Hertz impact of the effective mass
+  ``J_O / x_P^2`` on ``K delta^n``, of duration ``t_c = (delta_m / v_0) 2 int_0^1 (1 - u^{n+1})^{-1/2} du``
+  with ``delta_m = ((n+1) m v_0^2 / (2K))^{1/(n+1)}`` (Johnson, *Contact Mechanics*, 1985, Sec. 11.4), after
+  which the rod leaves at ``theta = 0`` with its rate restored; onsets are ``t_c + theta_u / omega_0`` apart.
+* **CCM** (``e = 0`` at onset, then a held contact): the rod stops at the first stop and stays.
+* **A simultaneous impact on two stops**: the Delassus matrix of a rigid rod is singular (rank 1), the velocities
+  after are still unique (``omega^+ = -e omega^-``) and the least-norm impulses are proportional to the lever
+  arms, ``P_i = x_i J_O (1 + e) omega_0 / (x_1^2 + x_2^2)``.
+* **Contact anywhere**: a straight rod's lower surface nearest a sphere of centre ``C`` is the foot of the
+  perpendicular, so a spinning rod touches a sphere at distance ``d`` from the joint at the material point
+  ``sqrt(d^2 - (c + r_s)^2)`` and at the angle where the perpendicular distance is ``c + r_s``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate, optimize
+
+import flexbeam as fb
+from flexbeam.parameters.case import Case
+
+V0 = 0.4  # impact speed of P [m/s] (the seed case's)
+R_S = 0.01  # sphere radius [m]
+CLEARANCE = 0.002  # gap of the upper stop with the rod at theta = 0 [m]
+
+
+def _rod(overrides: dict | None = None, obstacles: list[dict] | None = None) -> Case:
+    base = {"model.modes": 0, "model.gravity": 0.0, "solver.t_end": 0.04}
+    case = fb.load_case("seed-experiment", {**base, **(overrides or {})})
+    data = case.model_dump()
+    data["obstacles"] = obstacles or []
+    return Case.model_validate(data)
+
+
+def _upper_stop(case: Case) -> dict:
+    c, x_p = case.beam.surface_offset, case.contact.position
+    return {"kind": "sphere", "radius": R_S, "centre": [x_p, c + CLEARANCE + R_S], "contact": {"side": "above"}}
+
+
+def _inertia(case: Case) -> float:
+    b = case.beam
+    return b.density * math.pi * b.radius**2 * b.length**3 / 3.0
+
+
+def _upper_contact(case: Case) -> tuple[float, float]:
+    """theta at which the upper surface point x_P + c e2 reaches the upper sphere (exact rod geometry), and the
+    lever arm |r_P x n| of the contact normal about the joint there (the normal velocity is omega times it)."""
+    c, x_p = case.beam.surface_offset, case.contact.position
+    centre = np.array([x_p, c + CLEARANCE + R_S])
+
+    def point(th: float) -> np.ndarray:
+        return np.array([x_p * math.cos(th) - c * math.sin(th), x_p * math.sin(th) + c * math.cos(th)])
+
+    # the gap turns negative again once the point is past the sphere: bracket the first root only
+    theta_u = optimize.brentq(
+        lambda th: np.linalg.norm(point(th) - centre) - R_S, 0.0, 2.5 * CLEARANCE / x_p, xtol=1e-15
+    )
+    p = point(theta_u)
+    n = (p - centre) / np.linalg.norm(p - centre)
+    return theta_u, abs(p[0] * n[1] - p[1] * n[0])
+
+
+def _onsets(sol, pair: int | None = None) -> np.ndarray:
+    return np.array([ev.onset for ev in sol.contacts if pair is None or ev.pair == pair])
+
+
+def test_imm_between_two_stops_follows_the_restitution_law():
+    e = 0.8
+    case = _rod({"contact.restitution": e})
+    sol = fb.simulate(_rod({"contact.restitution": e}, [_upper_stop(case)]), "imm")
+    omega0 = V0 / case.contact.position
+    theta_u, _ = _upper_contact(case)
+    onsets = _onsets(sol)
+    assert [ev.pair for ev in sol.contacts] == [0, 1, 0, 1, 0]
+    expected = np.cumsum([0.0] + [theta_u / (e**k * omega0) for k in range(1, len(onsets))])
+    # free flight is linear in t, so the dense output is exact and Brent finds its root to ~1e-16 s (measured
+    # 2e-17 s); 1e-8 s only leaves room for the round-off of summing the intervals on another CPU
+    np.testing.assert_allclose(onsets, expected, rtol=0, atol=1e-8)
+    for ev in sol.contacts:
+        np.testing.assert_allclose(ev.velocity_after, -e * ev.velocity_before, rtol=1e-9)
+
+
+def _hertz_duration(mass: float, stiffness: float, n: float, v0: float) -> float:
+    delta_m = ((n + 1.0) * mass * v0**2 / (2.0 * stiffness)) ** (1.0 / (n + 1.0))
+    shape, _ = integrate.quad(lambda u: 1.0 / math.sqrt(1.0 - u ** (n + 1.0)), 0.0, 1.0, limit=200)
+    return delta_m / v0 * 2.0 * shape
+
+
+def test_elastic_ccfm_between_two_stops_is_periodic_with_the_hertz_contact_time():
+    stiffness = 1.0e9
+    over = {"contact.law": "hertz", "contact.stiffness": stiffness, "solver.t_end": 0.03}
+    case = _rod(over)
+    sol = fb.simulate(_rod(over, [_upper_stop(case)]), "ccfm")
+    x_p, n = case.contact.position, case.contact.exponent
+    omega0 = V0 / x_p
+    theta_u, lever_u = _upper_contact(case)
+    # each stop is a rigid-body Hertz impact of the mass J_O / lever^2 at the normal speed omega0 lever (the
+    # upper stop's normal is tilted against the point's path: lever_u / x_P = 0.99975)
+    t_c = [_hertz_duration(_inertia(case) / lever**2, stiffness, n, omega0 * lever) for lever in (x_p, lever_u)]
+    onsets = _onsets(sol)
+    assert len(onsets) >= 5
+    assert [ev.pair for ev in sol.contacts] == [k % 2 for k in range(len(onsets))]
+    expected = [t_c[k % 2] + theta_u / omega0 for k in range(len(onsets) - 1)]
+    # what the closed form neglects: the normal turning during a contact (theta changes by ~ delta_m / x_P
+    # ~ 2e-4 rad: measured 1.2e-5 relative on the duration, <= 7e-9 s on an interval); 1e-7 s is a 14x margin
+    # and still half the upper stop's tilt effect (2.1e-7 s) that a lever of x_P would miss
+    np.testing.assert_allclose(np.diff(onsets), expected, rtol=0, atol=1e-7)
+    for ev in sol.contacts:
+        np.testing.assert_allclose(ev.duration, t_c[ev.pair], rtol=2e-4)  # measured 1.2e-5 (same cause)
+    assert max(abs(d) for d in sol.energy_drift()) < 1e-5  # elastic: measured 1.9e-7 over 6 contacts
+
+
+def test_ccm_stops_the_rod_at_the_first_stop():
+    case = _rod({"solver.t_end": 0.02})
+    sol = fb.simulate(_rod({"solver.t_end": 0.02}, [_upper_stop(case)]), "ccm")
+    assert [ev.pair for ev in sol.contacts] == [0]
+    np.testing.assert_allclose(sol["theta_rate"][-1], 0.0, atol=1e-12)
+    np.testing.assert_allclose(sol.contacts[0].jump_impulse, _inertia(case) * V0 / case.contact.position**2, rtol=1e-9)
+
+
+@pytest.mark.parametrize("method", ["imm", "ccm"])
+def test_a_simultaneous_impact_on_two_stops_shares_the_impulse_by_lever_arm(method):
+    e = 0.6 if method == "imm" else 0.0
+    case = _rod({"contact.restitution": max(e, 0.5), "solver.t_end": 0.005})
+    c, x1, x2 = case.beam.surface_offset, case.contact.position, 0.3
+    second = {"kind": "sphere", "radius": R_S, "centre": [x2, -c - R_S], "contact": {"position": x2}}
+    over = {"contact.restitution": e, "solver.t_end": 0.005} if method == "imm" else {"solver.t_end": 0.005}
+    sol = fb.simulate(_rod(over, [second]), method)
+    first = [ev for ev in sol.contacts if ev.onset == 0.0]
+    assert sorted(ev.pair for ev in first) == [0, 1]
+    omega0 = V0 / x1
+    scale = _inertia(case) * (1.0 + e) * omega0 / (x1**2 + x2**2)
+    jumps = {ev.pair: ev.jump_impulse for ev in first}
+    np.testing.assert_allclose([jumps[0], jumps[1]], [scale * x1, scale * x2], rtol=1e-9)
+    np.testing.assert_allclose(sol["theta_rate"][np.searchsorted(sol.time, 1e-4)], e * omega0, rtol=1e-9)
+
+
+def test_contact_anywhere_finds_the_foot_of_the_perpendicular_on_a_spinning_rod():
+    """A rod spun up to 20 rad/s meets a sphere at 0.5 m from the joint off its contact point's circle."""
+    case = _rod({"solver.t_end": 0.02, "initial.kind": "state", "initial.rate": 20.0})
+    c = case.beam.surface_offset
+    d, phi = 0.5, 0.3  # sphere centre at distance d, direction phi (the rod turns towards it)
+    centre = [d * math.cos(phi), d * math.sin(phi)]
+    data = case.model_dump()
+    data["obstacle"].update({"centre": centre, "radius": R_S})
+    data["contact"].update({"anywhere": True, "side": "above"})
+    sol = fb.simulate(Case.model_validate(data), "imm")
+    first = sol.contacts[0]
+    # the upper surface (offset +c along e2) touches when the perpendicular distance is c + r_s
+    theta_c = phi - math.asin((c + R_S) / d)
+    np.testing.assert_allclose(first.onset, theta_c / 20.0, rtol=0, atol=1e-9)
+    x_c = math.sqrt(d**2 - (c + R_S) ** 2)
+    k = np.searchsorted(sol.time, first.onset)
+    # measured 7e-14 m (onset 2e-18 s): the capsule search's tolerance; 1e-6 m is a position a user can see
+    np.testing.assert_allclose(sol["pair_contact_position"][k, 0], x_c, rtol=0, atol=1e-6)
+
+
+def test_contact_anywhere_on_the_flexible_seed_beam_stays_near_the_material_point():
+    """The seed beam hits the sphere straight: the nearest surface point moves off x_P only by the deformation
+    (second order in the slope), so the first contact matches the fixed-point run's closely."""
+    fixed = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 0.002}), "ccfm")
+    anywhere = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 0.002, "contact.anywhere": True}), "ccfm")
+    peak_f, peak_a = fixed.contacts[0].peak_force, anywhere.contacts[0].peak_force
+    np.testing.assert_allclose(peak_a, peak_f, rtol=1e-4)  # measured 2.1e-6
+    in_contact = anywhere["pair_contact_force"][:, 0] > 0.0
+    x = anywhere["pair_contact_position"][in_contact, 0]
+    assert np.all(np.abs(x - 0.585) < 1e-4)  # measured 9.0e-6 m
+
+
+def test_flexible_beam_between_two_elastic_stops_keeps_its_energy():
+    over = {"model.modes": 8, "model.gravity": 0.0, "contact.law": "hertz", "solver.t_end": 0.03}
+    case = fb.load_case("seed-experiment", over)
+    data = case.model_dump()
+    data["obstacles"] = [_upper_stop(case)]
+    sol = fb.simulate(Case.model_validate(data), "ccfm")
+    assert {ev.pair for ev in sol.contacts} == {0, 1}
+    assert max(abs(d) for d in sol.energy_drift()) < 1e-5  # measured 4.7e-7 (three contacts, 8 modes)
