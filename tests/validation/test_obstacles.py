@@ -188,3 +188,39 @@ def test_flexible_beam_between_two_elastic_stops_keeps_its_energy():
     sol = fb.simulate(Case.model_validate(data), "ccfm")
     assert {ev.pair for ev in sol.contacts} == {0, 1}
     assert max(abs(d) for d in sol.energy_drift()) < 1e-5  # measured 4.7e-7 (three contacts, 8 modes)
+
+
+def test_spinning_stop_preset_as_a_rigid_rod_meets_the_sphere_where_geometry_says():
+    """``spinning-stop`` with the modes off: theta = tau t^2 / (2 J_O) from rest, so the upper surface touches the
+    sphere (distance d, direction phi) at t = sqrt(2 J_O theta_c / tau), theta_c = phi - asin((c + r_s) / d)."""
+    case = fb.load_case("spinning-stop", {"model.modes": 0})
+    centre = np.array(case.obstacle.centre)
+    d, phi = float(np.hypot(*centre)), math.atan2(centre[1], centre[0])
+    reach = case.beam.surface_offset + case.obstacle.radius
+    sol = fb.simulate(case, "imm")
+    first = sol.contacts[0]
+    t_c = math.sqrt(2.0 * _inertia(case) * (phi - math.asin(reach / d)) / case.drive.torque)
+    np.testing.assert_allclose(first.onset, t_c, rtol=1e-9)  # dense output of a quadratic theta(t): exact
+    k = np.searchsorted(sol.time, first.onset)
+    np.testing.assert_allclose(sol["pair_contact_position"][k, 0], math.sqrt(d**2 - reach**2), rtol=0, atol=1e-6)
+
+
+def test_tip_wall_preset_as_a_rigid_rod_is_a_hertz_impact_on_the_plane():
+    """``tip-wall`` with the modes off and an elastic law: the tip's contact on the half-plane lasts the
+    rigid-body Hertz time of the mass J_O / L^2 and returns the speed."""
+    case = fb.load_case("tip-wall", {"model.modes": 0, "model.gravity": 0.0, "contact.law": "hertz"})
+    sol = fb.simulate(case, "ccfm")
+    first = sol.contacts[0]
+    length = case.beam.length
+    t_c = _hertz_duration(_inertia(case) / length**2, case.contact.stiffness, case.contact.exponent, V0)
+    np.testing.assert_allclose(first.duration, t_c, rtol=2e-5)  # measured 1.0e-6
+    np.testing.assert_allclose(first.velocity_after, V0, rtol=1e-6)  # measured 8.2e-8
+
+
+def test_two_stops_preset_touches_both_stops():
+    sol = fb.simulate(fb.load_case("two-stops"), "ccfm")
+    pairs = [ev.pair for ev in sol.contacts]
+    assert pairs[0] == 0 and 1 in pairs
+    above = sol.contacts[pairs.index(1)]
+    # the upper stop is met from below: P's normal velocity towards it is negative at onset
+    assert above.velocity_before < 0.0 < above.peak_force
