@@ -201,6 +201,12 @@ def test_a_newline_in_a_quoted_key_stays_on_one_line(tmp_path):
 # [[obstacles]]: one line naming the obstacle's field, exit 2 (the overlap and start-inside checks run when the
 # case's contact pairs are set up, before the run)
 OBSTACLE_CASES = [
+    # a pair with no law: a half-plane has no Hertz default (a cylinder on a plane is a line contact)
+    (
+        {"kind": "half-plane", "centre": [0.3, -0.05], "normal": [0.0, 1.0], "contact": {"position": 0.3}},
+        "obstacles[0].contact.stiffness",
+        "required",
+    ),
     # a sphere 5 mm from the seed's (placed at [0.585, -0.0245], radius 10 mm)
     ({"kind": "sphere", "radius": 0.01, "centre": [0.59, -0.0245]}, "obstacles[0].centre", "overlaps obstacle"),
     # the beam's lower surface at x = 0.3 is at y = -0.0145: a sphere reaching 1 mm above it
