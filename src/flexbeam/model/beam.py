@@ -87,6 +87,8 @@ class ModalBeam:
     d: np.ndarray
     #: points already built by :meth:`point` (x, offset) -> PointData
     _points: dict = field(default_factory=dict, compare=False, repr=False)
+    #: station tables already built by :func:`station_table`, by surface offset
+    _tables: dict = field(default_factory=dict, compare=False, repr=False)
 
     @property
     def first_order(self) -> bool:
@@ -158,7 +160,15 @@ STATIONS_PER_WAVE = 32
 
 
 def station_table(beam: ModalBeam, surface: float) -> StationTable:
-    """The :class:`StationTable` of ``beam`` (wavelength of mode n ~ 2 L / (n + 1/4))."""
+    """The :class:`StationTable` of ``beam`` (wavelength of mode n ~ 2 L / (n + 1/4)); built once per beam and
+    surface offset (the modal beam itself is memoised by :func:`build_modal_beam`)."""
+    table = beam._tables.get(float(surface))
+    if table is None:
+        table = beam._tables[float(surface)] = _station_table(beam, float(surface))
+    return table
+
+
+def _station_table(beam: ModalBeam, surface: float) -> StationTable:
     n, L = beam.n, beam.length
     M = max(33, int(math.ceil(STATIONS_PER_WAVE * (n + 1) / 2)) + 1)
     x = np.linspace(0.0, L, M)

@@ -49,6 +49,20 @@ static double station_u(line_t *ln, int j) {
     return ln->u[j];
 }
 
+/* Psi q at station j, computed on first use (a sphere's scan visits only the stations near it). */
+static double station_w(line_t *ln, int j) {
+    if (isnan(ln->w[j])) ln->w[j] = dot(ln->m->st_phi + (size_t)j * ln->n, ln->q, ln->n);
+    return ln->w[j];
+}
+
+/* Psi' q and Psi'' q at station j, computed on first use (the scan needs Psi q alone). */
+static void station_slopes(line_t *ln, int j) {
+    if (isnan(ln->w1[j])) {
+        ln->w1[j] = dot(ln->m->st_dphi + (size_t)j * ln->n, ln->q, ln->n);
+        ln->w2[j] = dot(ln->m->st_ddphi + (size_t)j * ln->n, ln->q, ln->n);
+    }
+}
+
 static int interval(const line_t *ln, double x, double *s) {
     int j = (int)(x / ln->dx);
     if (j < 0) j = 0;
@@ -61,6 +75,9 @@ static int interval(const line_t *ln, double x, double *s) {
 static void centre_line(line_t *ln, double x, double r[2], double r1[2], double r2[2]) {
     double s, h[4], d1[4], d2[4];
     int j = interval(ln, x, &s);
+    station_w(ln, j), station_w(ln, j + 1);
+    station_slopes(ln, j);
+    station_slopes(ln, j + 1);
     double D = ln->dx;
     hermite(s, h, d1, d2);
     double w = h[0] * ln->w[j] + D * h[1] * ln->w1[j] + h[2] * ln->w[j + 1] + D * h[3] * ln->w1[j + 1];
@@ -116,12 +133,7 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, double th, const 
     double w[M], w1[M], w2[M], u[M];
     double L = m->st_x[M - 1];
     line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u};
-    for (int j = 0; j < M; j++) {
-        w[j] = dot(m->st_phi + (size_t)j * n, q, n);
-        w1[j] = dot(m->st_dphi + (size_t)j * n, q, n);
-        w2[j] = dot(m->st_ddphi + (size_t)j * n, q, n);
-        u[j] = NAN;
-    }
+    for (int j = 0; j < M; j++) w[j] = w1[j] = w2[j] = u[j] = NAN;
     /* the obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction) */
     double ct = cos(th), st = sin(th), cx = o->cx + s * o->ux, cy = o->cy + s * o->uy, c[2];
     int sphere = o->kind == FB_SPHERE;
@@ -132,10 +144,36 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, double th, const 
     }
     int best = 0;
     double best_val = INFINITY;
-    for (int j = 0; j < M; j++) {
-        double rx = ln.rh + m->st_x[j], ry = w[j];
-        double val = sphere ? (rx - c[0]) * (rx - c[0]) + (ry - c[1]) * (ry - c[1]) : c[0] * rx + c[1] * ry;
-        if (val < best_val) best_val = val, best = j;
+    if (sphere) {
+        /* outwards from the station abreast of the centre: a station whose axial distance alone reaches the best
+         * squared distance so far cannot be nearer, nor can any beyond it (r_h + x_j is monotonic in j) */
+        int j0 = (int)lround((c[0] - ln.rh) / ln.dx);
+        j0 = j0 < 0 ? 0 : (j0 > M - 1 ? M - 1 : j0);
+        int lo_open = 1, hi_open = 1;
+        for (int k = 0; lo_open || hi_open; k++) {
+            for (int side = 0; side < 2; side++) {
+                int j = side ? j0 + k : j0 - k;
+                if ((side ? !hi_open : !lo_open) || (k == 0 && side == 1)) continue;
+                if (j < 0 || j > M - 1) {
+                    if (side) hi_open = 0;
+                    else lo_open = 0;
+                    continue;
+                }
+                double ex = ln.rh + m->st_x[j] - c[0];
+                if (ex * ex >= best_val) {
+                    if (side) hi_open = 0;
+                    else lo_open = 0;
+                    continue;
+                }
+                double ey = station_w(&ln, j) - c[1], val = ex * ex + ey * ey;
+                if (val < best_val || (val == best_val && j < best)) best_val = val, best = j;
+            }
+        }
+    } else {
+        for (int j = 0; j < M; j++) {
+            double val = c[0] * (ln.rh + m->st_x[j]) + c[1] * station_w(&ln, j);
+            if (val < best_val) best_val = val, best = j;
+        }
     }
     double a = m->st_x[best > 0 ? best - 1 : 0], b = m->st_x[best < M - 1 ? best + 1 : M - 1];
     double x = minimise(&ln, sphere, c, a, b);
