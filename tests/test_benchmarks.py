@@ -60,3 +60,20 @@ def test_import_cli_does_not_import_heavy_libraries():
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout) == []
+
+
+def test_obstacles_benchmark_quick_prints_a_row_per_case_and_method():
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "obstacles.py"), "--quick", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        cwd=ROOT,
+    )
+    assert r.returncode == 0, r.stderr
+    rows = json.loads(r.stdout)["rows"]
+    assert len(rows) == 6 * 3
+    assert {row["case"] for row in rows} >= {"seed-experiment", "two-stops", "spinning-stop", "tip-wall"}
+    for row in rows:
+        assert row["status"] == "success" and row["steps"] > 0 and row["us/step"] > 0.0
+    assert all(row["x seed"] == 1.0 for row in rows if row["case"] == "seed-experiment")

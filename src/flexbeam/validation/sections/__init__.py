@@ -15,6 +15,7 @@ from .frames import section_frames
 from .frequencies import section_roots, section_rotating
 from .methods import section_ccm, section_imm, section_support
 from .models import section_energy, section_fem, section_kane
+from .obstacles import section_obstacles
 from .rigid import LAW_NAMES, section_hertz, section_pendulum, section_restitution
 
 SECTIONS: dict[str, Callable[[bool, Path | None], Section]] = {
@@ -26,6 +27,7 @@ SECTIONS: dict[str, Callable[[bool, Path | None], Section]] = {
     "imm": section_imm,
     "ccm": section_ccm,
     "support": section_support,
+    "obstacles": section_obstacles,
     "fem": section_fem,
     "frames": section_frames,
     "kane": section_kane,
@@ -38,6 +40,7 @@ __all__ = [
     "section_ccm",
     "section_energy",
     "section_fem",
+    "section_obstacles",
     "section_frames",
     "section_hertz",
     "section_imm",
