@@ -313,3 +313,21 @@ def test_stiff_ccfm_between_two_stops_tends_to_imm():
     # K^(-2/5) per factor 100 in K: 100^0.4 = 6.3096 (measured 6.3097, 6.3099: 5e-5 relative)
     np.testing.assert_allclose(ratios, 100.0**0.4, rtol=1e-3)
     assert gaps[-1] < 2e-4  # at K = 1e13 the five contacts add 1e-4 s
+
+
+def test_contact_anywhere_at_the_tip_takes_the_end_cap():
+    """A sphere just beyond the tip's circle (distance d with L < d < L + c + r_s) is touched by the end of the
+    beam, closed by a hemispherical cap of radius c about the tip (the capsule of nearest.c): contact when
+    |L e1(theta) - C| = c + r_s, i.e. cos(phi - theta) = (L^2 + d^2 - (c + r_s)^2) / (2 L d), at x = L."""
+    case = _rod({"solver.t_end": 0.05, "initial.kind": "state", "initial.rate": 20.0})
+    c, L = case.beam.surface_offset, case.beam.length
+    d, phi = L + 0.5 * (c + R_S), 0.3
+    data = case.model_dump()
+    data["obstacle"].update({"centre": [d * math.cos(phi), d * math.sin(phi)], "radius": R_S})
+    data["contact"].update({"anywhere": True})
+    sol = fb.simulate(Case.model_validate(data), "imm")
+    first = sol.contacts[0]
+    theta_c = phi - math.acos((L**2 + d**2 - (c + R_S) ** 2) / (2.0 * L * d))
+    np.testing.assert_allclose(first.onset, theta_c / 20.0, rtol=0, atol=1e-9)  # measured 4e-17 s
+    k = np.searchsorted(sol.time, first.onset)
+    assert sol["pair_contact_position"][k, 0] == L
