@@ -124,8 +124,14 @@ def test_events_of_a_multi_contact_run_agree_and_converge(method):
     assert abs(tight.metrics()["energy_drift_max"]) < 1e-8
 
 
+#: the sensor these tests were measured on (the hub-frame fit of seed-experiment-calibrated, which since moved to its
+#: system-frame fit): pinned so that the stress cases and their measured margins do not follow a refit
+SENSOR = {"contact.restitution": 0.2431, "obstacle.support.stiffness": 2.601e7, "obstacle.support.damping": 51.55}
+
+
 def _calibrated(**overrides):
-    return fb.load_case("seed-experiment-calibrated", {k.replace("__", "."): v for k, v in overrides.items()})
+    over = {**SENSOR, **{k.replace("__", "."): v for k, v in overrides.items()}}
+    return fb.load_case("seed-experiment-calibrated", over)
 
 
 def test_compliant_support_first_contact_and_sensor_agree():
