@@ -272,3 +272,62 @@ def test_cli_bad_input_is_one_line_exit_2(args, field, tmp_path, capsys, monkeyp
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and field in err[0] and "Traceback" not in err[0]
     assert not list(tmp_path.iterdir())
+
+
+# --------------------------------------------------------------------------------- several contact pairs
+TWO_STOPS = {"model.modes": 4, "solver.t_end": 0.02, "initial.impact_velocity": -1.5}
+
+
+@pytest.fixture(scope="module")
+def two_stops_run():
+    """The beam between two stops, fast enough to hit both within 20 ms."""
+    sol = fb.simulate(fb.load_case("two-stops", TWO_STOPS), "ccfm")
+    assert {ev.pair for ev in sol.contacts} == {0, 1}
+    return sol
+
+
+def test_two_stops_animation_draws_every_obstacle_and_each_pairs_force(two_stops_run, tmp_path):
+    """Every obstacle is drawn (one artist each), each pair has its contact point and its force at the frames
+    (the first pair's is ``force``), and the GIF has the frames asked."""
+    from flexbeam.animation import FrameRenderer
+
+    sol = two_stops_run
+    scene = Scene.build(History.load(sol), None, 8, 0.5, "contact", "auto")
+    assert scene.pairs == 2
+    assert scene.pair_points.shape == (8, 2, 2) and scene.pair_force.shape == (8, 2)
+    assert_allclose(scene.pair_force[:, 0], scene.force)
+    assert_allclose(scene.pair_points[:, 0], scene.contact_point)
+    assert scene.pair_points[0, 1, 1] > scene.pair_points[0, 0, 1]  # the upper pair's point is above P
+    renderer = FrameRenderer(scene, 160, 120, 25.0)
+    assert len(renderer.obstacles) == len(scene.system.contact.obstacles) == 2
+    assert renderer.render(3).shape == (120, 160, 4)
+    path = animate(sol, tmp_path / "two.gif", frames=7, size=(160, 120), progress=False)
+    assert frames_and_size(path)[:2] == (7, (160, 120))
+
+
+def test_history_of_a_dataset_keeps_the_pair_arrays(two_stops_run):
+    sol = two_stops_run
+    history = History.from_dataset(sol.to_xarray())
+    assert_allclose(history.pair_force, sol["pair_contact_force"])
+    assert_allclose(history.pair_position, sol["pair_contact_position"])
+
+
+def test_single_pair_scene_has_one_pair(small_run):
+    _, sol = small_run
+    scene = Scene.build(History.load(sol), None, 6, 0.5, "contact", "auto")
+    assert History.load(sol).pair_force is None
+    assert scene.pairs == 1 and scene.pair_points.shape == (6, 1, 2)
+    assert_allclose(scene.pair_force[:, 0], scene.force)
+
+
+def test_anywhere_contact_point_is_on_the_side_facing_the_obstacle():
+    """spinning-stop: the beam sweeps into the sphere with its upper side; drawn at true scale, the marked
+    contact point (the result's moving pair_contact_position) lies on the sphere while in contact."""
+    case = fb.load_case("spinning-stop", {"model.modes": 4, "solver.t_end": 0.45})
+    sol = fb.simulate(case, "ccfm")
+    scene = Scene.build(History.load(sol), (0.44, 0.45), 12, 0.5, "contact", 1.0)
+    ob = scene.system.contact.obstacle
+    touching = scene.pair_force[:, 0] > 0
+    assert touching.any()
+    dist = np.linalg.norm(scene.pair_points[touching, 0] - ob.centre, axis=1) - ob.radius
+    assert np.max(np.abs(dist)) < 1e-3

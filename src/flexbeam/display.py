@@ -109,11 +109,26 @@ def _first_contact_window(sol: Solution) -> np.ndarray:
 
 
 def _draw_solution(sol: Solution):
-    """What to plot: the first contact's force if there is a force history, else P's normal
-    velocity (IMM: jumps, no force), else the tip deflection (no contact)."""
+    """What to plot: the first contact's force if there is a force history (with several contact pairs, each
+    touching pair's force up to its first contact, labelled by its obstacle), else P's normal velocity (IMM:
+    jumps, no force), else the tip deflection (no contact)."""
+    from .plotting import _window, pair_forces
 
     def draw(ax: Axes) -> str:
         force = sol.arrays.get("contact_force")
+        pairs = pair_forces(sol)
+        if sol.contacts and pairs and any(np.nanmax(f, initial=0.0) > 0.0 for _, _, f in pairs):
+            ev = sol.contacts[0]
+            span = ev.duration if math.isfinite(ev.duration) and ev.duration > 0 else 1e-3
+            t0, sel = _window(sol, 0.1 * span, 1.6 * span, pairs)
+            for k, label, f in pairs:
+                ax.plot((sol.time[sel] - t0) * 1e3, f[sel], lw=1.0, c=f"C{k}", label=label)
+            if "sensor_force" in sol.arrays:
+                ax.plot((sol.time[sel] - t0) * 1e3, sol["sensor_force"][sel], lw=0.8, ls=":", c="C0")
+            ax.legend(fontsize=6)
+            ax.set_xlabel("Time after first contact [ms]")
+            ax.set_ylabel("Contact force [N]")
+            return "contact force of each contact pair"
         if sol.contacts and force is not None and force.size and np.nanmax(force) > 0.0:
             sel = _first_contact_window(sol)
             t0 = sol.contacts[0].onset

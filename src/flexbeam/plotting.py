@@ -1,8 +1,9 @@
 """Figures in the style of the paper's Figs. 6-9: contact force and P's normal velocity.
 
 Matplotlib is imported lazily with the non-interactive Agg backend.  Labels follow
-"Quantity [unit]".  Reference numbers (e.g. the experiment's reported peaks and
-contact duration) are drawn as dashed lines with their source in the legend.
+"Quantity [unit]".  A run with several contact pairs shows one force line per pair that touches, labelled by
+the pair's obstacle ("obstacle", "obstacles[0]", ...; :func:`pair_forces`).  Reference numbers (e.g. the
+experiment's reported peaks and contact duration) are drawn as dashed lines with their source in the legend.
 """
 
 from __future__ import annotations
@@ -16,6 +17,10 @@ import numpy as np
 from .solution import Solution, atomic_path
 
 _STYLE = {"ccfm": "C0", "ccm": "C3", "imm": "C2", "fem": "C1"}
+#: colours of the further pairs of one run (its first pair keeps the method's colour)
+_PAIR_COLOURS = ("C1", "C4", "C5", "C6", "C8", "C9", "C2", "C3")
+#: line styles of the pairs when several runs are overlaid (each run in its method's colour)
+_PAIR_STYLES = ("-", "--", "-.", (0, (5, 1, 1, 1, 1, 1)), (0, (1, 1)))
 
 
 def pyplot():
@@ -28,9 +33,47 @@ def pyplot():
     return plt
 
 
-def _window(sol: Solution, before: float, after: float) -> tuple[float, np.ndarray]:
+def pair_forces(sol: Solution) -> list[tuple[int, str, np.ndarray]] | None:
+    """Each contact pair's force of a run with several pairs, for the pairs that touch.
+
+    Parameters
+    ----------
+    sol
+        A run.
+
+    Returns
+    -------
+    list of (pair, label, force) or None
+        For each pair with a contact (a contact event or a positive force): its number, its label
+        (``"obstacle"``, ``"obstacles[0]"``, ... from the provenance's ``contact_pairs``; ``"pair k"`` when it
+        records none) and its force [N] at the samples.  None when the run has a single pair (or no per-pair
+        arrays): its force is ``contact_force``, drawn as before.
+    """
+    force = sol.arrays.get("pair_contact_force")
+    if force is None or force.ndim != 2 or force.shape[1] < 2:
+        return None
+    labels = list(sol.provenance.get("contact_pairs") or [])
+    touched = {ev.pair for ev in sol.contacts}
+    return [
+        (k, str(labels[k]) if k < len(labels) else f"pair {k}", force[:, k])
+        for k in range(force.shape[1])
+        if k in touched or bool(np.nanmax(force[:, k], initial=0.0) > 0.0)
+    ]
+
+
+def _window(
+    sol: Solution, before: float, after: float, pairs: list[tuple[int, str, np.ndarray]] | None = None
+) -> tuple[float, np.ndarray]:
+    """Onset t0 of the first contact and the samples from ``before`` [s] ahead of it to ``after`` [s] past it --
+    past the first contact of each of ``pairs`` (:func:`pair_forces`) if later."""
     t0 = sol.contacts[0].onset if sol.contacts else 0.0
-    sel = (sol.time >= t0 - before) & (sol.time <= t0 + after)
+    last = t0
+    for k, _, force in pairs or ():
+        onsets = [ev.onset for ev in sol.contacts if ev.pair == k]
+        if not onsets and np.any(force > 0.0):
+            onsets = [float(sol.time[np.argmax(force > 0.0)])]
+        last = max([last, *onsets[:1]])
+    sel = (sol.time >= t0 - before) & (sol.time <= last + after)
     return t0, sel
 
 
@@ -74,7 +117,29 @@ def _mark_references(ax, reference: dict[str, Any], method: str, quantity: str) 
 def plot_contact_force(
     solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None, title: str = ""
 ) -> Path:
-    """Contact force [N] against time after the first contact [ms], methods overlaid."""
+    """Contact force [N] against time after the first contact [ms], methods overlaid.
+
+    A run with several contact pairs (:func:`pair_forces`) shows one line per pair that touches, labelled
+    "flexbeam METHOD, <pair's obstacle>" -- for a single run each pair in its own colour, for several runs in the
+    method's colour with one line style per pair -- over a window reaching past each such pair's first contact.
+    A single-pair run shows its ``contact_force``.
+
+    Parameters
+    ----------
+    solutions
+        The runs to overlay.
+    path
+        The PNG to write.
+    reference
+        Reference numbers (the case's ``reference``) drawn as dashed lines, or None.
+    title
+        The figure's title (default: "Contact force").
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     span = max(
@@ -82,13 +147,29 @@ def plot_contact_force(
         default=1e-3,
     )
     for sol in solutions:
-        t0, sel = _window(sol, 0.1 * span, 1.6 * span)
-        ax.plot(
-            (sol.time[sel] - t0) * 1e3,
-            sol["contact_force"][sel],
-            c=_STYLE.get(sol.method, None),
-            label=f"flexbeam {sol.method.upper()}",
-        )
+        pairs = pair_forces(sol)
+        t0, sel = _window(sol, 0.1 * span, 1.6 * span, pairs)
+        if pairs is None:
+            ax.plot(
+                (sol.time[sel] - t0) * 1e3,
+                sol["contact_force"][sel],
+                c=_STYLE.get(sol.method, None),
+                label=f"flexbeam {sol.method.upper()}",
+            )
+        for n, (k, label, force) in enumerate(pairs or ()):
+            if len(solutions) == 1:  # one colour per pair, the first the method's
+                own = _STYLE.get(sol.method, "C0")
+                others = [c for c in _PAIR_COLOURS if c != own]
+                colour, style = (own if k == 0 else others[(k - 1) % len(others)]), "-"
+            else:  # the method's colour, one line style per pair
+                colour, style = _STYLE.get(sol.method, None), _PAIR_STYLES[n % len(_PAIR_STYLES)]
+            ax.plot(
+                (sol.time[sel] - t0) * 1e3,
+                force[sel],
+                c=colour,
+                ls=style,
+                label=f"flexbeam {sol.method.upper()}, {label}",
+            )
         if "sensor_force" in sol.arrays:  # compliant support: what the sensor under it reads
             ax.plot(
                 (sol.time[sel] - t0) * 1e3,

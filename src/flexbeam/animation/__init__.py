@@ -1,5 +1,6 @@
-"""Animations of a run: the beam's deformed shape with magnified deflection, the hub, the obstacle and the
-contact-force trace with a moving cursor, rendered frame by frame to a GIF (Pillow) or an MP4 (ffmpeg).
+"""Animations of a run: the beam's deformed shape with magnified deflection, the hub, the obstacles and the
+contact-force trace (one per contact pair, with several) with a moving cursor, rendered frame by frame to a GIF
+(Pillow) or an MP4 (ffmpeg).
 
 The beam's centre line at a time comes from the modal coordinates q and the hub angle phi of the result
 (:func:`~flexbeam.animation.geometry.beam_shape`, the kinematics of ``docs/formulation.md``).  Its deflection --
@@ -103,8 +104,12 @@ def animate(
     """Render an animation of a run to ``out`` (``.gif`` or ``.mp4``) and return the path written.
 
     Each frame shows the beam's deformed centre line (a band of the beam's thickness) with its deflection
-    magnified by ``scale`` (stated on the frame), the hub, the obstacle and, below, the contact force against
+    magnified by ``scale`` (stated on the frame), the hub, the obstacles and, below, the contact force against
     time with a cursor at the frame's time; the simulated time and the slow-motion factor are printed on it.
+    With several contact pairs each pair's force is traced in its own colour (pairs that never touch in the
+    window are left out), labelled by its obstacle ("obstacle", "obstacles[0]", ...), each obstacle edged in its
+    pair's colour and each pair's contact point marked on the beam.  A contact-anywhere pair's point moves along
+    the beam and is marked only while in contact.
 
     Parameters
     ----------

@@ -1,5 +1,6 @@
 """Reading a result for an animation: :class:`History`, the samples of the hub angle, the modal coordinates and the
-contact force, the contact intervals and the case, from a :class:`~flexbeam.solution.Solution`, its
+contact force (and, with several contact pairs or a contact anywhere, each pair's force and contact point), the
+contact intervals and the case, from a :class:`~flexbeam.solution.Solution`, its
 :meth:`~flexbeam.solution.Solution.to_xarray` dataset or a saved ``result.nc``.
 """
 
@@ -22,7 +23,12 @@ if TYPE_CHECKING:
 @dataclass
 class History:
     """What an animation needs of a result: samples of the hub angle, the modal coordinates and the contact
-    force, the contact intervals, and the case."""
+    force, the contact intervals, and the case.
+
+    ``pair_force`` and ``pair_position`` (time x pair: each pair's contact force [N] and the material coordinate
+    of its contact point [m]) are there when the result has per-pair arrays (several contact pairs or a contact
+    anywhere), else None; ``force`` is the first pair's force.
+    """
 
     time: np.ndarray
     phi: np.ndarray
@@ -32,12 +38,15 @@ class History:
     contacts: list[tuple[float, float]]
     case: Case
     label: str
+    pair_force: np.ndarray | None = None
+    pair_position: np.ndarray | None = None
 
     @classmethod
     def from_solution(cls, sol: Solution, case: Case | None = None) -> History:
         """The arrays and contact log of a :class:`~flexbeam.solution.Solution`."""
         case = case if case is not None else _case_from_toml(sol.provenance.get("case_toml"))
         support = sol.arrays.get("support_displacement")
+        pair_force, pair_position = (sol.arrays.get(name) for name in ("pair_contact_force", "pair_contact_position"))
         return cls(
             np.asarray(sol.time, float),
             np.asarray(sol["theta"], float),
@@ -47,6 +56,8 @@ class History:
             [(c.onset, c.end) for c in sol.contacts],
             case,
             f"{case.name} [{sol.method}]",
+            _pair_array(pair_force, sol.time.size),
+            _pair_array(pair_position, sol.time.size),
         )
 
     @classmethod
@@ -64,6 +75,11 @@ class History:
         )
         support = np.asarray(ds["support_displacement"].values, float) if "support_displacement" in ds else None
         method = str(ds.attrs.get("method", ""))
+        n = ds["time"].size
+        pair_arrays = [
+            _pair_array(np.asarray(ds[name].values, float) if name in ds.variables else None, n)
+            for name in ("pair_contact_force", "pair_contact_position")
+        ]
         return cls(
             np.asarray(ds["time"].values, float),
             np.asarray(ds["theta"].values, float),
@@ -73,6 +89,7 @@ class History:
             [(float(a), float(b)) for a, b in zip(onset, end)],
             case,
             f"{case.name} [{method}]",
+            *pair_arrays,
         )
 
     @classmethod
@@ -93,6 +110,13 @@ class History:
         if hasattr(result, "arrays") and hasattr(result, "contacts"):
             return cls.from_solution(result, case)
         return cls.from_dataset(result, case)
+
+
+def _pair_array(values: Any, samples: int) -> np.ndarray | None:
+    """A per-pair array as (time, pair) floats, or None when the result has none."""
+    if values is None:
+        return None
+    return np.asarray(values, float).reshape(samples, -1)
 
 
 def _one_line(message: object) -> str:

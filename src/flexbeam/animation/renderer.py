@@ -1,7 +1,7 @@
 """Drawing the frames of an animation: :class:`FrameRenderer` draws a
 :class:`~flexbeam.animation.scene.Scene` frame by frame on a Matplotlib Agg canvas (object API, no pyplot state) --
-the beam, the hub, the obstacle, the clock with the playback speed (:func:`speed_label`) and the contact-force
-trace with a cursor.
+the beam, the hub, the obstacles, the clock with the playback speed (:func:`speed_label`) and the contact-force
+trace with a cursor (one trace per contact pair in its own colour, :func:`pair_colour`, when there are several).
 """
 
 from __future__ import annotations
@@ -12,11 +12,56 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
+    from matplotlib.artist import Artist
+
+    from ..contact.setup import ObstacleGeometry
     from .scene import Scene
 
 
 def _time_unit(span: float) -> tuple[float, str]:
     return (1e3, "ms") if span < 1.0 else (1.0, "s")
+
+
+#: colours of the contact pairs' force traces and contact points when there are several (pair 0's is C3, as for
+#: a single pair; C0 is the beam's)
+PAIR_COLOURS = ("C3", "C1", "C2", "C4", "C5", "C6", "C8", "C9")
+
+
+def pair_colour(k: int) -> str:
+    """The colour of contact pair ``k`` in an animation with several pairs (:data:`PAIR_COLOURS`, cycled)."""
+    return PAIR_COLOURS[k % len(PAIR_COLOURS)]
+
+
+def _draw_obstacle(ax, ob: ObstacleGeometry, edge: str, big: float, animated: bool = False) -> Artist:
+    """Draw obstacle ``ob`` on ``ax`` and return its artist.
+
+    Parameters
+    ----------
+    ax
+        The Matplotlib axes of the beam.
+    ob
+        A sphere (a grey disc; a cross for radius 0) or a half-plane (a hatched band ``big`` [m] wide and deep
+        behind its line).
+    edge
+        The edge (and hatch) colour.
+    big
+        Half-width and depth [m] of a half-plane's band, well beyond the view.
+    animated
+        Whether the artist moves (a compliant support: drawn frame by frame).
+    """
+    from matplotlib.patches import Circle, Polygon
+
+    centre = np.asarray(ob.centre, float)
+    if ob.kind == 0 and ob.radius > 0:
+        return ax.add_patch(Circle(centre, ob.radius, facecolor="0.75", edgecolor=edge, zorder=1, animated=animated))
+    if ob.kind == 0:
+        return ax.plot([centre[0]], [centre[1]], "x", color=edge, zorder=1)[0]
+    nrm = np.asarray(ob.normal, float)
+    tan = np.array([-nrm[1], nrm[0]])
+    corners = np.array(
+        [centre - big * tan, centre + big * tan, centre + big * tan - big * nrm, centre - big * tan - big * nrm]
+    )
+    return ax.add_patch(Polygon(corners, closed=True, facecolor="0.85", edgecolor=edge, hatch="///", zorder=1))
 
 
 def speed_label(density: float, fps: float) -> str:
@@ -34,8 +79,15 @@ class FrameRenderer:
     """Draws the frames of a :class:`~flexbeam.animation.scene.Scene` on a Matplotlib Agg canvas (object API, no
     pyplot).
 
-    The static part (axes, ticks, labels, force trace, fixed obstacle) is drawn once; each frame restores it and
+    The static part (axes, ticks, labels, force traces, fixed obstacles) is drawn once; each frame restores it and
     draws only the moving artists (Matplotlib's blitting), about 8x faster than redrawing the figure.
+
+    Attributes
+    ----------
+    obstacles : list of matplotlib.artist.Artist
+        One artist per obstacle of the case, in the order of ``system.contact.obstacles``.
+    obstacle : matplotlib.patches.Circle or None
+        Obstacle 0's disc (None for a point or a half-plane), which moves on a compliant support.
     """
 
     def __init__(self, scene: Scene, width: int, height: int, fps: float, dpi: float = 100.0) -> None:
@@ -74,6 +126,9 @@ class FrameRenderer:
         scene = self.scene
         h, system = scene.history, scene.system
         obstacle = system.contact.obstacle
+        obstacles, pairs = system.contact.obstacles, system.contact.pairs
+        multi = scene.pairs > 1
+        colours = [pair_colour(k) for k in range(scene.pairs)] if multi else ["C3"]
         L, rh = system.beam.length, system.beam.hub_radius
         fig = self.fig = Figure(figsize=(w_in, h_in), dpi=dpi, facecolor="white")
         self.canvas = FigureCanvasAgg(fig)
@@ -87,12 +142,14 @@ class FrameRenderer:
             [scene.upper.reshape(-1, 2), scene.lower.reshape(-1, 2), np.array([[-rh, -rh], [rh, rh]])]
         )
         lo, hi = beam_pts.min(axis=0), beam_pts.max(axis=0)
-        r_ob = obstacle.radius if obstacle.kind == 0 else 0.0
-        ob_lo = np.min(centre + scene.obstacle_shift, axis=0) - r_ob
-        ob_hi = np.max(centre + scene.obstacle_shift, axis=0) + r_ob
-        # the obstacle joins the view when it is near the beam (a case may park it far away: no contact)
-        if np.all(ob_lo <= hi + 0.5 * (rh + L)) and np.all(ob_hi >= lo - 0.5 * (rh + L)):
-            lo, hi = np.minimum(lo, ob_lo), np.maximum(hi, ob_hi)
+        beam_lo, beam_hi = lo, hi
+        for j, ob in enumerate(obstacles):
+            r_ob = ob.radius if ob.kind == 0 else 0.0
+            at = np.asarray(ob.centre, float) + (scene.obstacle_shift if j == 0 else np.zeros((1, 2)))
+            ob_lo, ob_hi = np.min(at, axis=0) - r_ob, np.max(at, axis=0) + r_ob
+            # an obstacle joins the view when it is near the beam (a case may park it far away: no contact)
+            if np.all(ob_lo <= beam_hi + 0.5 * (rh + L)) and np.all(ob_hi >= beam_lo - 0.5 * (rh + L)):
+                lo, hi = np.minimum(lo, ob_lo), np.maximum(hi, ob_hi)
         mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo) + 0.05 * float(np.max(hi - lo))
         box = ax.get_position()
         aspect = (box.height * h_in) / (box.width * w_in)  # height / width of the axes box
@@ -104,23 +161,17 @@ class FrameRenderer:
         ax.tick_params(length=2, pad=1)
         span = 2.0 * float(half[0])
 
-        # -- obstacle: it moves only on a compliant support
+        # -- the obstacles: only obstacle 0 moves, and only on a compliant support
         moves = bool(np.any(scene.obstacle_shift))
-        self.obstacle = None
-        if obstacle.kind == 0 and obstacle.radius > 0:
-            self.obstacle = ax.add_patch(
-                Circle(centre, obstacle.radius, facecolor="0.75", edgecolor="0.3", zorder=1, animated=moves)
-            )
-        elif obstacle.kind == 0:
-            ax.plot([centre[0]], [centre[1]], "x", color="0.3", zorder=1)
-        else:
-            nrm = np.asarray(obstacle.normal, float)
-            tan = np.array([-nrm[1], nrm[0]])
-            big = 20.0 * (span + L)
-            corners = np.array(
-                [centre - big * tan, centre + big * tan, centre + big * tan - big * nrm, centre - big * tan - big * nrm]
-            )
-            ax.add_patch(Polygon(corners, closed=True, facecolor="0.85", edgecolor="0.3", hatch="///", zorder=1))
+        edges = ["0.3"] * len(obstacles)
+        if multi:  # each obstacle edged in the colour of the (first) pair touching it
+            for k in reversed(range(len(pairs))):
+                edges[pairs[k].obstacle] = colours[k]
+        self.obstacles = [
+            _draw_obstacle(ax, ob, edges[j], 20.0 * (span + L), animated=moves and j == 0)
+            for j, ob in enumerate(obstacles)
+        ]
+        self.obstacle = self.obstacles[0] if obstacle.kind == 0 and obstacle.radius > 0 else None
 
         # -- the beam (a band of its thickness about the magnified centre line), the reference line, P, the hub
         (chord,) = ax.plot([], [], ls="--", lw=0.6, color="0.55", zorder=2, animated=True)
@@ -128,7 +179,8 @@ class FrameRenderer:
             Polygon(np.zeros((3, 2)), closed=True, facecolor="C0", edgecolor="C0", alpha=0.85, zorder=3, animated=True)
         )
         (line,) = ax.plot([], [], color="navy", lw=0.5, zorder=4, animated=True)
-        (pmark,) = ax.plot([], [], "o", ms=max(1.5, font * 0.45), zorder=5, animated=True)
+        marks = [ax.plot([], [], "o", ms=max(1.5, font * 0.45), zorder=5, animated=True)[0] for _ in range(scene.pairs)]
+        anywhere = [bool(pairs[k].anywhere) if k < len(pairs) else False for k in range(scene.pairs)]
         hub_r = rh if rh > 0 else 0.015 * L
         hub = ax.add_patch(
             Circle((0.0, 0.0), hub_r, facecolor="white" if rh == 0 else "0.85", edgecolor="k", zorder=6, animated=True)
@@ -153,15 +205,26 @@ class FrameRenderer:
         # -- the contact force with a cursor
         mult, unit = _time_unit(scene.times[-1] - scene.times[0])
         sel = (h.time >= scene.times[0]) & (h.time <= scene.times[-1])
-        axf.plot(h.time[sel] * mult, h.force[sel], color="C3", lw=0.8)
+        if multi and h.pair_force is not None:  # each pair that touches in the window, pair 0 always
+            traces = [k for k in range(scene.pairs) if k == 0 or np.any(h.pair_force[sel, k] > 0.0)]
+            forces = h.pair_force[sel]
+            for k in traces:
+                axf.plot(h.time[sel] * mult, forces[:, k], color=colours[k], lw=0.8, label=pairs[k].label)
+            axf.legend(fontsize=font * 0.75, loc="upper right", handlelength=1.2, borderaxespad=0.3)
+        else:
+            traces, forces = [0], h.force[sel][:, None]
+            axf.plot(h.time[sel] * mult, h.force[sel], color="C3", lw=0.8)
         axf.set_xlim(scene.times[0] * mult, scene.times[-1] * mult)
-        top = max(float(np.max(h.force[sel], initial=0.0)), 1.0)
+        top = max(float(np.max(forces, initial=0.0)), 1.0)
         axf.set_ylim(-0.05 * top, 1.1 * top)
         axf.set_xlabel(f"Time [{unit}]", labelpad=1)
         axf.set_ylabel("Contact force [N]", labelpad=1)
         axf.tick_params(length=2, pad=1)
         cursor = axf.axvline(scene.times[0] * mult, color="k", lw=0.8, animated=True)
-        (fdot,) = axf.plot([], [], "o", color="k", ms=max(1.5, font * 0.4), animated=True)
+        fdots = [
+            axf.plot([], [], "o", color=colours[k] if multi else "k", ms=max(1.5, font * 0.4), animated=True)[0]
+            for k in traces
+        ]
 
         steps = np.diff(scene.times) * mult
         smallest = float(np.min(steps[steps > 0], initial=1.0))
@@ -172,9 +235,14 @@ class FrameRenderer:
             band.set_xy(np.concatenate((scene.upper[i], scene.lower[i][::-1])))
             line.set_data(scene.centre[i, :, 0], scene.centre[i, :, 1])
             chord.set_data(scene.chord[i, :, 0], scene.chord[i, :, 1])
-            touching = bool(scene.force[i] > 0.0)
-            pmark.set_data([scene.contact_point[i, 0]], [scene.contact_point[i, 1]])
-            pmark.set_color("C3" if touching else "0.2")
+            touching = bool(np.any(scene.pair_force[i] > 0.0))
+            for k, mark in enumerate(marks):
+                on = bool(scene.pair_force[i, k] > 0.0)
+                if anywhere[k] and not on:  # an anywhere pair's point is marked only in contact
+                    mark.set_data([], [])
+                else:
+                    mark.set_data([scene.pair_points[i, k, 0]], [scene.pair_points[i, k, 1]])
+                mark.set_color(colours[k] if on else "0.2")
             a = scene.hub_angle[i]
             hub_line.set_data([0.0, reach * math.cos(a)], [0.0, reach * math.sin(a)])
             if moves and self.obstacle is not None:
@@ -184,11 +252,12 @@ class FrameRenderer:
                 f"t = {t:.{decimals}f} {unit}\n{speed_label(scene.density[i], fps)}" + ("\ncontact" if touching else "")
             )
             cursor.set_xdata([t, t])
-            fdot.set_data([t], [scene.force[i]])
+            for k, fdot in zip(traces, fdots):
+                fdot.set_data([t], [scene.pair_force[i, k]])
 
         self.update = update
         self.moving = [
             a
-            for a in (self.obstacle if moves else None, chord, band, line, pmark, hub, hub_line, clock, cursor, fdot)
+            for a in (self.obstacle if moves else None, chord, band, line, *marks, hub, hub_line, clock, cursor, *fdots)
             if a is not None
         ]

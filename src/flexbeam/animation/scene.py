@@ -1,6 +1,7 @@
 """What each frame of an animation draws, as numbers: :class:`Scene` holds, per frame, the beam's band with its
 deflection magnified about the rigid reference line, the contact point, the reference line, the drawn hub angle,
-the obstacle's displacement and the contact force, built from a :class:`~flexbeam.animation.history.History` by
+the obstacle's displacement and the contact force -- and, for a case with several contact pairs, each pair's
+contact point and force -- built from a :class:`~flexbeam.animation.history.History` by
 the geometry of :mod:`flexbeam.animation.geometry`.
 """
 
@@ -12,11 +13,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..contact.setup import OBSTACLE_SPHERE
 from ..errors import ModelError, ParameterError
 from .geometry import auto_scale, beam_shape, frame_times, reference_angle
 from .history import History
 
 if TYPE_CHECKING:
+    from ..contact.setup import ObstacleGeometry
     from ..model.system import BeamSystem
 
 #: material points drawn along the beam
@@ -25,7 +28,12 @@ BEAM_POINTS = 121
 
 @dataclass
 class Scene:
-    """Everything drawn, frame by frame: magnified beam outlines, hub angles, obstacle positions, force."""
+    """Everything drawn, frame by frame: magnified beam outlines, hub angles, obstacle positions, force.
+
+    The obstacles are ``system.contact.obstacles`` (only obstacle 0 may move, by ``obstacle_shift``); pair k of
+    ``system.contact.pairs`` touches obstacle ``pairs[k].obstacle`` at ``pair_points[:, k]`` with force
+    ``pair_force[:, k]`` (for a single fixed pair, ``contact_point`` and ``force``).
+    """
 
     history: History
     times: np.ndarray
@@ -39,8 +47,21 @@ class Scene:
     chord: np.ndarray  # (m, 2, 2) the rigid reference line from O to r_h + L
     hub_angle: np.ndarray  # (m,) drawn hub angle
     obstacle_shift: np.ndarray  # (m, 2) compliant support's displacement
-    force: np.ndarray  # (m,) contact force at the frames
+    force: np.ndarray  # (m,) contact force at the frames (the first pair's)
     system: BeamSystem
+    pair_points: np.ndarray | None = None  # (m, p, 2) each pair's contact point on the magnified band
+    pair_force: np.ndarray | None = None  # (m, p) each pair's contact force at the frames
+
+    def __post_init__(self) -> None:
+        if self.pair_points is None:
+            self.pair_points = self.contact_point[:, None, :]
+        if self.pair_force is None:
+            self.pair_force = self.force[:, None]
+
+    @property
+    def pairs(self) -> int:
+        """Number of contact pairs."""
+        return int(self.pair_force.shape[1])
 
     @classmethod
     def build(
@@ -59,7 +80,11 @@ class Scene:
         :func:`~flexbeam.animation.geometry.beam_shape` at :data:`BEAM_POINTS` points and the contact point;
         its deviation from the rigid line at :func:`~flexbeam.animation.geometry.reference_angle` magnified by
         ``scale`` (``"auto"``: :func:`~flexbeam.animation.geometry.auto_scale` of its largest norm over the
-        frames); the band's edges offset by the contact offset c along the magnified line's normal.
+        frames); the band's edges offset by the contact offset c along the magnified line's normal.  Each pair's
+        contact point is offset by its own c from the magnified centre line at its material coordinate: fixed
+        pairs' coordinates are points of the drawn line; an anywhere pair's moves (the result's
+        ``pair_contact_position``), is interpolated linearly between them and lies on the side facing its
+        obstacle.
         """
         from ..model.system import BeamSystem
 
@@ -86,7 +111,8 @@ class Scene:
         phi = np.interp(times, t, history.phi)
         q = np.column_stack([np.interp(times, t, col) for col in history.q.T]) if beam.n else np.zeros((frames, 0))
         xP, c, L, rh = system.contact.position, system.contact.offset, beam.length, beam.hub_radius
-        x = np.union1d(np.linspace(0.0, L, BEAM_POINTS), [xP])
+        pairs = system.contact.pairs
+        x = np.union1d(np.linspace(0.0, L, BEAM_POINTS), [p.position for p in pairs])
         iP = int(np.searchsorted(x, xP))
         X, Y = beam_shape(system, phi, q, x)
         r = np.stack((X, Y), axis=-1)  # (m, k, 2)
@@ -107,6 +133,23 @@ class Scene:
         if history.support is not None and obstacle.compliant:
             shift = np.interp(times, t, history.support)[:, None] * np.asarray(obstacle.support[3:5])[None, :]
         force = np.interp(times, t, history.force)
+        pair_points, pair_force = None, None
+        if history.pair_force is not None and history.pair_force.shape[1] == len(pairs):
+            pair_force = np.column_stack([np.interp(times, t, col) for col in history.pair_force.T])
+            moving = history.pair_position
+            where = np.empty((frames, len(pairs)))
+            for j, pair in enumerate(pairs):
+                if pair.anywhere and moving is not None:
+                    where[:, j] = np.clip(np.interp(times, t, moving[:, j]), 0.0, L)
+                else:
+                    where[:, j] = pair.position
+            mid, nrm = _on_line(centre, x, where), _on_line(normal, x, where)  # fixed pairs: the line's points
+            pair_points = mid - np.array([p.offset for p in pairs])[None, :, None] * nrm
+            for j, pair in enumerate(pairs):
+                if pair.anywhere:
+                    ob = system.contact.obstacles[pair.obstacle]
+                    moved = shift if pair.obstacle == 0 else np.zeros_like(shift)
+                    pair_points[:, j] = _facing(mid[:, j], nrm[:, j], pair.offset, ob, moved)
         return cls(
             history,
             times,
@@ -122,4 +165,44 @@ class Scene:
             shift,
             force,
             system,
+            pair_points,
+            pair_force,
         )
+
+
+def _on_line(values: np.ndarray, x: np.ndarray, where: np.ndarray) -> np.ndarray:
+    """``values`` given at the points ``x`` of a line, interpolated linearly to material coordinates ``where``.
+
+    Parameters
+    ----------
+    values
+        Shape (m, k, 2): per frame, a vector at each of the k points.
+    x
+        Increasing material coordinates [m] of the points, shape (k,).
+    where
+        Material coordinates [m] per frame and pair, shape (m, p), within [x[0], x[-1]].
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (m, p, 2); at a point of ``x`` exactly its value.
+    """
+    j = np.clip(np.searchsorted(x, where, side="right") - 1, 0, x.size - 2)  # (m, p)
+    w = ((where - x[j]) / (x[j + 1] - x[j]))[..., None]
+    rows = np.arange(values.shape[0])[:, None]
+    return (1.0 - w) * values[rows, j] + w * values[rows, j + 1]
+
+
+def _facing(
+    mid: np.ndarray, nrm: np.ndarray, offset: float, obstacle: ObstacleGeometry, shift: np.ndarray
+) -> np.ndarray:
+    """The surface point, ``|offset|`` either side of the centre-line points ``mid`` along ``nrm`` (both (m, 2)),
+    nearer obstacle ``obstacle`` (displaced by ``shift``, (m, 2)): an anywhere pair touches on either side."""
+    at = np.asarray(obstacle.centre, float)[None, :] + shift
+    a, b = mid + abs(offset) * nrm, mid - abs(offset) * nrm
+    if obstacle.kind == OBSTACLE_SPHERE:
+        da, db = np.linalg.norm(a - at, axis=-1), np.linalg.norm(b - at, axis=-1)
+    else:
+        n = np.asarray(obstacle.normal, float)
+        da, db = (a - at) @ n, (b - at) @ n
+    return np.where((da <= db)[:, None], a, b)
