@@ -125,7 +125,7 @@ class FemBeam:
             mu=b.line_density,
             EA=b.youngs_modulus * b.section_area,
             EI=b.bending_stiffness,
-            offset=b.surface_offset,
+            offset=contact.offset,
             hub_radius=case.hub.radius,
             hub_inertia=case.hub.inertia,
             gravity=case.model.gravity,

@@ -205,6 +205,26 @@ def _quintic(s: float, h: float, g0, g1) -> tuple[float, float]:
     return float(val), float(der)
 
 
+def check_supported(case: Case) -> None:
+    """Raise a one-line :class:`~flexbeam.errors.ParameterError` (a ValueError) naming the first field of
+    ``case`` that the FE reference does not model, instead of ignoring it.
+
+    The FE reference has fixed contact points on rigidly held obstacles: no ``contact.anywhere`` (nor an
+    ``[[obstacles]]`` pair's), no compliant ``obstacle.support``.
+    """
+    if case.contact.anywhere:
+        raise ParameterError("contact.anywhere: the FE reference supports fixed contact points only")
+    for i, ob in enumerate(case.obstacles):
+        if ob.contact.anywhere:
+            raise ParameterError(
+                f"obstacles[{i}].contact.anywhere: the FE reference supports fixed contact points only"
+            )
+    if case.obstacle.support.compliant:
+        raise ParameterError("obstacle.support: the FE reference supports rigidly held obstacles only")
+    if case.obstacles:
+        raise ParameterError("obstacles: the FE reference supports one contact pair ([obstacle] and [contact]) only")
+
+
 def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) -> Solution:
     """Run ``case`` with the finite-element reference model and return its Solution.
 
@@ -221,10 +241,16 @@ def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) ->
     Solution
         The same arrays as the modal methods (``q``, ``q_rate`` have no columns);
         a numerical failure gives ``status = "failed"`` with what was computed.
+
+    Raises
+    ------
+    ParameterError
+        For a case field the FE reference does not model (see :func:`check_supported`).
     """
     from .. import __version__
     from ..parameters.io import dump_case
 
+    check_supported(case)
     beam = FemBeam.from_case(case)
     z0, zd0, info = initial_state(beam)
     integ = FemIntegrator(beam, case.fem.rho_inf)
