@@ -40,8 +40,6 @@ from .banded import BAND, band_to_dense, fix_first_dof
 from .element import GAUSS_W, GAUSS_XI, point_on_element
 from .gap import gap_at
 
-NO_LAW = np.zeros(4)
-
 
 def build_mesh(length: float, elements: int, x_contact: float | Sequence[float]) -> np.ndarray:
     """Node coordinates x_0 = 0 < ... < x_N = L with a node at ``x_contact``.
