@@ -51,7 +51,7 @@ def two_stops(**overrides) -> Case:
     """The seed beam without gravity between two stops at x_P: ``[obstacle]`` touching P from below at the start
     (impact at -0.4 m/s) and a sphere R = 10 mm above the beam's upper surface at x_P with 2 mm clearance
     (``contact.side = "above"``), both pure Hertz."""
-    c = seed(model__gravity=0.0, solver__t_end=0.03, contact__law="hertz", **overrides)
+    c = seed(**{"model__gravity": 0.0, "solver__t_end": 0.03, "contact__law": "hertz", **overrides})
     d = c.model_dump()
     R, xP, cobs = 0.01, c.contact.position, c.beam.surface_offset
     d["obstacles"] = [{"kind": "sphere", "radius": R, "centre": [xP, cobs + 0.002 + R], "contact": {"side": "above"}}]
@@ -62,7 +62,7 @@ def two_points(**overrides) -> Case:
     """Two obstacles at two material points, each pair with its own law: ``[obstacle]`` below P (x_P = 0.585 m,
     Hertz) and a sphere 1 mm above the upper surface at x = 0.3 m (Hunt-Crossley, e = 0.6, Hertz stiffness of its
     own sphere); no gravity, 16 ms: the rebound from the first strikes the second."""
-    c = seed(model__gravity=0.0, solver__t_end=0.016, contact__law="hertz", **overrides)
+    c = seed(**{"model__gravity": 0.0, "solver__t_end": 0.016, "contact__law": "hertz", **overrides})
     d = c.model_dump()
     R, cobs = 0.01, c.beam.surface_offset
     d["obstacles"] = [
@@ -213,7 +213,7 @@ def tip_and_plane(kind: str, **overrides) -> Case:
     ``"half-plane"``: a plane 0.2 mm above the upper surface (outward normal -e_y) that the point x = 0.45 m of
     the upper surface strikes on the rebound (K = 2e9 N/m^1.5).
     """
-    c = seed(model__gravity=0.0, solver__t_end=0.004, contact__law="hertz", **overrides)
+    c = seed(**{"model__gravity": 0.0, "solver__t_end": 0.004, "contact__law": "hertz", **overrides})
     d = c.model_dump()
     cobs, L = c.beam.surface_offset, c.beam.length
     if kind == "sphere":
