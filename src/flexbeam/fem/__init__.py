@@ -2,10 +2,12 @@
 
 A planar, geometrically exact (co-rotational) Euler-Bernoulli beam clamped to the
 rotating hub, meshed with ``case.fem.elements`` two-node elements with a node at
-the contact point, integrated in time with the generalized-alpha scheme and Newton
-iterations, with the same obstacle, CCFM contact laws, drives and initial states as
-the modal model -- but without modal truncation and without the second-order
-coupling-deformation approximation.
+each contact point, integrated in time with the generalized-alpha scheme and Newton
+iterations, with the same obstacles and contact pairs (``[obstacle]`` and each
+``[[obstacles]]`` entry, at fixed material points), CCFM contact laws, drives and
+initial states as the modal model -- but without modal truncation and without the
+second-order coupling-deformation approximation.  What it does not model
+(``contact.anywhere``, a compliant ``obstacle.support``) raises a ParameterError.
 
 * :mod:`flexbeam.fem.element` -- element internal force/tangent (Crisfield 1991) and
   exact inertia of the interpolated field (Numba);

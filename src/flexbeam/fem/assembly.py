@@ -7,7 +7,7 @@ r_h e1(theta) with psi_0 = theta, and maps onto theta with the weights
 T0 = dX_0/dtheta = (-r_h sin theta, r_h cos theta, 1).  The tangent is assembled in
 LAPACK general-band storage (kl = ku = 5, :mod:`flexbeam.fem.banded`) for
 :func:`scipy.linalg.lapack.dgbsv`.  The elements are those of :mod:`flexbeam.fem.element`;
-the contact force at P comes from :mod:`flexbeam.fem.contact_law` and its gap from
+the contact force of each contact pair comes from :mod:`flexbeam.fem.contact_law` and its gap from
 :mod:`flexbeam.fem.gap`.
 """
 
@@ -59,20 +59,27 @@ def _dof_map(e, a, T0):
 def assemble(
     z, zd, zdd, t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
     cM, cC, cK, want_S,
-    pnode, cP, okind, ocentre, oradius, onormal, in_contact, lawp,
+    pnodes, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
     R, ab,
 ):  # fmt: skip
     """Residual R(z, z', z'') of the equations of motion and the iteration matrix.
 
-    R = f_in + f_int - f_g - J^T F (+ J_h theta'' - tau on theta), with
+    R = f_in + f_int - f_g - sum_k J_k^T F_k (+ J_h theta'' - tau on theta), with
     S = cM M + cC C + cK K in LAPACK band storage ``ab`` (kl = ku = BAND; row
     offset 2 BAND) if ``want_S``.  ``t_tau`` is the joint torque tau.
+
+    The contact pairs k = 0 .. S-1 are given by arrays: the node ``pnodes[k]`` of
+    the contact point, its signed offset ``cPs[k]`` below the centre line, the
+    obstacle (``okinds[k]``, ``ocentres[k]``, ``oradii[k]``, ``onormals[k]``, see
+    :func:`flexbeam.fem.gap.gap_at`), whether the pair is in its contact phase
+    (``active[k]`` != 0) and its law's parameters ``lawps[k]``
+    (:func:`flexbeam.fem.contact_law.law_force`); F_k = 0 for an inactive pair.
 
     Returns
     -------
     F, F_k, delta, delta'
-        Contact force, its elastic part, gap and gap rate at P (F = 0 when not
-        ``in_contact``).
+        Contact force, its elastic part, gap and gap rate of pair 0; every pair's
+        are written to ``pout[k]`` (S x 4).
     """
     nel = l0.size
     nn = nel + 1
@@ -122,38 +129,44 @@ def assemble(
                 for b in range(6):
                     i, j = idx[a], idx[b]
                     ab[off + i - j, j] += wts[a] * wts[b] * (cM * Me[a, b] + cK * Ke[a, b])
-    # contact at node pnode
-    F = 0.0
-    Fk = 0.0
+    # contact of each pair at its node
     Jp = np.empty(3)
-    delta, vn, _ = gap_at(X[pnode], V[pnode], A[pnode], cP, okind, ocentre, oradius, onormal, Jp)
-    if in_contact:
-        d = -delta
-        dd = -vn
-        F, Fk, dFd, dFdd = law_force(lawp, d, dd)
-        # R -= J^T F; dF/dz = -dFd J - dFdd J (dz'/dz) (the gap Hessian is neglected)
-        pidx = np.empty(3, np.int64)
-        pw = np.empty(3)
-        for k in range(3):
-            if pnode == 0:
-                pidx[k] = 0
-                pw[k] = T0[k]
-                R0node[k] -= Jp[k] * F
-            else:
-                pidx[k] = 3 * pnode + k - 2
-                pw[k] = 1.0
-            R[pidx[k]] -= pw[k] * Jp[k] * F
-        if want_S and F > 0.0:
-            coef = cK * dFd + cC * dFdd
-            for a in range(3):
-                for b in range(3):
-                    i, j = pidx[a], pidx[b]
-                    ab[off + i - j, j] += pw[a] * pw[b] * coef * Jp[a] * Jp[b]
+    pidx = np.empty(3, np.int64)
+    pw = np.empty(3)
+    for q in range(pnodes.size):
+        pnode = pnodes[q]
+        F = 0.0
+        Fk = 0.0
+        delta, vn, _ = gap_at(X[pnode], V[pnode], A[pnode], cPs[q], okinds[q], ocentres[q], oradii[q], onormals[q], Jp)
+        if active[q] != 0:
+            d = -delta
+            dd = -vn
+            F, Fk, dFd, dFdd = law_force(lawps[q], d, dd)
+            # R -= J^T F; dF/dz = -dFd J - dFdd J (dz'/dz) (the gap Hessian is neglected)
+            for k in range(3):
+                if pnode == 0:
+                    pidx[k] = 0
+                    pw[k] = T0[k]
+                    R0node[k] -= Jp[k] * F
+                else:
+                    pidx[k] = 3 * pnode + k - 2
+                    pw[k] = 1.0
+                R[pidx[k]] -= pw[k] * Jp[k] * F
+            if want_S and F > 0.0:
+                coef = cK * dFd + cC * dFdd
+                for a in range(3):
+                    for b in range(3):
+                        i, j = pidx[a], pidx[b]
+                        ab[off + i - j, j] += pw[a] * pw[b] * coef * Jp[a] * Jp[b]
+        pout[q, 0] = F
+        pout[q, 1] = Fk
+        pout[q, 2] = delta
+        pout[q, 3] = vn
     # hub
     R[0] += Jh * zdd[0] - t_tau
     if want_S:
         ab[off, 0] += cM * Jh + cK * (R0node[0] * d2X0[0] + R0node[1] * d2X0[1])
-    return F, Fk, delta, vn
+    return pout[0, 0], pout[0, 1], pout[0, 2], pout[0, 3]
 
 
 @njit(cache=True)
@@ -193,7 +206,7 @@ def energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
 def newton(
     z, zd, zdd, a, cM, cC, ca, scale, tol, max_iter, prescribed,
     t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
-    pnode, cP, okind, ocentre, oradius, onormal, in_contact, lawp,
+    pnodes, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
     R, ab,
 ):  # fmt: skip
     """Newton iterations of one generalized-alpha step, updating z, z', z'', a in place.
@@ -204,7 +217,7 @@ def newton(
     for it in range(1, max_iter + 1):
         assemble(
             z, zd, zdd, t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw, cM, cC, 1.0, True,
-            pnode, cP, okind, ocentre, oradius, onormal, in_contact, lawp, R, ab,
+            pnodes, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout, R, ab,
         )  # fmt: skip
         if prescribed:
             fix_first_dof(ab)

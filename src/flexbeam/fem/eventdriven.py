@@ -2,6 +2,8 @@
 
 Contact
 -------
+Each contact pair (a point of the beam against an obstacle under its law; pair 0 is P
+against ``[obstacle]``, one more per ``[[obstacles]]`` entry) has its own phases.
 As in the modal CCFM path the contact force acts only in a contact phase, which
 starts when the gap delta of P crosses zero downwards with P approaching, and ends
 when it crosses zero upwards.  A step whose end state has crossed is cut back: the
@@ -19,7 +21,9 @@ the Hertz duration 2 delta_max / v int_0^1 (1 - s^(n+1))^(-1/2) ds of the approa
 speed v and a reference effective mass (the rigid-body one, (J_h + J_beam)/J_theta^2
 for a free or torque-driven joint; the first clamped mode's mu L / phi_1(x_P)^2 when
 theta(t) is prescribed), and in free flight h_f = 2 h_c (t_c estimated with the
-impact velocity of the case).  The free-flight factor is kept small because the
+impact velocity of the case; with several pairs each pair's own estimate with its
+law and J_theta at its point, the smallest of them for h_f, and while several pairs
+are in contact the smallest of theirs).  The free-flight factor is kept small because the
 vibration that an impact excites has the contact's own time scale, and the phase of
 that vibration decides the next contact: later contacts converge slowly with the
 step, so set ``fem.time_step`` for converged multi-contact histories.  A step whose
@@ -43,7 +47,7 @@ from ..solution import ContactEvent
 from .banded import BAND, fix_first_dof
 from .gap import hermite_dip
 from .integrator import FemIntegrator, NewtonFailure, State, StepResult
-from .model import FemBeam
+from .model import ContactState, FemBeam
 
 #: contact onsets with |delta'| below this are grazing touches, not impacts [m/s]
 GRAZING_SPEED = 1e-9
@@ -59,7 +63,7 @@ class Record:
     """Contact log and dense contact data of one run (the samples go to ``sample``)."""
 
     contacts: list[ContactEvent] = field(default_factory=list)
-    # dense force on contact steps: (t0, t1, (d, d', d'')_0, (d, d', d'')_1, lawp)
+    # dense force on contact steps, per pair in contact: (t0, t1, (d, d', d'')_0, (d, d', d'')_1, lawp, pair)
     dense: list[tuple] = field(default_factory=list)
 
 
@@ -77,14 +81,14 @@ class RunInfo:
     h_free: float
 
 
-def reference_mass(beam: FemBeam, z: np.ndarray) -> float:
-    """Effective mass used only to size the contact step (see the module docstring)."""
+def reference_mass(beam: FemBeam, z: np.ndarray, pair: int = 0) -> float:
+    """Effective mass used only to size the contact step of ``pair`` (see the module docstring)."""
     case = beam.case
-    xP = case.contact.position
+    xP = beam.pairs[pair].position
     if not beam.prescribed:
         X, _, _ = beam.nodes(z, np.zeros_like(z))
-        _, _, _, Jn = beam.gap(z, np.zeros_like(z))
-        p = X[beam.pnode]
+        _, _, _, Jn = beam.gap(z, np.zeros_like(z), pair=pair)
+        p = X[beam.pairs[pair].node]
         J_theta = float(Jn @ np.array([-p[1], p[0], 1.0]))
         L, rh, mu = case.beam.length, beam.hub_radius, beam.mu
         inertia = beam.hub_inertia + mu * ((rh + L) ** 3 - rh**3) / 3.0
@@ -99,9 +103,9 @@ def reference_mass(beam: FemBeam, z: np.ndarray) -> float:
     return beam.mu * L / max(phi * phi, 1e-12)
 
 
-def contact_step(beam: FemBeam, mass: float, speed: float) -> float:
-    """h_c = t_c / STEPS_PER_CONTACT from the rigid Hertz impact estimate."""
-    law = beam.law
+def contact_step(beam: FemBeam, mass: float, speed: float, pair: int = 0) -> float:
+    """h_c = t_c / STEPS_PER_CONTACT from the rigid Hertz impact estimate with the law of ``pair``."""
+    law = beam.pairs[pair].law
     mass = min(mass, 1e6 * beam.mu * beam.case.beam.length)
     speed = max(abs(speed), 1e-6)
     _, _, tc = rigid_hertz_impact(mass, speed, law.stiffness, law.exponent)
@@ -120,24 +124,35 @@ def run(
     z0: np.ndarray,
     zd0: np.ndarray,
     t_end: float,
-    sample: Callable[[State, StepResult, str, np.ndarray | None], None],
+    sample: Callable[[State, StepResult, str, ContactState], None],
     progress: Callable[[float], None] | None = None,
     stop_at_impact: bool = False,
 ) -> tuple[Record, RunInfo, State]:
     """Integrate from (z0, zd0) at t = 0 to ``t_end``, recording samples.
 
-    ``sample(state, result, phase, lawp)`` is called at every accepted state (twice
-    at a phase change, once per phase; ``lawp`` is the contact-law parameter vector
-    in a contact phase, else None).  With ``stop_at_impact`` the run ends at the
-    first contact onset (status "impact").
+    ``sample(state, result, phase, contacts)`` is called at every accepted state (twice
+    at a change of the contact state, once before and once after; ``contacts`` is the
+    :class:`~flexbeam.fem.model.ContactState` -- which pairs are in contact, under which
+    law parameters; the phase is "contact" while some pair is).  With ``stop_at_impact``
+    the run ends at the first contact onset of any pair (status "impact").
+
+    Each pair k has its own contact phase, which starts when its gap delta_k crosses zero
+    downwards with its point approaching and ends when delta_k crosses zero upwards.
+    When several pairs have an event within one step, the step is cut back to the one
+    whose linear (or, for a dip, Hermite) estimate of the crossing comes first; a pair
+    found already past its crossing at a located event is switched there too.  The step
+    is the contact step h_c while any pair is in contact (the smallest of the open
+    pairs' estimates), else h_f.
     """
     case = beam.case
     rec = Record()
-    law = beam.law
+    S = beam.npairs
     h_fixed = case.fem.time_step
     v_ref = abs(case.initial.impact_velocity)
-    m_ref = reference_mass(beam, z0)
-    h_c = contact_step(beam, m_ref, v_ref)
+    m_ref = [reference_mass(beam, z0, k) for k in range(S)]
+    h_c = contact_step(beam, m_ref[0], v_ref)
+    for k in range(1, S):
+        h_c = min(h_c, contact_step(beam, m_ref[k], v_ref, k))
     h_free = FREE_STEP_FACTOR * h_c
     if h_fixed is not None:
         h_c = h_free = h_fixed
@@ -146,9 +161,8 @@ def run(
 
     steps = rejected = 0
     status, message = "success", "integration reached t_end"
-    in_contact = False
-    lawp: np.ndarray | None = None
-    event: ContactEvent | None = None
+    cs = beam.free_state
+    events: list[ContactEvent | None] = [None] * S
     h_now = h_c
     s = integ.initial(0.0, z0, zd0, None)
     res = integ.evaluate(s, None)
@@ -156,29 +170,48 @@ def run(
     wall0 = time.perf_counter()
     gap_tol_base = 1e-3
 
-    def start_contact(s: State, res: StepResult) -> tuple[np.ndarray, ContactEvent, float]:
+    def phase_of(c: ContactState) -> str:
+        return "contact" if c.any else "free"
+
+    def open_pair(k: int) -> None:
+        """Pair k starts its contact at the current state (s, res)."""
+        nonlocal cs, h_c
+        if stop_at_impact:
+            raise _Stop("impact", "impact at t = 0" if s.t == 0.0 else f"impact at t = {s.t:.12g} s")
         if len(rec.contacts) >= case.solver.max_contacts:
             raise _Stop(
                 "max-contacts",
                 f"stopped at t = {s.t:.9g} s after {len(rec.contacts)} contacts "
                 "(solver.max_contacts); the contacts accumulate (Zeno-like)",
             )
-        rate = -res.gap_rate
-        m_eff = _effective_mass(beam, s.z) if law.name == "kelvin_voigt" else 1.0
+        rate = -float(res.pair_gap_rate[k])
+        law = beam.pairs[k].law
+        m_eff = _effective_mass(beam, s.z, k) if law.name == "kelvin_voigt" else 1.0
         p = law.parameters(rate, m_eff)
-        ev = ContactEvent(index=len(rec.contacts), onset=s.t, velocity_before=res.gap_rate)
+        ev = ContactEvent(index=len(rec.contacts), onset=s.t, velocity_before=float(res.pair_gap_rate[k]), pair=k)
         rec.contacts.append(ev)
-        h = h_fixed if h_fixed is not None else min(contact_step(beam, m_ref, rate), h_free)
-        return p, ev, h
+        h = h_fixed if h_fixed is not None else min(contact_step(beam, m_ref[k], rate, k), h_free)
+        h_c = min(h_c, h) if cs.any else h
+        cs = cs.with_pair(k, p)
+        events[k] = ev
 
-    def gap_of(st: State) -> tuple[float, float]:
-        d, vn, _, _ = beam.gap(st.z, st.zd, st.zdd)
-        return d, vn
+    def close_pair(k: int) -> None:
+        """Pair k ends its contact at the current state (s, res)."""
+        nonlocal cs
+        ev = events[k]
+        if ev is not None:
+            ev.end = s.t
+            ev.velocity_after = float(res.pair_gap_rate[k])
+        cs = cs.with_pair(k, None)
+        events[k] = None
+
+    def gaps_of(st: State) -> list[tuple[float, float]]:
+        return [(d, vn) for d, vn, _, _ in beam.gaps(st.z, st.zd, st.zdd)]
 
     def locate(
-        s0: State, f0: float, s1: State, f1: float, h: float, sign: float, lp: np.ndarray | None, tol: float
+        s0: State, f0: float, s1: State, f1: float, h: float, sign: float, c: ContactState, tol: float, k: int
     ) -> State:
-        """Cut the step back to where f = sign * gap crosses zero downwards (f0 > 0 >= f1)."""
+        """Cut the step back to where f = sign * gap of pair k crosses zero downwards (f0 > 0 >= f1)."""
         lo, flo = 0.0, f0
         hi, fhi, shi = h, f1, s1
         side = 0
@@ -187,8 +220,8 @@ def run(
                 return shi
             hm = (lo * fhi - hi * flo) / (fhi - flo)
             hm = min(max(hm, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
-            sm = _step_with_halving(integ, s0, hm, lp)
-            fm = sign * gap_of(sm)[0]
+            sm = _step_with_halving(integ, s0, hm, c)
+            fm = sign * beam.gap(sm.z, sm.zd, sm.zdd, pair=k)[0]
             if fm <= 0.0:
                 hi, fhi, shi = hm, fm, sm
                 if side == -1:
@@ -201,20 +234,38 @@ def run(
                 side = 1
         return shi
 
+    def switch_others(k: int) -> None:
+        """At a located event of pair k: another pair already penetrating and approaching starts its contact,
+        another pair in contact found open ends it (two events closer than the location tolerance)."""
+        nonlocal res
+        for j in range(S):
+            if j == k:
+                continue
+            d, vn = float(res.pair_gap[j]), float(res.pair_gap_rate[j])
+            if cs.laws[j] is None and d < 0.0 and vn < -GRAZING_SPEED:
+                open_pair(j)
+            elif cs.laws[j] is not None and d > 0.0:
+                close_pair(j)
+            else:
+                continue
+            res = integ.evaluate(s, cs)
+            sample(s, res, phase_of(cs), cs)
+
     try:
-        if res.gap <= 1e-15 and res.gap_rate < -GRAZING_SPEED:
-            if stop_at_impact:
-                raise _Stop("impact", "impact at t = 0")
-            lawp, event, h_c = start_contact(s, res)
-            in_contact = True
-            res = integ.evaluate(s, lawp)
-        sample(s, res, "contact" if in_contact else "free", lawp)
+        started = False
+        for k in range(S):
+            if res.pair_gap[k] <= 1e-15 and res.pair_gap_rate[k] < -GRAZING_SPEED:
+                open_pair(k)
+                started = True
+        if started:
+            res = integ.evaluate(s, cs)
+        sample(s, res, phase_of(cs), cs)
         next_progress = 0.0
         while s.t < t_end * (1.0 - 1e-12):
-            h_nom = h_c if in_contact else h_free
+            h_nom = h_c if cs.any else h_free
             h = min(h_now, h_nom, t_end - s.t)
             try:
-                s1 = integ.step(s, h, lawp)
+                s1 = integ.step(s, h, cs)
             except NewtonFailure as err:
                 rejected += 1
                 h_now = 0.5 * h
@@ -222,54 +273,64 @@ def run(
                     raise SolverError(f"fem: step failed ({err}); step size underflow", s.t) from None
                 continue
             h_now = h_nom
-            d0, v0 = res.gap, res.gap_rate
-            d1, v1 = gap_of(s1)
-            tol = max(gap_tol_base * max(abs(v0), abs(v1), 1e-6) * h_c, 1e-15)
-            if not in_contact:
-                crossing = d1 < 0.0 and d0 >= 0.0
-                if not crossing and d0 > 0.0 and d1 > 0.0:
-                    frac = _hermite_dip(d0, v0, d1, v1, h)
-                    if frac is not None:
-                        s_dip = _step_with_halving(integ, s, frac * h, None)
-                        if gap_of(s_dip)[0] < 0.0:
-                            s1, d1, h, crossing = s_dip, gap_of(s_dip)[0], frac * h, True
-                if crossing:
-                    s1 = locate(s, d0, s1, d1, h, 1.0, None, tol)
-                    res1 = integ.evaluate(s1, None)
+            g1 = gaps_of(s1)
+            candidates = []  # (estimated fraction of the step, pair, a Hermite dip?)
+            for k in range(S):
+                d0, v0 = float(res.pair_gap[k]), float(res.pair_gap_rate[k])
+                d1, v1 = g1[k]
+                if cs.laws[k] is None:
+                    if d1 < 0.0 and d0 >= 0.0:
+                        candidates.append((d0 / (d0 - d1), k, False))
+                    elif d0 > 0.0 and d1 > 0.0:
+                        frac = _hermite_dip(d0, v0, d1, v1, h)
+                        if frac is not None:
+                            candidates.append((frac, k, True))
+                elif d1 > 0.0 and d0 <= 0.0:
+                    candidates.append((d0 / (d0 - d1), k, False))
+            hit = None
+            for frac, k, dip in sorted(candidates):
+                if not dip:
+                    hit = (k, s1, g1[k][0], h)
+                    break
+                s_dip = _step_with_halving(integ, s, frac * h, cs)
+                d_dip = beam.gap(s_dip.z, s_dip.zd, s_dip.zdd, pair=k)[0]
+                if d_dip < 0.0:
+                    hit = (k, s_dip, d_dip, frac * h)
+                    break
+            if hit is not None:
+                k, s_hit, d1, h_hit = hit
+                d0, v0 = float(res.pair_gap[k]), float(res.pair_gap_rate[k])
+                tol = max(gap_tol_base * max(abs(v0), abs(g1[k][1]), 1e-6) * h_c, 1e-15)
+                if cs.laws[k] is None:
+                    s1 = locate(s, d0, s_hit, d1, h_hit, 1.0, cs, tol, k)
+                    res1 = integ.evaluate(s1, cs)
+                    if cs.any:
+                        _accumulate(rec, beam, s, s1, cs)
                     steps += 1
                     s, res = s1, res1
-                    if res.gap_rate < -GRAZING_SPEED:
-                        sample(s, res, "free", None)
-                        if stop_at_impact:
-                            raise _Stop("impact", f"impact at t = {s.t:.12g} s")
-                        lawp, event, h_c = start_contact(s, res)
-                        in_contact = True
-                        res = integ.evaluate(s, lawp)
-                        sample(s, res, "contact", lawp)
-                    else:
-                        sample(s, res, "free", None)
-                    continue
-            else:
-                if d1 > 0.0 and d0 <= 0.0:
-                    s1 = locate(s, -d0, s1, -d1, h, -1.0, lawp, tol)
-                    res1 = integ.evaluate(s1, lawp)
-                    _accumulate(rec, beam, s, s1, lawp)
+                    sample(s, res, phase_of(cs), cs)
+                    if res.pair_gap_rate[k] < -GRAZING_SPEED:
+                        open_pair(k)
+                        res = integ.evaluate(s, cs)
+                        sample(s, res, "contact", cs)
+                else:
+                    s1 = locate(s, -d0, s_hit, -d1, h_hit, -1.0, cs, tol, k)
+                    res1 = integ.evaluate(s1, cs)
+                    _accumulate(rec, beam, s, s1, cs)
                     steps += 1
                     s, res = s1, res1
-                    sample(s, res, "contact", lawp)
-                    if event is not None:
-                        event.end = s.t
-                        event.velocity_after = res.gap_rate
-                    in_contact, lawp, event = False, None, None
-                    res = integ.evaluate(s, None)
-                    sample(s, res, "free", None)
-                    continue
-            res1 = integ.evaluate(s1, lawp)
-            if in_contact:
-                _accumulate(rec, beam, s, s1, lawp)
+                    sample(s, res, "contact", cs)
+                    close_pair(k)
+                    res = integ.evaluate(s, cs)
+                    sample(s, res, phase_of(cs), cs)
+                switch_others(k)
+                continue
+            res1 = integ.evaluate(s1, cs)
+            if cs.any:
+                _accumulate(rec, beam, s, s1, cs)
             steps += 1
             s, res = s1, res1
-            sample(s, res, "contact" if in_contact else "free", lawp)
+            sample(s, res, phase_of(cs), cs)
             if progress is not None and s.t >= next_progress:
                 progress(s.t)
                 next_progress = s.t + t_end / 200.0
@@ -301,7 +362,7 @@ class _Stop(Exception):
         self.message = message
 
 
-def _step_with_halving(integ: FemIntegrator, s: State, h: float, lawp: np.ndarray | None) -> State:
+def _step_with_halving(integ: FemIntegrator, s: State, h: float, lawp: ContactState | np.ndarray | None) -> State:
     """A step of exactly h, taken as 2^k sub-steps if Newton fails."""
     for k in range(12):
         n = 2**k
@@ -315,20 +376,28 @@ def _step_with_halving(integ: FemIntegrator, s: State, h: float, lawp: np.ndarra
     raise SolverError("fem: Newton failed while locating a contact event", s.t)
 
 
-def _accumulate(rec: Record, beam: FemBeam, s0: State, s1: State, lawp: np.ndarray) -> None:
-    """Store the dense-force data of a contact step: the gap's (delta, delta', delta'') at both ends."""
-    g0 = beam.gap(s0.z, s0.zd, s0.zdd)[:3]
-    g1 = beam.gap(s1.z, s1.zd, s1.zdd)[:3]
-    rec.dense.append((s0.t, s1.t, g0, g1, lawp))
+def _accumulate(rec: Record, beam: FemBeam, s0: State, s1: State, cs: ContactState) -> None:
+    """Store the dense-force data of a contact step for each pair in contact: its gap's (delta, delta',
+    delta'') at both ends."""
+    if beam.npairs == 1:
+        g0 = beam.gap(s0.z, s0.zd, s0.zdd)[:3]
+        g1 = beam.gap(s1.z, s1.zd, s1.zdd)[:3]
+        rec.dense.append((s0.t, s1.t, g0, g1, cs.laws[0], 0))
+        return
+    gaps0 = beam.gaps(s0.z, s0.zd, s0.zdd)
+    gaps1 = beam.gaps(s1.z, s1.zd, s1.zdd)
+    for k, p in enumerate(cs.laws):
+        if p is not None:
+            rec.dense.append((s0.t, s1.t, gaps0[k][:3], gaps1[k][:3], p, k))
 
 
-def _effective_mass(beam: FemBeam, z: np.ndarray) -> float:
-    """1/(J M^-1 J^T) at P with the banded FE mass matrix (theta held if prescribed)."""
+def _effective_mass(beam: FemBeam, z: np.ndarray, pair: int = 0) -> float:
+    """1/(J M^-1 J^T) at a pair's point with the banded FE mass matrix (theta held if prescribed)."""
     from scipy.linalg import solve_banded
 
     zero = np.zeros_like(z)
     _, ab, _ = beam.residual(0.0, z, zero, zero, (1.0, 0.0, 0.0))
-    J = beam.gap_jacobian(z)
+    J = beam.gap_jacobian(z, pair)
     if beam.prescribed:
         fix_first_dof(ab)
         J[0] = 0.0

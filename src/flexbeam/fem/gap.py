@@ -4,8 +4,9 @@ Written for the finite-element model on its own (it shares no code with the moda
 contact kinematics); ``tests/fem/test_gap.py`` checks it against the distance of a point
 to a circle and a line, finite differences and a sampled trajectory.
 
-* P lies at the distance c below the centre line of the contact node, along the section
-  normal: r_P = X - c n(psi), n(psi) = (-sin psi, cos psi).
+* P lies at the signed distance c below the centre line of the contact node, along the section
+  normal: r_P = X - c n(psi), n(psi) = (-sin psi, cos psi) (c = the surface offset for
+  ``contact.side`` "below", its negative "above", 0 on the centre line).
 * Sphere (``kind`` 0, a point for radius 0) with centre C and radius R: the gap is the
   signed distance delta = |r_P - C| - R, with the outward normal n = (r_P - C)/|r_P - C|,
   delta' = n . r_P' and delta'' = n . r_P'' + (|r_P'|^2 - (n . r_P')^2)/|r_P - C|

@@ -36,7 +36,7 @@ from ..errors import SolverError
 from .assembly import newton
 from .banded import BAND, fix_first_dof
 from .contact_law import law_force
-from .model import NO_LAW, FemBeam
+from .model import ContactState, FemBeam
 
 #: Newton: scaled increment tolerance and iteration limit
 NEWTON_TOL = 1e-10
@@ -78,13 +78,18 @@ class GeneralizedAlpha:
 
 @dataclass
 class StepResult:
-    """Output quantities at an accepted state."""
+    """Output quantities at an accepted state: pair 0's contact force, its elastic part, gap and gap rate,
+    the joint torque, and the same per pair (arrays over the pairs; forces zero for free pairs)."""
 
     force: float
     elastic_force: float
     gap: float
     gap_rate: float
     torque: float
+    pair_force: np.ndarray | None = None
+    pair_elastic_force: np.ndarray | None = None
+    pair_gap: np.ndarray | None = None
+    pair_gap_rate: np.ndarray | None = None
 
 
 class FemIntegrator:
@@ -105,6 +110,7 @@ class FemIntegrator:
         self._R = np.empty(n)
         self._ab = np.zeros((3 * BAND + 1, n))
         self._scale = beam.increment_scale()
+        self._pout = np.zeros((beam.npairs, 4))
         self.iterations = 0
 
     # ------------------------------------------------------------- helpers
@@ -121,7 +127,7 @@ class FemIntegrator:
             raise NewtonFailure(f"singular iteration matrix (dgbsv info = {info})")
         return x
 
-    def initial(self, t: float, z: np.ndarray, zd: np.ndarray, lawp: np.ndarray | None) -> State:
+    def initial(self, t: float, z: np.ndarray, zd: np.ndarray, lawp: ContactState | np.ndarray | None) -> State:
         """Consistent initial accelerations z''(t0) = -M^-1 R(z, z', 0); a_0 = z''_0."""
         z, zd = z.copy(), zd.copy()
         zdd = np.zeros_like(z)
@@ -132,22 +138,28 @@ class FemIntegrator:
             raise SolverError("fem: non-finite initial acceleration", t)
         return State(t, z, zd, zdd, zdd.copy())
 
-    def evaluate(self, s: State, lawp: np.ndarray | None) -> StepResult:
-        """Contact force, gap and joint torque at an accepted state."""
+    def evaluate(self, s: State, lawp: ContactState | np.ndarray | None) -> StepResult:
+        """Contact forces F_k = law_force(p_k, -delta_k, -delta_k') of the pairs in contact, gaps and joint
+        torque at an accepted state."""
         beam = self.beam
-        d, vn, _, _ = beam.gap(s.z, s.zd, s.zdd)
-        F = Fk = 0.0
-        if lawp is not None:
-            F, Fk, _, _ = law_force(lawp, -d, -vn)
+        cs = beam.contact_state(lawp)
+        S = beam.npairs
+        Fs, Fks, ds, vns = np.zeros(S), np.zeros(S), np.empty(S), np.empty(S)
+        for k, (d, vn, _, _) in enumerate(beam.gaps(s.z, s.zd, s.zdd)):
+            ds[k], vns[k] = d, vn
+            p = cs.laws[k]
+            if p is not None:
+                F, Fk, _, _ = law_force(p, -d, -vn)
+                Fs[k], Fks[k] = F, Fk
         if beam.prescribed:
-            R, _, _ = beam.residual(s.t, s.z, s.zd, s.zdd, (0.0, 0.0, 0.0), False, lawp, (self._R, self._ab))
+            R, _, _ = beam.residual(s.t, s.z, s.zd, s.zdd, (0.0, 0.0, 0.0), False, cs, (self._R, self._ab))
             torque = float(R[0])
         else:
             torque = beam.torque(s.t)
-        return StepResult(float(F), float(Fk), d, vn, torque)
+        return StepResult(float(Fs[0]), float(Fks[0]), float(ds[0]), float(vns[0]), torque, Fs, Fks, ds, vns)
 
     # ---------------------------------------------------------------- step
-    def step(self, s: State, h: float, lawp: np.ndarray | None) -> State:
+    def step(self, s: State, h: float, lawp: ContactState | np.ndarray | None) -> State:
         """One generalized-alpha step of size h from s (Newton on z_{n+1}).
 
         Raises
@@ -168,7 +180,7 @@ class FemIntegrator:
         cC = g / (b * h)
         ca = 1.0 / (b * h * h)
         beam = self.beam
-        in_contact = lawp is not None
+        cs = beam.contact_state(lawp)
         backup = (z.copy(), zd.copy(), zdd.copy(), a.copy())
         its, code = newton(
             z,
@@ -185,15 +197,16 @@ class FemIntegrator:
             beam.torque(t1),
             *beam.model_args(),
             *beam.contact_args(),
-            in_contact,
-            lawp if in_contact else NO_LAW,
+            cs.active,
+            cs.params,
+            self._pout,
             self._R,
             self._ab,
         )
         self.iterations += its
         if code == 2:  # a tiny pivot: redo with LAPACK's partial pivoting
             z, zd, zdd, a = backup
-            self._newton_pivoting(t1, z, zd, zdd, a, cM, cC, ca, lawp)
+            self._newton_pivoting(t1, z, zd, zdd, a, cM, cC, ca, cs)
         elif code == 1:
             raise NewtonFailure(f"Newton did not converge in {NEWTON_MAX_ITER} iterations")
         elif code == 3:

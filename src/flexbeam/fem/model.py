@@ -4,6 +4,8 @@ The mesh has ``case.fem.elements`` two-node co-rotational elements (see
 :mod:`flexbeam.fem.element` for the element and the reasons for it), split so that a
 node lies at the contact point x_P: n_1 = round(N x_P / L) uniform elements on
 [0, x_P] and N - n_1 on [x_P, L] (at least one on each part of non-zero length).
+With several contact pairs at different material points x_1 < ... < x_m the beam is
+split at each of them alike (node k_i = round(N x_i / L), kept increasing).
 
 Generalised coordinates z = [theta, X_1, Y_1, psi_1, ..., X_N, Y_N, psi_N] (global
 node positions and absolute section rotations); node 0 is clamped to the hub at
@@ -13,13 +15,16 @@ r_h e1(theta) with rotation theta.  The equations of motion are
 
 with f_in the exact inertia force of the interpolated field, f_int the
 co-rotational internal force, f_g the gravity force, F >= 0 the CCFM contact force at
-P and J = d delta / dz its gap Jacobian.  With theta(t) prescribed, theta is removed
+P and J = d delta / dz its gap Jacobian (with several contact pairs, the sum
+sum_k J_k^T F_k over the pairs, each at its own point against its own obstacle under
+its own law: :class:`FemPair`).  With theta(t) prescribed, theta is removed
 from the unknowns and the first component of R is the joint torque needed.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,10 +40,8 @@ from .banded import BAND, band_to_dense, fix_first_dof
 from .element import GAUSS_W, GAUSS_XI, point_on_element
 from .gap import gap_at
 
-NO_LAW = np.zeros(4)
 
-
-def build_mesh(length: float, elements: int, x_contact: float) -> np.ndarray:
+def build_mesh(length: float, elements: int, x_contact: float | Sequence[float]) -> np.ndarray:
     """Node coordinates x_0 = 0 < ... < x_N = L with a node at ``x_contact``.
 
     Parameters
@@ -46,13 +49,21 @@ def build_mesh(length: float, elements: int, x_contact: float) -> np.ndarray:
     length
         Beam length L [m].
     elements
-        Requested number of elements N; raised to 2 when x_P lies strictly inside.
+        Requested number of elements N; raised to 2 when x_P lies strictly inside
+        (to m + 1 for m distinct contact points inside).
     x_contact
-        Material coordinate of the contact point x_P [m].
+        Material coordinate of the contact point x_P [m], or those of several contact
+        points (then node k_i = round(N x_i / L) lies at x_i, kept strictly increasing,
+        with uniform elements between).
     """
     if elements < 1:
         raise ParameterError(f"fem.elements: must be >= 1 (got {elements})")
     tol = 1e-12 * length
+    if not np.isscalar(x_contact):
+        inside = sorted({float(x) for x in x_contact if tol < x < length - tol})
+        if len(inside) > 1:
+            return _split_mesh(length, elements, inside)
+        x_contact = inside[0] if inside else 0.0
     if x_contact <= tol or x_contact >= length - tol:
         return np.linspace(0.0, length, elements + 1)
     n1 = int(round(elements * x_contact / length))
@@ -61,6 +72,21 @@ def build_mesh(length: float, elements: int, x_contact: float) -> np.ndarray:
     left = np.linspace(0.0, x_contact, n1 + 1)
     right = np.linspace(x_contact, length, n2 + 1)
     return np.concatenate((left, right[1:]))
+
+
+def _split_mesh(length: float, elements: int, points: list[float]) -> np.ndarray:
+    """Uniform elements between 0, the sorted interior ``points`` and L, node k_i = round(N x_i / L)."""
+    m = len(points)
+    total = max(elements, m + 1)
+    ks, prev = [], 0
+    for i, x in enumerate(points):
+        k = min(max(int(round(total * x / length)), prev + 1), total - (m - i))
+        ks.append(k)
+        prev = k
+    bounds = [0.0, *points, length]
+    counts = np.diff([0, *ks, total])
+    parts = [np.linspace(bounds[i], bounds[i + 1], int(n) + 1)[:-1] for i, n in enumerate(counts)]
+    return np.concatenate((*parts, [length]))
 
 
 def locate(x_nodes: np.ndarray, x: float) -> tuple[int, float]:
@@ -80,6 +106,52 @@ def initial_angle(case: Case) -> float:
     if init.kind == "release" and init.release_angle is not None:
         return init.release_angle
     return init.impact_angle
+
+
+@dataclass(frozen=True)
+class FemPair:
+    """One contact pair of the FE model: the contact point at mesh node ``node`` (material coordinate
+    ``position``, signed ``offset`` c below the centre line: r_P = X - c n(psi)) against one rigid obstacle
+    (``kind`` 0 sphere / 1 half-plane, ``centre``, ``radius``, outward ``normal``) under the CCFM ``law``."""
+
+    node: int
+    position: float
+    offset: float
+    kind: int
+    centre: np.ndarray
+    radius: float
+    normal: np.ndarray
+    law: ContactLaw
+    label: str
+
+
+class ContactState:
+    """Which contact pairs are in their contact phase, and their law parameters [K, n, chi/d'_0, C].
+
+    ``laws[k]`` is pair k's parameter vector (None while it is free); ``active`` (int64, S) and ``params``
+    (S x 4, zeros for free pairs) are the arrays the kernels read.
+    """
+
+    __slots__ = ("active", "laws", "params")
+
+    def __init__(self, laws: tuple[np.ndarray | None, ...]) -> None:
+        self.laws = tuple(laws)
+        self.active = np.array([p is not None for p in self.laws], np.int64)
+        self.params = np.zeros((len(self.laws), 4))
+        for k, p in enumerate(self.laws):
+            if p is not None:
+                self.params[k] = p
+
+    @property
+    def any(self) -> bool:
+        """Is some pair in contact?"""
+        return any(p is not None for p in self.laws)
+
+    def with_pair(self, pair: int, params: np.ndarray | None) -> ContactState:
+        """A copy with pair ``pair`` in contact under ``params`` (None: free)."""
+        laws = list(self.laws)
+        laws[pair] = params
+        return ContactState(tuple(laws))
 
 
 @dataclass
@@ -107,16 +179,49 @@ class FemBeam:
     obstacle_radius: float
     obstacle_normal: np.ndarray
     measuring: list[tuple[int, float]]
+    pairs: tuple[FemPair, ...] = ()
+
+    def __post_init__(self) -> None:
+        if not self.pairs:  # one pair from the pair-0 fields
+            self.pairs = (
+                FemPair(
+                    self.pnode, float(self.x_nodes[self.pnode]), self.offset, self.obstacle_kind,
+                    self.obstacle_centre, self.obstacle_radius, self.obstacle_normal, self.law, "obstacle",
+                ),
+            )  # fmt: skip
+        ps = self.pairs
+        self._pair_args = (
+            np.array([p.node for p in ps], np.int64),
+            np.array([p.offset for p in ps], float),
+            np.array([p.kind for p in ps], np.int64),
+            np.array([p.centre for p in ps], float).reshape(len(ps), 2),
+            np.array([p.radius for p in ps], float),
+            np.array([p.normal for p in ps], float).reshape(len(ps), 2),
+        )
+        self.free_state = ContactState((None,) * len(ps))
+        self._pout = np.zeros((len(ps), 4))
 
     # ------------------------------------------------------------------ set-up
     @classmethod
     def from_case(cls, case: Case) -> FemBeam:
         """Mesh, properties, drive, contact law and obstacle (read from the case, as the modal model does)."""
         b = case.beam
-        x_nodes = build_mesh(b.length, case.fem.elements, case.contact.position)
-        pnode = int(np.argmin(np.abs(x_nodes - case.contact.position)))
         contact = ContactSetup.from_case(case)
+        if len(contact.pairs) == 1:
+            x_nodes = build_mesh(b.length, case.fem.elements, case.contact.position)
+        else:
+            x_nodes = build_mesh(b.length, case.fem.elements, [p.position for p in contact.pairs])
+        pnode = int(np.argmin(np.abs(x_nodes - case.contact.position)))
         measuring = [locate(x_nodes, x) for x in case.output.measuring_points]
+        pairs = []
+        for p in contact.pairs:
+            ob = contact.obstacles[p.obstacle]
+            pairs.append(
+                FemPair(
+                    int(np.argmin(np.abs(x_nodes - p.position))), p.position, p.offset, int(ob.kind),
+                    np.asarray(ob.centre, float), float(ob.radius), np.asarray(ob.normal, float), p.law, p.label,
+                )
+            )  # fmt: skip
         return cls(
             case=case,
             x_nodes=x_nodes,
@@ -125,7 +230,7 @@ class FemBeam:
             mu=b.line_density,
             EA=b.youngs_modulus * b.section_area,
             EI=b.bending_stiffness,
-            offset=b.surface_offset,
+            offset=contact.offset,
             hub_radius=case.hub.radius,
             hub_inertia=case.hub.inertia,
             gravity=case.model.gravity,
@@ -136,6 +241,7 @@ class FemBeam:
             obstacle_radius=float(contact.obstacle.radius),
             obstacle_normal=np.asarray(contact.obstacle.normal, float),
             measuring=measuring,
+            pairs=tuple(pairs),
         )
 
     # -------------------------------------------------------------- sizes
@@ -147,6 +253,19 @@ class FemBeam:
     def size(self) -> int:
         """Number of generalised coordinates, 1 + 3 N."""
         return 1 + 3 * self.elements
+
+    @property
+    def npairs(self) -> int:
+        """Number of contact pairs S."""
+        return len(self.pairs)
+
+    def contact_state(self, lawp: ContactState | np.ndarray | None) -> ContactState:
+        """``lawp`` as a :class:`ContactState`: None = all pairs free, an array = pair 0 in contact under it."""
+        if isinstance(lawp, ContactState):
+            return lawp
+        if lawp is None:
+            return self.free_state
+        return self.free_state.with_pair(0, np.asarray(lawp, float))
 
     @property
     def prescribed(self) -> bool:
@@ -172,15 +291,8 @@ class FemBeam:
         )
 
     def contact_args(self) -> tuple:
-        """Arguments of the kernels describing P and the obstacle."""
-        return (
-            self.pnode,
-            self.offset,
-            self.obstacle_kind,
-            self.obstacle_centre,
-            self.obstacle_radius,
-            self.obstacle_normal,
-        )
+        """Arguments of the kernels describing the pairs' points and obstacles (arrays over the pairs)."""
+        return self._pair_args
 
     def residual(
         self,
@@ -190,13 +302,13 @@ class FemBeam:
         zdd: np.ndarray,
         coefficients: tuple[float, float, float] = (1.0, 0.0, 1.0),
         want_matrix: bool = True,
-        lawp: np.ndarray | None = None,
+        lawp: ContactState | np.ndarray | None = None,
         out: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> tuple[np.ndarray, np.ndarray, tuple[float, float, float, float]]:
         """Residual R and iteration matrix S = cM M + cC C + cK K (band storage).
 
-        Returns (R, ab, (F, F_k, delta, delta')).  ``lawp`` switches the contact
-        force on.
+        Returns (R, ab, (F, F_k, delta, delta')) (pair 0's).  ``lawp`` switches the contact
+        forces on (see :meth:`contact_state`).
         """
         n = self.size
         if out is None:
@@ -205,7 +317,7 @@ class FemBeam:
         else:
             R, ab = out
         cM, cC, cK = coefficients
-        in_contact = lawp is not None
+        cs = self.contact_state(lawp)
         info = assemble(
             z,
             zd,
@@ -217,8 +329,9 @@ class FemBeam:
             cK,
             want_matrix,
             *self.contact_args(),
-            in_contact,
-            lawp if in_contact else NO_LAW,
+            cs.active,
+            cs.params,
+            self._pout,
             R,
             ab,
         )
@@ -245,29 +358,28 @@ class FemBeam:
         node_states(z, zd, np.zeros_like(z) if zdd is None else zdd, self.hub_radius, X, V, A)
         return X, V, A
 
-    def gap(self, z: np.ndarray, zd: np.ndarray, zdd: np.ndarray | None = None):
-        """(delta, delta', delta'', J_node) of the contact point P."""
+    def gap(self, z: np.ndarray, zd: np.ndarray, zdd: np.ndarray | None = None, pair: int = 0):
+        """(delta, delta', delta'', J_node) of the contact point of ``pair`` (0: P)."""
         X, V, A = self.nodes(z, zd, zdd)
+        return self._gap_of(X, V, A, pair)
+
+    def _gap_of(self, X, V, A, pair: int):
         J = np.empty(3)
-        p = self.pnode
-        d, vn, dd = gap_at(
-            X[p],
-            V[p],
-            A[p],
-            self.offset,
-            self.obstacle_kind,
-            self.obstacle_centre,
-            self.obstacle_radius,
-            self.obstacle_normal,
-            J,
-        )
+        pr = self.pairs[pair]
+        p = pr.node
+        d, vn, dd = gap_at(X[p], V[p], A[p], pr.offset, pr.kind, pr.centre, pr.radius, pr.normal, J)
         return float(d), float(vn), float(dd), J
 
-    def gap_jacobian(self, z: np.ndarray) -> np.ndarray:
-        """d delta / dz (dense, length 1 + 3N)."""
-        _, _, _, Jn = self.gap(z, np.zeros_like(z))
+    def gaps(self, z: np.ndarray, zd: np.ndarray, zdd: np.ndarray | None = None) -> list[tuple]:
+        """:meth:`gap` of every pair."""
+        X, V, A = self.nodes(z, zd, zdd)
+        return [self._gap_of(X, V, A, k) for k in range(self.npairs)]
+
+    def gap_jacobian(self, z: np.ndarray, pair: int = 0) -> np.ndarray:
+        """d delta / dz of ``pair`` (dense, length 1 + 3N)."""
+        _, _, _, Jn = self.gap(z, np.zeros_like(z), pair=pair)
         J = np.zeros(self.size)
-        p = self.pnode
+        p = self.pairs[pair].node
         if p == 0:
             th = z[0]
             J[0] = Jn @ np.array([-self.hub_radius * math.sin(th), self.hub_radius * math.cos(th), 1.0])
@@ -299,10 +411,10 @@ class FemBeam:
         th = z[0]
         return float(-math.sin(th) * z[-3] + math.cos(th) * z[-2])
 
-    def effective_mass(self, z: np.ndarray) -> float:
-        """1 / (J M^-1 J^T) at P with the FE mass matrix (theta fixed if prescribed) [kg]."""
+    def effective_mass(self, z: np.ndarray, pair: int = 0) -> float:
+        """1 / (J M^-1 J^T) at a pair's point with the FE mass matrix (theta fixed if prescribed) [kg]."""
         M, _ = self.matrices(z)
-        J = self.gap_jacobian(z)
+        J = self.gap_jacobian(z, pair)
         if self.prescribed:
             M, J = M[1:, 1:], J[1:]
         return float(1.0 / (J @ np.linalg.solve(M, J)))

@@ -11,11 +11,11 @@ from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from ..parameters.case import Case
-from ..solution import Solution
+from ..solution import PAIR_VARIABLES, Solution
 from .contact_law import law_force, law_potential
 from .eventdriven import Record, RunInfo, run
 from .integrator import FemIntegrator, State, StepResult
-from .model import FemBeam
+from .model import ContactState, FemBeam
 
 SCHEME = "generalized-alpha (Chung & Hulbert 1993; Arnold & Bruls 2007 form), Newton"
 ELEMENT = "2-node co-rotational Euler-Bernoulli (Crisfield 1991), exact-kinetic-energy consistent mass"
@@ -42,15 +42,17 @@ def release_state(beam: FemBeam, angle: float) -> tuple[np.ndarray, np.ndarray]:
 def _first_impact_velocity(beam: FemBeam, angle: float) -> float:
     integ = FemIntegrator(beam, beam.case.fem.rho_inf)
     z, zd = release_state(beam, angle)
-    out: list[float] = []
+    out: list[StepResult] = []
 
     def sample(s: State, res: StepResult, phase: str, lawp) -> None:
-        out.append(res.gap_rate)
+        out.append(res)
 
     _, info, _ = run(beam, integ, z, zd, 10.0, sample, stop_at_impact=True)
     if info.status != "impact":
         raise ParameterError(f"initial.release_angle: released at {angle:.6g} rad the beam does not reach the obstacle")
-    return out[-1]
+    last = out[-1]
+    pair = int(np.argmin(last.pair_gap))  # the pair whose gap closed (the others are open)
+    return float(last.pair_gap_rate[pair])
 
 
 def solve_release_angle(beam: FemBeam) -> float:
@@ -125,13 +127,29 @@ class _Sampler:
         self._prev: tuple[float, float, float] | None = None
         self.dissipated = 0.0
         self.work = 0.0
+        self.pair_rows: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
 
-    def __call__(self, s: State, res: StepResult, phase: str, lawp: np.ndarray | None) -> None:
+    def __call__(self, s: State, res: StepResult, phase: str, lawp: ContactState | np.ndarray | None) -> None:
+        """Record the outputs at ``s``: pair 0's force, gap and rate (as the modal model's columns), the
+        contact potential U_c = sum_k K_k d_k^(n_k+1)/(n_k+1) and the dissipated power
+        sum_k (F_k - F_k,elastic)(-delta_k') of the pairs in contact, and per pair (several pairs) the gap,
+        normal velocity and force."""
         b = self.beam
+        cs = b.contact_state(lawp)
         T, Ve, Vg = b.energies(s.z, s.zd)
-        F, Fk = (res.force, res.elastic_force) if lawp is not None else (0.0, 0.0)
-        Uc = float(law_potential(lawp, -res.gap)) if lawp is not None else 0.0
-        p_diss = (F - Fk) * (-res.gap_rate)
+        if b.npairs == 1:
+            lawp = cs.laws[0]
+            F, Fk = (res.force, res.elastic_force) if lawp is not None else (0.0, 0.0)
+            Uc = float(law_potential(lawp, -res.gap)) if lawp is not None else 0.0
+            p_diss = (F - Fk) * (-res.gap_rate)
+        else:
+            F = res.force if cs.laws[0] is not None else 0.0
+            Uc = p_diss = 0.0
+            for k, p in enumerate(cs.laws):
+                if p is not None:
+                    Uc += float(law_potential(p, -res.pair_gap[k]))
+                    p_diss += float(res.pair_force[k] - res.pair_elastic_force[k]) * float(-res.pair_gap_rate[k])
+            self.pair_rows.append((res.pair_gap.copy(), res.pair_gap_rate.copy(), res.pair_force.copy()))
         p_drive = res.torque * float(s.zd[0])
         if self._prev is not None:
             t0, pd0, pw0 = self._prev
@@ -155,19 +173,20 @@ _SCALARS = (
 )  # fmt: skip
 
 
-def _dense_force(rec: Record) -> Callable[[float], float] | None:
-    """t -> contact force on the contact steps, from the quintic Hermite interpolant of
-    the gap through (delta, delta', delta'') at both ends of each step."""
-    if not rec.dense:
+def _dense_force(rec: Record, pair: int = 0) -> Callable[[float], float] | None:
+    """t -> contact force of ``pair`` on its contact steps, from the quintic Hermite interpolant
+    of its gap through (delta, delta', delta'') at both ends of each step."""
+    dense = [d for d in rec.dense if d[5] == pair]
+    if not dense:
         return None
-    t0 = np.array([d[0] for d in rec.dense])
-    t1 = np.array([d[1] for d in rec.dense])
+    t0 = np.array([d[0] for d in dense])
+    t1 = np.array([d[1] for d in dense])
 
     def force_at(t: float) -> float:
         i = int(np.searchsorted(t1, t, side="left"))
         if i >= t1.size or t < t0[i]:
             return 0.0
-        a, b, g0, g1, lawp = rec.dense[i]
+        a, b, g0, g1, lawp, _ = dense[i]
         h = b - a
         if h <= 0.0:
             return float(law_force(lawp, -g0[0], -g0[1])[0])
@@ -205,6 +224,25 @@ def _quintic(s: float, h: float, g0, g1) -> tuple[float, float]:
     return float(val), float(der)
 
 
+def check_supported(case: Case) -> None:
+    """Raise a one-line :class:`~flexbeam.errors.ParameterError` (a ValueError) naming the first field of
+    ``case`` that the FE reference does not model, instead of ignoring it.
+
+    The FE reference has contact pairs at fixed material points (``[contact]`` and each ``[[obstacles]]``
+    entry's) on rigidly held obstacles: no ``contact.anywhere`` (nor a pair's), no compliant
+    ``obstacle.support``.
+    """
+    if case.contact.anywhere:
+        raise ParameterError("contact.anywhere: the FE reference supports fixed contact points only")
+    for i, ob in enumerate(case.obstacles):
+        if ob.contact.anywhere:
+            raise ParameterError(
+                f"obstacles[{i}].contact.anywhere: the FE reference supports fixed contact points only"
+            )
+    if case.obstacle.support.compliant:
+        raise ParameterError("obstacle.support: the FE reference supports rigidly held obstacles only")
+
+
 def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) -> Solution:
     """Run ``case`` with the finite-element reference model and return its Solution.
 
@@ -221,10 +259,16 @@ def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) ->
     Solution
         The same arrays as the modal methods (``q``, ``q_rate`` have no columns);
         a numerical failure gives ``status = "failed"`` with what was computed.
+
+    Raises
+    ------
+    ParameterError
+        For a case field the FE reference does not model (see :func:`check_supported`).
     """
     from .. import __version__
     from ..parameters.io import dump_case
 
+    check_supported(case)
     beam = FemBeam.from_case(case)
     z0, zd0, info = initial_state(beam)
     integ = FemIntegrator(beam, case.fem.rho_inf)
@@ -252,6 +296,10 @@ def build_solution(
         out[name] = np.array([r[k] for r in sampler.rows], float).reshape(m)
     npts = len(beam.measuring)
     out["measuring_velocity"] = np.array([r[-1] for r in sampler.rows], float).reshape(m, npts)
+    S = beam.npairs
+    if S > 1:  # per pair (samples x pairs), as the modal model's pair_gap, pair_normal_velocity, pair_contact_force
+        for j, name in enumerate(PAIR_VARIABLES):
+            out[name] = np.array([r[j] for r in sampler.pair_rows], float).reshape(m, S)
     out["q"] = np.empty((m, 0))
     out["q_rate"] = np.empty((m, 0))
     out["total_energy"] = (
@@ -267,7 +315,8 @@ def build_solution(
         end = ev.end if math.isfinite(ev.end) else (t[-1] if m else ev.onset)
         sel = (t >= ev.onset) & (t <= end) & (phase == "contact")
         if np.count_nonzero(sel) > 1:
-            ev.impulse = float(np.trapezoid(out["contact_force"][sel], t[sel]))
+            force = out["contact_force"] if S == 1 else out["pair_contact_force"][:, ev.pair]
+            ev.impulse = float(np.trapezoid(force[sel], t[sel]))
             ev.energy_before, ev.energy_after = float(mech[sel][0]), float(mech[sel][-1])
     law = beam.law
     provenance = {
@@ -289,8 +338,12 @@ def build_solution(
         "contact_law": law.name,
         "contact_stiffness": law.stiffness,
         "contact_exponent": law.exponent,
+        "contact_pairs": [p.label for p in beam.pairs],
         **info,
     }
+    if S > 1:
+        provenance["contact_nodes"] = [p.node for p in beam.pairs]
+    dense = [_dense_force(rec, k) for k in range(S)]
     sol = Solution(
         time=t,
         phase=phase,
@@ -306,10 +359,22 @@ def build_solution(
         },
         provenance=provenance,
         measuring_points=np.asarray(case.output.measuring_points, float),
-        _force_at=_dense_force(rec),
+        _force_at=dense[0] if S == 1 else _total_force(dense),
     )
     for ev in rec.contacts:
+        if S > 1:  # the peaks of a pair's contact on that pair's force (Solution caches them)
+            sol._force_at = dense[ev.pair]
         peaks = sol.force_peaks(ev.index, threshold=0.0)
         if peaks:
             ev.peak_time, ev.peak_force = max(peaks, key=lambda p: p[1])
+    if S > 1:
+        sol._force_at = _total_force(dense)
     return sol
+
+
+def _total_force(dense: list[Callable[[float], float] | None]) -> Callable[[float], float] | None:
+    """t -> sum_k F_k(t) over the pairs' dense forces (None if no pair has any contact)."""
+    parts = [f for f in dense if f is not None]
+    if not parts:
+        return None
+    return lambda t: float(sum(f(t) for f in parts))
