@@ -11,7 +11,7 @@ from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from ..parameters.case import Case
-from ..solution import PAIR_VARIABLES, Solution
+from ..solution import Solution
 from .contact_law import law_force, law_potential
 from .eventdriven import Record, RunInfo, run
 from .integrator import FemIntegrator, State, StepResult
@@ -298,8 +298,10 @@ def build_solution(
     out["measuring_velocity"] = np.array([r[-1] for r in sampler.rows], float).reshape(m, npts)
     S = beam.npairs
     if S > 1:  # per pair (samples x pairs), as the modal model's pair_gap, pair_normal_velocity, pair_contact_force
-        for j, name in enumerate(PAIR_VARIABLES):
+        for j, name in enumerate(("pair_gap", "pair_normal_velocity", "pair_contact_force")):
             out[name] = np.array([r[j] for r in sampler.pair_rows], float).reshape(m, S)
+        # fixed contact points: each pair's material coordinate at every sample
+        out["pair_contact_position"] = np.tile([p.position for p in beam.pairs], (m, 1))
     out["q"] = np.empty((m, 0))
     out["q_rate"] = np.empty((m, 0))
     out["total_energy"] = (
