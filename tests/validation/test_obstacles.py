@@ -331,3 +331,23 @@ def test_contact_anywhere_at_the_tip_takes_the_end_cap():
     np.testing.assert_allclose(first.onset, theta_c / 20.0, rtol=0, atol=1e-9)  # measured 4e-17 s
     k = np.searchsorted(sol.time, first.onset)
     assert sol["pair_contact_position"][k, 0] == L
+
+
+def test_zeno_on_two_stops_at_once_ends_resting_on_both():
+    """A rigid rod falling under gravity on two stops that it meets together (x_P and 0.3 m): W has rank 1, so
+    every impact flips the rate by -e exactly as on one stop -- the onsets are the one-stop run's -- until the
+    rebound falls below solver.rest_velocity; then the rod rests on both (one held, the other redundant: its
+    gap follows the held one's, no spurious contacts at round-off)."""
+    over = {"model.gravity": 9.81, "contact.law": "hunt_crossley", "contact.restitution": 0.5, "solver.t_end": 0.2}
+    case = _rod(over)
+    c = case.beam.surface_offset
+    second = {"kind": "sphere", "radius": R_S, "centre": [0.3, -c - R_S], "contact": {"position": 0.3}}
+    one = fb.simulate(case, "imm")
+    two = fb.simulate(_rod(over, [second]), "imm")
+    assert two.status == "success" and two.phase[-1] == "resting"
+    single = _onsets(one)
+    for pair in (0, 1):
+        # measured 6e-13 s (the accumulation point's event location); 1e-9 s is simultaneity's window
+        np.testing.assert_allclose(_onsets(two, pair), single, rtol=0, atol=1e-9)
+    # the rod rests: its rate is round-off of the held constraint's (measured 3e-15 rad/s)
+    assert abs(two["theta_rate"][-1]) < 1e-9

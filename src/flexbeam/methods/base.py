@@ -42,8 +42,14 @@ class ImpactMethod:
     held_name = "constrained"
     #: onsets with |delta'| below this are grazing touches, not impacts [m/s]
     grazing_speed = 1e-9
+    #: a grazing point is pressed in only by a normal acceleration beyond this [m/s^2] (below: round-off, e.g. a
+    #: redundant pair riding on a held one, whose gap follows the held pair's to ~1e-18 m)
+    grazing_acceleration = 1e-9
     #: a gap this small counts as closed at the start of a run [m]
     gap_tolerance = 1e-12
+    #: another pair closing within this time of a located impact impacts with it [s] (the located time is the root
+    #: of the dense output's gap, which the state's own gap matches to ~1e-11 m: ~1e-10 s at 0.1 m/s)
+    simultaneity = 1e-9
 
     def __post_init__(self) -> None:
         w = self.case.solver.baumgarte_frequency
@@ -103,21 +109,28 @@ class ImpactMethod:
         press it in.
 
         ``located``: the gap's zero was just located as an event, so it is zero to within round-off and only
-        the motion decides.
+        the motion decides; another pair counts as closed if it would close within ``simultaneity``.
         """
         delta, vn = self.gap_event(t, y, pair)
-        if not (located or delta <= self.gap_tolerance):
+        if not (located or delta <= self.gap_tolerance + max(-vn, 0.0) * self.simultaneity):
             return False
         if vn < -self.grazing_speed:
             return True
-        return abs(vn) <= self.grazing_speed and self.gap_acceleration(t, y, pair, contacts) < 0.0
+        return (
+            abs(vn) <= self.grazing_speed and self.gap_acceleration(t, y, pair, contacts) < -self.grazing_acceleration
+        )
 
     def held_set(self, t: float, y: np.ndarray, candidates, phase: Phase | None = None) -> list[int]:
         """The candidate pairs whose closed contacts push together (every multiplier >= 0), by the active-set
         method: hold all, release the most tensile, repeat (exact for one pair; for several it finds a set whose
-        multipliers are all compressive).  Pairs under a law in ``phase`` keep acting."""
+        multipliers are all compressive).  Pairs under a law in ``phase`` keep acting.
+
+        Redundant pairs are not held: a pair whose gap Jacobian depends on those of the pairs kept before it
+        (a rigid rod resting on two stops: W = J M^-1 J^T has rank 1) would make the multipliers
+        indeterminate; its gap follows the held pairs', so it stays closed without a multiplier of its own.
+        """
         S = self.system.pairs
-        held = sorted(set(candidates))
+        held = self._independent(t, y, sorted(set(candidates)))
         base = [ContactMode.NONE] * S if phase is None else list(phase.modes)
         params = np.zeros((S, 4)) if phase is None else phase.parameters
         while held:
@@ -129,6 +142,26 @@ class ImpactMethod:
                 return held
             held.remove(worst)
         return []
+
+    #: a pair is redundant when the part of its Delassus diagonal not explained by the held pairs is below
+    #: this share of the diagonal (W's Schur complement; round-off of W is ~1e-16 of it)
+    REDUNDANT = 1e-9
+
+    def _independent(self, t: float, y: np.ndarray, pairs: list[int]) -> list[int]:
+        """The pairs, in order, without those whose constraint rows depend on the earlier ones (see
+        :meth:`held_set`), by the Schur complement of W on the pairs kept so far."""
+        if len(pairs) < 2:
+            return pairs
+        W = self.system.delassus(t, y, pairs)
+        kept: list[int] = []
+        for i in range(len(pairs)):
+            rows = [pairs.index(k) for k in kept]
+            w = W[i, i]
+            if rows:
+                w -= W[i, rows] @ np.linalg.solve(W[np.ix_(rows, rows)], W[rows, i])
+            if w > self.REDUNDANT * W[i, i]:
+                kept.append(pairs[i])
+        return kept
 
     def holds(self, t: float, y: np.ndarray, pair: int = 0) -> bool:
         """Would the closed contact of ``pair`` (alone) push (multiplier >= 0) at this state?"""

@@ -9,7 +9,8 @@ shrink geometrically) are ended deliberately: once an impact's rebound speed ``e
 ``solver.rest_velocity`` (always for e = 0: a plastic impact leaves P on the surface) the velocity is cancelled
 (e = 0) and P rests on the obstacle if the contact would push -- the contact is then held by the unilateral
 constraint of the CCM phase (phase "resting", the force is its multiplier) until that force would turn tensile,
-when free motion resumes.
+when free motion resumes.  Pairs impacting together come to rest together, once the fastest rebound among them
+is below ``solver.rest_velocity`` (a pair with e = 0 always rests).
 """
 
 from __future__ import annotations
@@ -31,7 +32,9 @@ class IMM(ImpactMethod):
         rest = self.case.solver.rest_velocity
         e = np.array([self.system.contact.pairs[k].restitution for k in pairs])
         speed = np.array([-self.gap_event(t, y, k)[1] for k in pairs])
-        resting = e * speed < rest
+        # the pairs of one impact rest together (or none of them): a pair alone at rest beside one that rebounds
+        # asks the impact problem for both at once when their constraints are dependent (a rigid rod on two stops)
+        resting = (e == 0.0) | bool(np.max(e * speed) < rest)
         jump = impulse_jump(self.system, t, y, np.where(resting, 0.0, e), pairs)
         events = self.log_jump(t, jump, pairs)
         held_before = [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT]

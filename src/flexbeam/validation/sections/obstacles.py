@@ -125,7 +125,8 @@ def section_obstacles(reduced: bool, figdir: Path | None) -> Section:
     s.notes.append(
         "FE rows: reference the finite-element model (32 elements, its automatic step), value the modal model "
         "(32 modes, CCFM), pure Hertz, no gravity for two-stops; tolerance 3e-3, at least 10x the measured "
-        "differences (1.9e-4, 2.0e-4, 2.7e-4, 1.0e-4: the two discretisations' own errors). The upper stop's peak is not compared: the FE's automatic step "
+        "differences (1.9e-4, 2.0e-4, 2.7e-4, 1.0e-4: the two discretisations' own errors). The upper stop's "
+        "peak is not compared: the FE's automatic step "
         "resolves contacts after the first only to about 1 % (measured 6e-3 here; `fem.time_step` refines it, "
         "tests/fem/test_pairs.py). `spinning-stop` (contact anywhere) has no FE row: the FE reference models fixed "
         "contact points only."
