@@ -331,6 +331,15 @@ def test_contact_anywhere_at_the_tip_takes_the_end_cap():
     np.testing.assert_allclose(first.onset, theta_c / 20.0, rtol=0, atol=1e-9)  # measured 4e-17 s
     k = np.searchsorted(sol.time, first.onset)
     assert sol["pair_contact_position"][k, 0] == L
+    # the impulse acts along the cap's normal, from the sphere's centre through the tip's: its lever about O is
+    # |L e1 x n| = L sin(angle between the beam and n), well below L here, and P = (1 + e) J_O omega / lever
+    # (the rate flips by -e whatever the lever); a force along the section normal would have lever L
+    tip = L * np.array([math.cos(theta_c), math.sin(theta_c)])
+    n = (tip - data["obstacle"]["centre"]) / np.linalg.norm(tip - data["obstacle"]["centre"])
+    lever = abs(tip[0] * n[1] - tip[1] * n[0])
+    assert lever < 0.9 * L
+    e = case.contact.restitution
+    np.testing.assert_allclose(first.jump_impulse, (1.0 + e) * _inertia(case) * 20.0 / lever, rtol=1e-9)
 
 
 def test_zeno_on_two_stops_at_once_ends_resting_on_both():
