@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kernels import core, pack_basis
+from ..kernels import core, pack_basis, pack_controls
 from ..model.system import BeamSystem
 from ..phases import EventKind, Phase
 from .loop import PhaseRun
@@ -214,9 +214,10 @@ class ModalStepper:
         h = min(self.h, FIRST_STEP) if phase.in_contact else self.h
         state[:5] = t, h, y[-2], y[-1], 0.0
         state[5 : 5 + N], state[5 + N : 5 + 2 * N] = eta, v
-        bits = sum(_EVENT_BITS[e] for e in phase.events)
-        head = [self.rtol, self.atol, min(self.max_step, phase.max_step), self.omega_rigid, bits]
-        ctrl = np.concatenate((head, phase.buffer))
+        ctrl = pack_controls(
+            rtol=self.rtol, atol=self.atol, max_step=min(self.max_step, phase.max_step), omega_rigid=self.omega_rigid,
+            event_bits=sum(_EVENT_BITS[e] for e in phase.events), contacts=phase.buffer,
+        )  # fmt: skip
         info = np.zeros(5)
         chunks = []
         capacity = 64

@@ -24,8 +24,8 @@ The arrays are packed once per system into flat float64 buffers by :mod:`flexbea
 from __future__ import annotations
 
 from . import _core
-from .layout import OUTPUT_COLUMNS, PAIR_COLUMNS, pack_basis, pack_contacts, pack_model
+from .layout import OUTPUT_COLUMNS, PAIR_COLUMNS, pack_basis, pack_contacts, pack_controls, pack_model
 
-__all__ = ["OUTPUT_COLUMNS", "PAIR_COLUMNS", "core", "pack_basis", "pack_contacts", "pack_model"]
+__all__ = ["OUTPUT_COLUMNS", "PAIR_COLUMNS", "core", "pack_basis", "pack_contacts", "pack_controls", "pack_model"]
 
 core = _core

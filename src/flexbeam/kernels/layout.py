@@ -20,7 +20,8 @@ Contacts buffer (how each pair acts during a phase)::
 
     [npairs, alpha, beta, per pair: mode, p0, p1, p2, p3]
 
-Control buffer of a phase: ``[rtol, atol, max step, omega_rigid, event bits, contacts buffer]``.
+Control buffer of a phase (:func:`pack_controls`): ``[rtol, atol, max step, omega_rigid, event bits, contacts
+buffer]``.
 
 Basis buffer::
 
@@ -121,6 +122,15 @@ def pack_contacts(modes: Sequence[int], parameters: np.ndarray, alpha: float = 0
     rows[:, 0] = modes
     rows[:, 1:] = np.asarray(parameters, float).reshape(S, 4)
     return out
+
+
+def pack_controls(
+    *, rtol: float, atol: float, max_step: float, omega_rigid: float, event_bits: int, contacts: np.ndarray
+) -> np.ndarray:
+    """The control buffer of a phase (``fb_ctrl`` in ``src/``): the step control's tolerances and step bound, the
+    rigid rotation's frequency scale for the error norm, the events the phase ends on (bits) and the contacts
+    buffer of :func:`pack_contacts`."""
+    return np.concatenate(([rtol, atol, max_step, omega_rigid, float(event_bits)], contacts))
 
 
 def pack_basis(
