@@ -76,3 +76,12 @@ def test_single_pair_force_plot_is_as_before(seed_run, figures, tmp_path):
 def test_solution_html_plots_each_pair(two_stops, seed_run):
     assert "contact force of each contact pair" in solution_html(two_stops)
     assert "contact force of the first contact" in solution_html(seed_run)
+
+
+def test_two_stops_velocity_plot_has_one_line_per_pair_in_contact(two_stops, seed_run, figures, tmp_path):
+    plotting.plot_normal_velocity([two_stops], tmp_path / "v.png")
+    plotting.plot_normal_velocity([seed_run], tmp_path / "v1.png")
+    pairs, single = figures
+    labels = [label for label, _ in _lines(pairs) if label.startswith("flexbeam")]
+    assert labels == ["flexbeam CCFM, obstacle", "flexbeam CCFM, obstacles[0]"]
+    assert [label for label, _ in _lines(single) if label.startswith("flexbeam")] == ["flexbeam CCFM"]

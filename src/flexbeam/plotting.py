@@ -191,17 +191,28 @@ def plot_contact_force(
 def plot_normal_velocity(
     solutions: list[Solution], path: str | Path, reference: dict[str, Any] | None = None, title: str = ""
 ) -> Path:
-    """Normal velocity of the contact point (measuring point 1) [m/s] against time [ms]."""
+    """Normal velocity of the contact point (measuring point 1) [m/s] against time [ms]; with several contact
+    pairs (:func:`pair_forces`), that of each pair's point that touches, one line style per pair."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     for sol in solutions:
-        t0, sel = _window(sol, 0.5e-3, 4e-3)
-        ax.plot(
-            (sol.time[sel] - t0) * 1e3,
-            sol["normal_velocity"][sel],
-            c=_STYLE.get(sol.method, None),
-            label=f"flexbeam {sol.method.upper()}",
-        )
+        pairs = pair_forces(sol)
+        t0, sel = _window(sol, 0.5e-3, 4e-3, pairs)
+        if pairs is None:
+            ax.plot(
+                (sol.time[sel] - t0) * 1e3,
+                sol["normal_velocity"][sel],
+                c=_STYLE.get(sol.method, None),
+                label=f"flexbeam {sol.method.upper()}",
+            )
+        for n, (k, label, _) in enumerate(pairs or ()):
+            ax.plot(
+                (sol.time[sel] - t0) * 1e3,
+                sol["pair_normal_velocity"][sel, k],
+                c=_STYLE.get(sol.method, None),
+                ls=_PAIR_STYLES[n % len(_PAIR_STYLES)],
+                label=f"flexbeam {sol.method.upper()}, {label}",
+            )
     if reference:
         _mark_references(ax, reference, "", "velocity")
     ax.axhline(0.0, c="0.7", lw=0.5)
