@@ -129,3 +129,33 @@ def test_point_obstacle_is_rejected_but_a_half_plane_needs_no_radius():
         "seed-experiment", {"obstacle.kind": "half-plane", "obstacle.radius": 0.0, "contact.stiffness": 1e9}
     )
     assert case.obstacle.radius == 0.0
+
+
+def test_an_obstacle_field_is_set_by_its_index():
+    """``obstacles[i].a.b`` names a field of entry i of [[obstacles]] (as the error messages do), so sweeps and
+    calibration reach the further obstacles' fields."""
+    case = fb.load_case("two-stops", {"obstacles[0].contact.stiffness": 2.5e9, "obstacles[0].radius": 0.005})
+    assert case.obstacles[0].contact.stiffness == 2.5e9 and case.obstacles[0].radius == 0.005
+    assert fb.load_case("two-stops").obstacles[0].contact.stiffness is None  # the preset itself is untouched
+
+
+@pytest.mark.parametrize(
+    "key, message",
+    [
+        ("obstacles[1].radius", "obstacles[1].radius: obstacles[1] does not exist (the case has 1 obstacles)"),
+        ("obstacles[0].contact.stifness", "obstacles[0].contact.stifness: unknown field, did you mean stiffness?"),
+        ("obstacles[0]", "obstacles[0]: name a field of obstacles[0]"),
+        ("beam[0].length", "beam[0].length: 'beam' is not a list of sections"),
+    ],
+)
+def test_bad_indexed_keys_are_named(key, message):
+    with pytest.raises(fb.ParameterError) as err:
+        fb.load_case("two-stops", {key: 1.0})
+    assert str(err.value).startswith(message)
+
+
+def test_an_indexed_field_has_its_schema_limits_for_calibration():
+    from flexbeam.calibrate.fields import _field
+
+    assert _field("obstacles[0].contact.restitution")[:2] == (0.0, 1.0)
+    assert _field("obstacles[0].contact.stiffness")[3] == "N/m^n"

@@ -12,7 +12,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..parameters.case import Case
-from ..parameters.io import set_dotted
+from ..parameters.io import schema_field
 
 
 def parse_fit(text: str | Sequence[str]) -> list[str]:
@@ -32,12 +32,7 @@ def _field(key: str) -> tuple[float, float, bool, str]:
     from pydantic import BaseModel
     from pydantic.fields import FieldInfo
 
-    set_dotted({}, key, 0.0)  # unknown keys -> ParameterError with best matches
-    model: Any = Case
-    parts = key.split(".")
-    for part in parts[:-1]:
-        model = model.model_fields[part].annotation
-    info = model.model_fields[parts[-1]]
+    info = schema_field(key)  # unknown keys -> ParameterError with best matches
     metas: list[Any] = list(info.metadata)
     bases: list[Any] = []
 

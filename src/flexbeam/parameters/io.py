@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 import tomllib
+import typing
 from collections.abc import Mapping
 from importlib import resources
 from pathlib import Path
@@ -81,14 +83,49 @@ def _format_validation_error(exc: ValidationError) -> str:
     return msg
 
 
+_INDEXED = re.compile(r"^(\w+)\[(\d+)\]$")
+
+
+def _split(part: str) -> tuple[str, int | None]:
+    """``"obstacles[1]"`` -> ("obstacles", 1); ``"beam"`` -> ("beam", None)."""
+    m = _INDEXED.match(part)
+    return (m.group(1), int(m.group(2))) if m else (part, None)
+
+
 def _section_model(path: list[str]) -> type[BaseModel] | None:
-    """The pydantic model of the case section at ``path`` ([] = Case), or None if it is no section."""
+    """The pydantic model of the case section at ``path`` ([] = Case; ``obstacles[i]`` an entry of a list of
+    sections), or None if it is no section."""
     model: type[BaseModel] | None = Case
     for part in path:
-        if model is None or part not in model.model_fields:
+        name, index = _split(part)
+        if model is None or name not in model.model_fields:
             return None
-        model = _field_model(model, part)
+        model = _item_model(model, name) if index is not None else _field_model(model, name)
     return model
+
+
+def schema_field(key: str):
+    """The pydantic FieldInfo of the dotted case field ``key`` (``obstacles[0].contact.stiffness`` names a field of
+    an entry of a list of sections); a one-line ParameterError for an unknown or incomplete path."""
+    parts = key.split(".")
+    model: type[BaseModel] | None = Case
+    for depth, part in enumerate(parts):
+        name, index = _split(part)
+        if model is None:
+            raise ParameterError(f"{key}: '{'.'.join(parts[:depth])}' is not a section")
+        if name not in model.model_fields:
+            raise ParameterError(unknown_field_message(parts[: depth + 1], depth < len(parts) - 1, key))
+        if index is not None:
+            model = _item_model(model, name)
+            if model is None:
+                raise ParameterError(f"{key}: '{name}' is not a list of sections (no [{index}])")
+            if depth == len(parts) - 1:
+                raise ParameterError(f"{key}: name a field of {part}, e.g. {part}.{next(iter(model.model_fields))}")
+        elif depth == len(parts) - 1:
+            return model.model_fields[name]
+        else:
+            model = _field_model(model, name)
+    raise AssertionError("unreachable")
 
 
 def unknown_field_message(path: list[str], section: bool, key: str | None = None) -> str:
@@ -170,23 +207,36 @@ def _field_model(model: type[BaseModel], key: str) -> type[BaseModel] | None:
     return None
 
 
+def _item_model(model: type[BaseModel], key: str) -> type[BaseModel] | None:
+    """The section type of the entries of a list-of-sections field (``obstacles``), else None."""
+    ann = model.model_fields[key].annotation
+    if typing.get_origin(ann) is list:
+        (item,) = typing.get_args(ann)
+        if isinstance(item, type) and issubclass(item, BaseModel):
+            return item
+    return None
+
+
 def set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
-    """Set ``data[a][b] = value`` for ``key = "a.b"``, checking the path exists in Case."""
+    """Set ``data[a][b] = value`` for ``key = "a.b"``, checking the path exists in Case; ``a[i].b`` sets field b of
+    entry i of the list of sections a (``obstacles[0].contact.stiffness``), which must exist in ``data``."""
+    schema_field(key)  # the path against the schema: unknown names, plain fields used as sections
     parts = key.split(".")
-    model: type[BaseModel] | None = Case
     node = data
     for depth, part in enumerate(parts):
-        if model is None or part not in model.model_fields:
-            if model is None:  # below a plain field, e.g. beam.length.x
-                raise ParameterError(f"{key}: '{'.'.join(parts[:depth])}' is not a section")
-            raise ParameterError(unknown_field_message(parts[: depth + 1], depth < len(parts) - 1, key))
+        name, index = _split(part)
+        where = ".".join(parts[: depth + 1])
         if depth == len(parts) - 1:
-            node[part] = value
+            node[name] = value
+        elif index is not None:
+            items = node.get(name) or []
+            if not isinstance(items, list) or index >= len(items):
+                raise ParameterError(f"{key}: {where} does not exist (the case has {len(items)} {name})")
+            node = items[index]
         else:
-            node = node.setdefault(part, {})
+            node = node.setdefault(name, {})
             if not isinstance(node, dict):
-                raise ParameterError(f"{key}: '{'.'.join(parts[: depth + 1])}' is not a section")
-            model = _field_model(model, part)
+                raise ParameterError(f"{key}: '{where}' is not a section")
 
 
 def parse_value(text: str) -> Any:
