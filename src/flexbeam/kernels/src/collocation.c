@@ -102,6 +102,7 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
     if (want == FB_WANT_NONE) return;
     for (int k = 0; k < m->npairs; k++) {
         int active = ph->c.mode[k] != FB_MODE_NONE, jac = active || want == FB_WANT_JM;
+        if (!active && want == FB_WANT_ACTIVE) continue;
         double J[FB_MAXN], Jx[FB_MAXN];
         out->gap[k] = fb_pair_gap(m, k, th, thd, q, qd, s, sd, want_acc, jac ? J : NULL);
         if (!jac) continue;
@@ -286,7 +287,7 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
         for (int i = 0; i < FB_P; i++) {
             double eta[FB_MAXN], v[FB_MAXN];
             fb_propagate(ph->b, &w->W[0][i], FB_NPTS, eta0, v0, f, eta, v);
-            fb_eval_node(ph, t0 + tb->c[i] * h, eta, v, ph->contact ? FB_WANT_GAP : FB_WANT_NONE, &w->node[i]);
+            fb_eval_node(ph, t0 + tb->c[i] * h, eta, v, ph->contact ? FB_WANT_ACTIVE : FB_WANT_NONE, &w->node[i]);
         }
         if (u.count) {
             double A[MAXU * MAXU], B[MAXU * MAXU];

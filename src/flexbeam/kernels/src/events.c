@@ -230,6 +230,9 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
     return gap0 > 2.0 * R * d->h;
 }
 
+/* far() for the phase driver: it may skip a free pair's samples inside the step when this holds. */
+int fb_gap_far(const fb_dense *d, const double *jb, double gap0) { return far(d, jb, gap0); }
+
 /* Bounds on the gap between samples spaced by the fraction dx: *fast (modes with w dx h > pi/4, by their
  * amplitude: free amplitude + 2 max|f| / w^2) and the return value, the deviation of the other modes from the
  * linear interpolant, (dx h)^2 / 8 max|g''| with |g''| <= sum_k |j_k| (w_k^2 A_k + max|f_k|) + 2 max|gamma|

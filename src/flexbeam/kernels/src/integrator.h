@@ -26,6 +26,8 @@ enum {
     FB_WANT_NONE = 0,
     FB_WANT_GAP = 1, /* every pair's gap, and J (jm, b) of the pairs in contact */
     FB_WANT_JM = 2,  /* ... and jm of every pair (the event search's bounds at a free step's first node) */
+    FB_WANT_ACTIVE = 3, /* the gap and J of the pairs in contact only (a collocation sweep: the free pairs' gaps
+                         * are evaluated once per accepted step, by the event search, and not at all when far) */
 };
 
 /* The model evaluated at one modal state: the smooth modal forcing, the contact directions and the gaps. */
@@ -84,6 +86,7 @@ typedef struct { /* a step's dense output, for the event search of one pair */
 } fb_dense;
 
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v);
+int fb_gap_far(const fb_dense *d, const double *jb, double gap0);
 double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known,
                          const double *eta_known, const double *jm, const double *jb, double *beyond);
 double fb_find_release(const double *lam);

@@ -40,7 +40,7 @@ static void start_guess(const fb_phase *ph, double t, const double *eta, const d
                         double F[][FB_P]) {
     fb_node nd;
     int N = ph->b->N, S = ph->c.npairs;
-    fb_eval_node(ph, t, eta, v, ph->contact ? FB_WANT_GAP : FB_WANT_NONE, &nd);
+    fb_eval_node(ph, t, eta, v, ph->contact ? FB_WANT_ACTIVE : FB_WANT_NONE, &nd);
     double F0[FB_MAX_PAIRS];
     for (int k = 0; k < S; k++) {
         F0[k] = 0.0;
@@ -89,15 +89,23 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
     *kink = FB_NO_EVENT;
     for (int k = 0; k < S; k++) need_jm |= ph->c.mode[k] == FB_MODE_NONE && (events & EV_IMPACT);
     memcpy(ek, eta, sizeof(double) * N);
-    for (int j = 0; j < FB_P; j++) { /* the nodes' states; a free step's nodes were evaluated without the gaps */
-        double *e = ek + (size_t)(j + 1) * N, u[FB_MAXN];
-        fb_propagate(ph->b, &w->W[0][j], FB_NPTS, eta, v, f, e, u);
+    double un[FB_P][FB_MAXN];
+    int far[FB_MAX_PAIRS] = {0};
+    for (int j = 0; j < FB_P; j++) { /* the nodes' states; the sweeps evaluated the gaps of the pairs in contact */
+        double *e = ek + (size_t)(j + 1) * N;
+        fb_propagate(ph->b, &w->W[0][j], FB_NPTS, eta, v, f, e, un[j]);
         if (j == 0 && need_jm) {
-            fb_eval_node(ph, t + tb->c[j] * h, e, u, FB_WANT_JM, &w->node[j]);
-        } else if (!ph->contact) {
-            for (int k = 0; k < S; k++) w->node[j].gap[k] = fb_gap_at(ph, k, t + tb->c[j] * h, e, u);
+            fb_eval_node(ph, t + tb->c[j] * h, e, un[j], FB_WANT_JM, &w->node[j]);
+            for (int k = 0; k < S; k++) { /* a free pair out of reach needs no samples (fb_find_gap_event) */
+                fb_dense dd = {ph, t, h, eta, v, f, k};
+                far[k] = ph->c.mode[k] == FB_MODE_NONE && fb_gap_far(&dd, w->node[0].jb[k], gap0[k].delta);
+            }
         }
     }
+    for (int j = need_jm ? 1 : 0; j < FB_P; j++)
+        for (int k = 0; k < S; k++)
+            if (ph->c.mode[k] == FB_MODE_NONE && !far[k])
+                w->node[j].gap[k] = fb_gap_at(ph, k, t + tb->c[j] * h, ek + (size_t)(j + 1) * N, un[j]);
     memcpy(ek + (size_t)(FB_P + 1) * N, st->eta1, sizeof(double) * N);
     double kx[FB_P + 2];
     kx[0] = 0.0, kx[FB_P + 1] = 1.0;
