@@ -158,7 +158,7 @@ class FemIntegrator:
             torque = float(R[0])
         else:
             torque = beam.torque(s.t)
-        pos = np.array([beam.contact_point(s.z, k)[2] for k in range(S)])
+        pos = np.array([beam.contact_point(s.z, k)[2] for k in range(S)]) if S > 1 or beam.any_anywhere else None
         return StepResult(float(Fs[0]), float(Fks[0]), float(ds[0]), float(vns[0]), torque, Fs, Fks, ds, vns, pos)
 
     # ---------------------------------------------------------------- step
