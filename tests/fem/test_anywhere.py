@@ -97,16 +97,44 @@ def test_capsule_end_cap():
     assert gap == pytest.approx(expect, abs=1e-12)
 
 
-def test_gap_jacobian_by_finite_differences():
+HALF_PLANE = {
+    "obstacle.kind": "half-plane",
+    "obstacle.centre": [0.0, -0.1],
+    "obstacle.normal": [0.0, 1.0],
+    "contact.stiffness": 1e9,
+}
+
+
+@pytest.mark.parametrize("theta", [-0.05, 0.05])
+def test_half_plane_nearest_point_is_an_end_of_a_straight_beam(theta):
+    """A floor n = e_y through (0, -0.1): a straight beam tilted down touches first with its tip's cap
+    (gap L sin theta + 0.1 - c), tilted up with its root's (gap 0.1 - c); exact to round-off
+    (measured 0; bound 1e-12 m)."""
+    case = fb.load_case("spinning-stop", HALF_PLANE)
+    beam = FemBeam.from_case(case)
+    z, zd = beam.straight(theta, 0.0)
+    L, c = case.beam.length, case.beam.surface_offset
+    x_expect = L if theta < 0 else 0.0
+    assert beam.contact_point(z)[2] == pytest.approx(x_expect, abs=1e-12)
+    assert beam.gap(z, zd)[0] == pytest.approx(x_expect * math.sin(theta) + 0.1 - c, abs=1e-12)
+
+
+@pytest.mark.parametrize("obstacle", [{}, HALF_PLANE], ids=["sphere", "half-plane"])
+def test_gap_jacobian_by_finite_differences(obstacle):
     """d delta/dz of a pair anywhere (n^T G at the nearest point, envelope theorem) against central differences
-    of the gap on a bent beam (measured relative error 2.9e-10 with the point near an element's end, xi = 0.988;
-    bound 1e-6)."""
-    case = fb.load_case("spinning-stop", {"fem.elements": 8})
+    of the gap on a bent beam (measured relative error 2.9e-10 for the sphere, the point near an element's end,
+    xi = 0.988, and 5.5e-10 for the half-plane, the point inside the beam at x = 0.352 m; bound 1e-6)."""
+    case = fb.load_case("spinning-stop", {"fem.elements": 8, **obstacle})
     beam = FemBeam.from_case(case)
     _, theta, _ = _touch(case)
-    z, _ = beam.straight(theta, 0.0)
+    z, _ = beam.straight(0.0 if obstacle else theta, 0.0)
     rng = np.random.default_rng(1)
     z[1:] += 1e-3 * rng.standard_normal(z.size - 1)
+    if obstacle:  # sag towards the floor in the middle: the nearest point inside (0, L)
+        x = beam.x_nodes[1:]
+        z[2::3] -= 0.05 * np.sin(np.pi * x / x[-1])
+        z[3::3] -= 0.05 * np.pi / x[-1] * np.cos(np.pi * x / x[-1])
+        assert 0.2 < beam.contact_point(z)[2] < 0.5
     J = beam.gap_jacobian(z)
     fd = np.empty_like(J)
     h = 1e-7
