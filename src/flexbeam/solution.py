@@ -12,6 +12,7 @@ import json
 import math
 import os
 import tempfile
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -168,7 +169,10 @@ class Solution:
         Version, case (TOML), method, tolerances, derived parameters.
 
     The arrays are given (the finite-element reference) or evaluated on first use from the run's dense output
-    (``source``, a :class:`~flexbeam.sampling.RunSource`): the metrics do not need them.
+    (``source``, a :class:`~flexbeam.sampling.RunSource`): the metrics do not need them.  With given arrays,
+    ``force_at(t, pair)`` -- a contact pair's force F_k(t) [N] on a dense output, 0 outside its contact phases --
+    refines each contact's force peaks between the samples (the samples' maximum without it); with a ``source``
+    its own :meth:`~flexbeam.sampling.RunSource.force_at` is used.
     """
 
     def __init__(
@@ -182,7 +186,7 @@ class Solution:
         stats: dict[str, float] | None = None,
         provenance: dict[str, Any] | None = None,
         measuring_points: np.ndarray | None = None,
-        _force_at: Any = None,
+        force_at: Callable[[float, int], float] | None = None,
         source: RunSource | None = None,
     ) -> None:
         if source is None and (time is None or phase is None or arrays is None):
@@ -194,7 +198,7 @@ class Solution:
         self.stats = dict(stats or {})
         self._provenance = dict(provenance or {})
         self.measuring_points = np.empty(0) if measuring_points is None else np.asarray(measuring_points, float)
-        self._force_at = _force_at if source is None else source.force_at
+        self._force_at = force_at if source is None else source.force_at
         self.source = source
         self._peaks: dict[int, list[tuple[float, float]]] = {}
 
@@ -301,11 +305,12 @@ class Solution:
         if self._force_at is None:
             i = int(np.argmin(np.abs(self.time - t_guess)))
             return float(self.time[i]), float(self.arrays["contact_force"][i])
+        force = lambda t: self._force_at(t, pair)  # noqa: E731
         a, b = max(lo, t_guess - h), min(hi, t_guess + h)
         if b <= a:
-            return t_guess, float(self._force_at(t_guess))
-        t_max, f_max = golden_max(self._force_at, a, b, xtol=PEAK_XTOL)
-        f_guess = float(self._force_at(t_guess))
+            return t_guess, float(force(t_guess))
+        t_max, f_max = golden_max(force, a, b, xtol=PEAK_XTOL)
+        f_guess = float(force(t_guess))
         if f_max >= f_guess:
             return t_max, f_max
         return t_guess, f_guess

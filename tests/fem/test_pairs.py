@@ -1,4 +1,5 @@
-"""The FE reference's contact pairs: what it refuses, the side of the contact point, several obstacles.
+"""The FE reference's contact pairs: what it refuses, the side of the contact point, several obstacles (contact
+anywhere: tests/fem/test_anywhere.py).
 
 Several pairs are checked against the modal model (CCFM, which handles pairs in its own kernels) on two cases:
 the beam bouncing between a stop below and a stop above the same point, and two obstacles at two points with
@@ -21,7 +22,6 @@ from tests.fem.cases import seed
 @pytest.mark.parametrize(
     ("overrides", "field"),
     [
-        ({"contact.anywhere": True}, "contact.anywhere"),
         ({"obstacle.support.stiffness": 1e6, "obstacle.support.mass": 0.1}, "obstacle.support"),
     ],
 )

@@ -4,17 +4,19 @@ A planar, geometrically exact (co-rotational) Euler-Bernoulli beam clamped to th
 rotating hub, meshed with ``case.fem.elements`` two-node elements with a node at
 each contact point, integrated in time with the generalized-alpha scheme and Newton
 iterations, with the same obstacles and contact pairs (``[obstacle]`` and each
-``[[obstacles]]`` entry, at fixed material points), CCFM contact laws, drives and
-initial states as the modal model -- but without modal truncation and without the
-second-order coupling-deformation approximation.  What it does not model
-(``contact.anywhere``, a compliant ``obstacle.support``) raises a ParameterError.
+``[[obstacles]]`` entry, at fixed material points or, with ``contact.anywhere``, at the
+point of the deformed beam's capsule surface nearest the obstacle), CCFM contact laws,
+drives and initial states as the modal model -- but without modal truncation and without
+the second-order coupling-deformation approximation.  What it does not model (a
+compliant ``obstacle.support``) raises a ParameterError.
 
 * :mod:`flexbeam.fem.element` -- element internal force/tangent (Crisfield 1991) and
   exact inertia of the interpolated field (Numba);
 * :mod:`flexbeam.fem.assembly`, :mod:`flexbeam.fem.banded` -- assembly of the residual
   and the banded iteration matrix, Newton iterations, band solver (Numba);
 * :mod:`flexbeam.fem.contact_law`, :mod:`flexbeam.fem.gap` -- the FE's own evaluation
-  of the contact-law force and of the gap to the obstacle (Numba), and
+  of the contact-law force and of the gap to the obstacle, at a node or, for contact
+  anywhere, at the nearest point of the deformed centre line (Numba), and
   :mod:`flexbeam.contact.setup` -- the law and the obstacle read from the case (shared input);
 * :mod:`flexbeam.fem.model` -- mesh, properties, statics, frequencies;
 * :mod:`flexbeam.fem.integrator` -- generalized-alpha (Chung & Hulbert 1993) step;

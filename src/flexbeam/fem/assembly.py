@@ -21,7 +21,7 @@ from numba import njit
 from .banded import BAND, band_solve, fix_first_dof
 from .contact_law import law_force
 from .element import corotational_element, inertia_element, point_on_element
-from .gap import gap_at
+from .gap import anywhere_gap, gap_at
 
 
 @njit(cache=True)
@@ -59,7 +59,7 @@ def _dof_map(e, a, T0):
 def assemble(
     z, zd, zdd, t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
     cM, cC, cK, want_S,
-    pnodes, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
+    pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout,
     R, ab,
 ):  # fmt: skip
     """Residual R(z, z', z'') of the equations of motion and the iteration matrix.
@@ -74,12 +74,19 @@ def assemble(
     :func:`flexbeam.fem.gap.gap_at`), whether the pair is in its contact phase
     (``active[k]`` != 0) and its law's parameters ``lawps[k]``
     (:func:`flexbeam.fem.contact_law.law_force`); F_k = 0 for an inactive pair.
+    A pair with ``anyw[k]`` != 0 has its contact point anywhere: the point of the capsule of
+    radius ``cPs[k]`` about the deformed centre line nearest its obstacle
+    (:func:`flexbeam.fem.gap.anywhere_gap`, element e, local xi); its force acts there,
+    distributed by the element's own interpolation, -G^T n F_k (the virtual work of F_k n at
+    the point), with the tangent (cK dF/dd + cC dF/dd') J^T J, J = n^T G (the gap Hessian --
+    obstacle curvature, the change of G and the motion of the point -- neglected, as for the
+    fixed pairs); its material coordinate x* is written to ``pout[k, 4]``.
 
     Returns
     -------
     F, F_k, delta, delta'
         Contact force, its elastic part, gap and gap rate of pair 0; every pair's
-        are written to ``pout[k]`` (S x 4).
+        are written to ``pout[k, :4]`` (S x 5).
     """
     nel = l0.size
     nn = nel + 1
@@ -133,7 +140,12 @@ def assemble(
     Jp = np.empty(3)
     pidx = np.empty(3, np.int64)
     pw = np.empty(3)
+    Jg = np.empty(6)
     for q in range(pnodes.size):
+        if anyw[q] != 0:
+            _anywhere_pair(q, X, V, A, l0, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
+                           cK, cC, want_S, R, ab, R0node, Jg)  # fmt: skip
+            continue
         pnode = pnodes[q]
         F = 0.0
         Fk = 0.0
@@ -167,6 +179,41 @@ def assemble(
     if want_S:
         ab[off, 0] += cM * Jh + cK * (R0node[0] * d2X0[0] + R0node[1] * d2X0[1])
     return pout[0, 0], pout[0, 1], pout[0, 2], pout[0, 3]
+
+
+@njit(cache=True)
+def _anywhere_pair(
+    q, X, V, A, l0, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout, cK, cC, want_S, R, ab, R0node, Jg
+):
+    """Contact pair q anywhere: R -= G^T n F at the nearest point (element e), S += coef J^T J (:func:`assemble`)."""
+    delta, vn, _, e, xi = anywhere_gap(X, V, A, l0, cPs[q], okinds[q], ocentres[q], oradii[q], onormals[q], Jg)
+    F = 0.0
+    Fk = 0.0
+    if active[q] != 0:
+        F, Fk, dFd, dFdd = law_force(lawps[q], -delta, -vn)
+        idx = np.empty(6, np.int64)
+        wts = np.empty(6)
+        for a in range(6):
+            i, w = _dof_map(e, a, T0)
+            idx[a] = i
+            wts[a] = w
+            R[i] -= w * Jg[a] * F
+            if e == 0 and a < 3:
+                R0node[a] -= Jg[a] * F
+        if want_S and F > 0.0:
+            coef = cK * dFd + cC * dFdd
+            off = 2 * BAND
+            for a in range(6):
+                for b in range(6):
+                    ab[off + idx[a] - idx[b], idx[b]] += wts[a] * wts[b] * coef * Jg[a] * Jg[b]
+    x = xi * l0[e]
+    for k in range(e):
+        x += l0[k]
+    pout[q, 0] = F
+    pout[q, 1] = Fk
+    pout[q, 2] = delta
+    pout[q, 3] = vn
+    pout[q, 4] = x
 
 
 @njit(cache=True)
@@ -206,7 +253,7 @@ def energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
 def newton(
     z, zd, zdd, a, cM, cC, ca, scale, tol, max_iter, prescribed,
     t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
-    pnodes, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
+    pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout,
     R, ab,
 ):  # fmt: skip
     """Newton iterations of one generalized-alpha step, updating z, z', z'', a in place.
@@ -217,7 +264,7 @@ def newton(
     for it in range(1, max_iter + 1):
         assemble(
             z, zd, zdd, t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw, cM, cC, 1.0, True,
-            pnodes, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout, R, ab,
+            pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout, R, ab,
         )  # fmt: skip
         if prescribed:
             fix_first_dof(ab)

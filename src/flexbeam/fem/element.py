@@ -272,3 +272,44 @@ def point_on_element(xe, ve, l0, xi):
         v[0] += G[0, b] * ve[b]
         v[1] += G[1, b] * ve[b]
     return r, v
+
+
+@njit(cache=True)
+def point_kinematics(xe, ve, ae, l0, xi, G):
+    """Position r, velocity r' and acceleration r'' of the centre-line point xi of an element.
+
+    r(xi) = (1 - xi) r_A + xi r_B + v(xi) e2(beta), r' = G z_e', r'' = G z_e'' + a0, with
+    G = dr/dz_e (filled, 2 x 6) and a0 the velocity products of :func:`inertia_element`.
+    """
+    dx = xe[3] - xe[0]
+    dy = xe[4] - xe[1]
+    ell = math.sqrt(dx * dx + dy * dy)
+    c = dx / ell
+    s = dy / ell
+    t1, t2 = _local_rotations(c, s, xe[2], xe[5])
+    ddx = ve[3] - ve[0]
+    ddy = ve[4] - ve[1]
+    bdot = (-s * ddx + c * ddy) / ell
+    ldot = c * ddx + s * ddy
+    t1d = ve[2] - bdot
+    t2d = ve[5] - bdot
+    bdd0 = -2.0 * bdot * ldot / ell
+    h1 = xi * (1.0 - xi) ** 2
+    h2 = -xi * xi * (1.0 - xi)
+    vb = l0 * (h1 * t1 + h2 * t2)
+    vbd = l0 * (h1 * t1d + h2 * t2d)
+    vbdd0 = -l0 * (h1 + h2) * bdd0
+    _shape_G(xi, l0, ell, c, s, vb, G)
+    r = np.empty(2)
+    r[0] = (1.0 - xi) * xe[0] + xi * xe[3] - vb * s
+    r[1] = (1.0 - xi) * xe[1] + xi * xe[4] + vb * c
+    v = np.zeros(2)
+    a = np.empty(2)
+    a[0] = (vbdd0 - vb * bdot * bdot) * (-s) + (-2.0 * vbd * bdot - vb * bdd0) * c
+    a[1] = (vbdd0 - vb * bdot * bdot) * c + (-2.0 * vbd * bdot - vb * bdd0) * s
+    for b in range(6):
+        v[0] += G[0, b] * ve[b]
+        v[1] += G[1, b] * ve[b]
+        a[0] += G[0, b] * ae[b]
+        a[1] += G[1, b] * ae[b]
+    return r, v, a

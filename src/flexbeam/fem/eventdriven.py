@@ -86,10 +86,7 @@ def reference_mass(beam: FemBeam, z: np.ndarray, pair: int = 0) -> float:
     case = beam.case
     xP = beam.pairs[pair].position
     if not beam.prescribed:
-        X, _, _ = beam.nodes(z, np.zeros_like(z))
-        _, _, _, Jn = beam.gap(z, np.zeros_like(z), pair=pair)
-        p = X[beam.pairs[pair].node]
-        J_theta = float(Jn @ np.array([-p[1], p[0], 1.0]))
+        J_theta = beam.rotation_jacobian(z, pair)
         L, rh, mu = case.beam.length, beam.hub_radius, beam.mu
         inertia = beam.hub_inertia + mu * ((rh + L) ** 3 - rh**3) / 3.0
         if abs(J_theta) > 0.0:

@@ -13,6 +13,10 @@ to a circle and a line, finite differences and a sampled trajectory.
   (the second term from dn/dt = (r_P' - n (n . r_P'))/|r_P - C|).
 * Half-plane (``kind`` 1) through C with unit outward normal n: delta = n . (r_P - C),
   delta' = n . r_P', delta'' = n . r_P''.
+* Contact anywhere (:func:`anywhere_gap`): the beam's surface is the capsule of radius c about
+  the deformed centre line r(x) (the co-rotational interpolation of each element), and the gap
+  is min_x |r(x) - C| - R - c (sphere) or min_x n . (r(x) - C) - c (half-plane), x in [0, L]
+  (the ends' hemispherical caps included), the minimiser found by :func:`nearest_point`.
 """
 
 from __future__ import annotations
@@ -21,6 +25,8 @@ import math
 
 import numpy as np
 from numba import njit
+
+from .element import _local_rotations, point_kinematics
 
 #: obstacle kinds
 SPHERE, HALF_PLANE = 0, 1
@@ -98,3 +104,188 @@ def hermite_dip(g0, v0, g1, v1, h):
             best = p
             sbest = s
     return sbest
+
+
+# ---------------------------------------------------------------------------------------------- contact anywhere
+#: samples per element of the coarse search for the nearest point (then safeguarded Newton)
+ANYWHERE_SAMPLES = 8
+
+
+@njit(cache=True)
+def _centre_line(xe, l0, xi):
+    """Centre-line point of an element and its first two xi-derivatives (nodal coordinates fixed).
+
+    r(xi) = (1 - xi) r_A + xi r_B + v(xi) e2(beta), v = l0 (h1 theta_1 + h2 theta_2) (see
+    :mod:`flexbeam.fem.element`), so r_xi = r_B - r_A + v_xi e2 and r_xixi = v_xixi e2 with
+    h1' = 1 - 4 xi + 3 xi^2, h2' = -2 xi + 3 xi^2, h1'' = -4 + 6 xi, h2'' = -2 + 6 xi.
+    """
+    dx = xe[3] - xe[0]
+    dy = xe[4] - xe[1]
+    ell = math.sqrt(dx * dx + dy * dy)
+    c = dx / ell
+    s = dy / ell
+    t1, t2 = _local_rotations(c, s, xe[2], xe[5])
+    h1 = xi * (1.0 - xi) ** 2
+    h2 = -xi * xi * (1.0 - xi)
+    v = l0 * (h1 * t1 + h2 * t2)
+    vx = l0 * ((1.0 - 4.0 * xi + 3.0 * xi * xi) * t1 + (-2.0 * xi + 3.0 * xi * xi) * t2)
+    vxx = l0 * ((-4.0 + 6.0 * xi) * t1 + (-2.0 + 6.0 * xi) * t2)
+    r = np.array([(1.0 - xi) * xe[0] + xi * xe[3] - v * s, (1.0 - xi) * xe[1] + xi * xe[4] + v * c])
+    rx = np.array([dx - vx * s, dy + vx * c])
+    rxx = np.array([-vxx * s, vxx * c])
+    return r, rx, rxx
+
+
+@njit(cache=True)
+def _objective(xe, l0, xi, kind, centre, normal):
+    """f(xi) minimised by the nearest point and f', f'' in xi: |r - C| for a sphere (f'' = n . r_xixi +
+    (|r_xi|^2 - (n . r_xi)^2)/|r - C|), n . (r - C) for a half-plane."""
+    r, rx, rxx = _centre_line(xe, l0, xi)
+    if kind == SPHERE:
+        px = r[0] - centre[0]
+        py = r[1] - centre[1]
+        dist = math.sqrt(px * px + py * py)
+        nx = px / dist
+        ny = py / dist
+        f1 = nx * rx[0] + ny * rx[1]
+        f2 = nx * rxx[0] + ny * rxx[1] + (rx[0] * rx[0] + rx[1] * rx[1] - f1 * f1) / dist
+        return dist, f1, f2
+    nx = normal[0]
+    ny = normal[1]
+    f = nx * (r[0] - centre[0]) + ny * (r[1] - centre[1])
+    return f, nx * rx[0] + ny * rx[1], nx * rxx[0] + ny * rxx[1]
+
+
+@njit(cache=True)
+def _refine(xe, l0, a, b, kind, centre, normal):
+    """Minimiser of f on [a, b] (f unimodal there): an end whose slope points outwards, else the root of f'
+    by Newton's method safeguarded by bisection.  Returns (xi, f)."""
+    fa, ga, _ = _objective(xe, l0, a, kind, centre, normal)
+    if ga >= 0.0:
+        return a, fa
+    fb, gb, _ = _objective(xe, l0, b, kind, centre, normal)
+    if gb <= 0.0:
+        return b, fb
+    x = 0.5 * (a + b)
+    f = fa
+    for _ in range(100):
+        f, g, h = _objective(xe, l0, x, kind, centre, normal)
+        if g > 0.0:
+            b = x
+        else:
+            a = x
+        xn = x - g / h if h > 0.0 else 0.5 * (a + b)
+        if not (a < xn < b):
+            xn = 0.5 * (a + b)
+        if abs(xn - x) <= 1e-15 or b - a <= 1e-15:
+            break
+        x = xn
+    return x, f
+
+
+@njit(cache=True)
+def nearest_point(X, l0, kind, centre, normal):
+    """Element e, local coordinate xi and value f of the centre-line point minimising f (see :func:`_objective`).
+
+    ``X``: node array (N + 1) x 3.  The deformed centre line of every element (its co-rotational
+    interpolation) is sampled at xi = i / ANYWHERE_SAMPLES; the best sample's neighbourhood (one sample
+    spacing either side, in the adjacent element too at a node) is refined by :func:`_refine`.  Minimising
+    over x in [0, L] gives the capsule's hemispherical end caps too.
+    """
+    nel = l0.size
+    xe = np.empty(6)
+    best = np.inf
+    be = 0
+    bi = 0
+    m = ANYWHERE_SAMPLES
+    for e in range(nel):
+        for k in range(3):
+            xe[k] = X[e, k]
+            xe[3 + k] = X[e + 1, k]
+        for i in range(m + 1):
+            f = _objective(xe, l0[e], i / m, kind, centre, normal)[0]
+            if f < best:
+                best = f
+                be = e
+                bi = i
+    rbest = np.inf
+    re = be
+    rxi = bi / m
+    for e in range(max(be - 1, 0), min(be + 2, nel)):
+        if e == be:
+            a, b = max(bi - 1, 0) / m, min(bi + 1, m) / m
+        elif e == be - 1 and bi == 0:
+            a, b = (m - 1) / m, 1.0
+        elif e == be + 1 and bi == m:
+            a, b = 0.0, 1.0 / m
+        else:
+            continue
+        for k in range(3):
+            xe[k] = X[e, k]
+            xe[3 + k] = X[e + 1, k]
+        xi, f = _refine(xe, l0[e], a, b, kind, centre, normal)
+        if f < rbest:
+            rbest = f
+            re = e
+            rxi = xi
+    return re, rxi, rbest
+
+
+@njit(cache=True)
+def anywhere_gap(X, V, A, l0, tube, kind, centre, radius, normal, Jg):
+    """Gap of the beam's capsule surface (radius ``tube`` about the centre line) to an obstacle, contact anywhere.
+
+    delta = min_x |r(x) - C| - R - c (sphere) or min_x n . (r(x) - C) - c (half-plane) over the deformed
+    centre line r(x), x in [0, L], at the minimiser x* (element e, xi) with normal n.  By the envelope
+    theorem delta' = n . r'(x*) and d delta / dz_e = n^T G(x*) (``Jg``, 6, filled), G = dr/dz_e; and
+    delta'' = f_tt - f_xt^2 / f_xx (x* moving) with f_tt = n . r'' (+ (|r'|^2 - (n . r')^2)/|r - C| for a
+    sphere), f_xt = n . r_xi' (+ (r_xi . r' - (n . r_xi)(n . r'))/|r - C|), the last term only for x*
+    inside (0, L).
+
+    Returns (delta, delta', delta'', e, xi).
+    """
+    e, xi, _ = nearest_point(X, l0, kind, centre, normal)
+    xe = np.empty(6)
+    ve = np.empty(6)
+    ae = np.empty(6)
+    for k in range(3):
+        xe[k] = X[e, k]
+        xe[3 + k] = X[e + 1, k]
+        ve[k] = V[e, k]
+        ve[3 + k] = V[e + 1, k]
+        ae[k] = A[e, k]
+        ae[3 + k] = A[e + 1, k]
+    G = np.empty((2, 6))
+    r, v, a = point_kinematics(xe, ve, ae, l0[e], xi, G)
+    delta, rate, accel, nx, ny = obstacle_gap(r, v, a, kind, centre, radius + tube, normal)
+    if kind != SPHERE:
+        delta -= tube
+    for b in range(6):
+        Jg[b] = nx * G[0, b] + ny * G[1, b]
+    inside = not ((e == 0 and xi <= 0.0) or (e == l0.size - 1 and xi >= 1.0))
+    if inside:
+        _, rx, _ = _centre_line(xe, l0[e], xi)
+        f2 = _objective(xe, l0[e], xi, kind, centre, normal)[2]
+        # r_xi' = (r_B' - r_A') + v_xi' e2 - v_xi beta' e1
+        dx = xe[3] - xe[0]
+        dy = xe[4] - xe[1]
+        ell = math.sqrt(dx * dx + dy * dy)
+        c = dx / ell
+        s = dy / ell
+        t1, t2 = _local_rotations(c, s, xe[2], xe[5])
+        ddx = ve[3] - ve[0]
+        ddy = ve[4] - ve[1]
+        bdot = (-s * ddx + c * ddy) / ell
+        d1 = 1.0 - 4.0 * xi + 3.0 * xi * xi
+        d2 = -2.0 * xi + 3.0 * xi * xi
+        vx = l0[e] * (d1 * t1 + d2 * t2)
+        vxd = l0[e] * (d1 * (ve[2] - bdot) + d2 * (ve[5] - bdot))
+        rxt0 = ddx - vxd * s - vx * bdot * c
+        rxt1 = ddy + vxd * c - vx * bdot * s
+        fxt = nx * rxt0 + ny * rxt1
+        if kind == SPHERE:
+            dist = delta + radius + tube
+            fxt += (rx[0] * v[0] + rx[1] * v[1] - (nx * rx[0] + ny * rx[1]) * rate) / dist
+        if f2 > 0.0:
+            accel -= fxt * fxt / f2
+    return delta, rate, accel, e, xi

@@ -79,7 +79,8 @@ class GeneralizedAlpha:
 @dataclass
 class StepResult:
     """Output quantities at an accepted state: pair 0's contact force, its elastic part, gap and gap rate,
-    the joint torque, and the same per pair (arrays over the pairs; forces zero for free pairs)."""
+    the joint torque, and the same per pair (arrays over the pairs; forces zero for free pairs), with each pair's
+    contact point's material coordinate x (it moves for a pair anywhere)."""
 
     force: float
     elastic_force: float
@@ -90,6 +91,7 @@ class StepResult:
     pair_elastic_force: np.ndarray | None = None
     pair_gap: np.ndarray | None = None
     pair_gap_rate: np.ndarray | None = None
+    pair_position: np.ndarray | None = None
 
 
 class FemIntegrator:
@@ -110,7 +112,7 @@ class FemIntegrator:
         self._R = np.empty(n)
         self._ab = np.zeros((3 * BAND + 1, n))
         self._scale = beam.increment_scale()
-        self._pout = np.zeros((beam.npairs, 4))
+        self._pout = np.zeros((beam.npairs, 5))
         self.iterations = 0
 
     # ------------------------------------------------------------- helpers
@@ -156,7 +158,8 @@ class FemIntegrator:
             torque = float(R[0])
         else:
             torque = beam.torque(s.t)
-        return StepResult(float(Fs[0]), float(Fks[0]), float(ds[0]), float(vns[0]), torque, Fs, Fks, ds, vns)
+        pos = np.array([beam.contact_point(s.z, k)[2] for k in range(S)]) if S > 1 or beam.any_anywhere else None
+        return StepResult(float(Fs[0]), float(Fks[0]), float(ds[0]), float(vns[0]), torque, Fs, Fks, ds, vns, pos)
 
     # ---------------------------------------------------------------- step
     def step(self, s: State, h: float, lawp: ContactState | np.ndarray | None) -> State:

@@ -17,7 +17,9 @@ with f_in the exact inertia force of the interpolated field, f_int the
 co-rotational internal force, f_g the gravity force, F >= 0 the CCFM contact force at
 P and J = d delta / dz its gap Jacobian (with several contact pairs, the sum
 sum_k J_k^T F_k over the pairs, each at its own point against its own obstacle under
-its own law: :class:`FemPair`).  With theta(t) prescribed, theta is removed
+its own law: :class:`FemPair`; a pair anywhere acts at the point of the capsule surface
+nearest its obstacle, with J = n^T G of the element holding it, G = dr/dz_e its
+interpolation).  With theta(t) prescribed, theta is removed
 from the unknowns and the first component of R is the joint torque needed.
 """
 
@@ -38,7 +40,7 @@ from ..parameters.case import Case
 from .assembly import assemble, energies, node_states, normal_velocities
 from .banded import BAND, band_to_dense, fix_first_dof
 from .element import GAUSS_W, GAUSS_XI, point_on_element
-from .gap import gap_at
+from .gap import anywhere_gap, gap_at
 
 
 def build_mesh(length: float, elements: int, x_contact: float | Sequence[float]) -> np.ndarray:
@@ -112,7 +114,12 @@ def initial_angle(case: Case) -> float:
 class FemPair:
     """One contact pair of the FE model: the contact point at mesh node ``node`` (material coordinate
     ``position``, signed ``offset`` c below the centre line: r_P = X - c n(psi)) against one rigid obstacle
-    (``kind`` 0 sphere / 1 half-plane, ``centre``, ``radius``, outward ``normal``) under the CCFM ``law``."""
+    (``kind`` 0 sphere / 1 half-plane, ``centre``, ``radius``, outward ``normal``) under the CCFM ``law``.
+
+    With ``anywhere`` the contact point is instead the point of the beam's capsule surface (radius ``offset`` = c
+    about the deformed centre line, hemispherical caps at x = 0 and L) nearest the obstacle, found at every
+    evaluation (:func:`flexbeam.fem.gap.anywhere_gap`); ``node`` and ``position`` are then only the mesh node at the
+    case's contact position (a start)."""
 
     node: int
     position: float
@@ -123,6 +130,7 @@ class FemPair:
     normal: np.ndarray
     law: ContactLaw
     label: str
+    anywhere: bool = False
 
 
 class ContactState:
@@ -197,9 +205,10 @@ class FemBeam:
             np.array([p.centre for p in ps], float).reshape(len(ps), 2),
             np.array([p.radius for p in ps], float),
             np.array([p.normal for p in ps], float).reshape(len(ps), 2),
+            np.array([int(p.anywhere) for p in ps], np.int64),
         )
         self.free_state = ContactState((None,) * len(ps))
-        self._pout = np.zeros((len(ps), 4))
+        self._pout = np.zeros((len(ps), 5))
 
     # ------------------------------------------------------------------ set-up
     @classmethod
@@ -216,10 +225,12 @@ class FemBeam:
         pairs = []
         for p in contact.pairs:
             ob = contact.obstacles[p.obstacle]
+            offset = abs(b.surface_offset) if p.anywhere else p.offset  # anywhere: the capsule's radius c
             pairs.append(
                 FemPair(
-                    int(np.argmin(np.abs(x_nodes - p.position))), p.position, p.offset, int(ob.kind),
+                    int(np.argmin(np.abs(x_nodes - p.position))), p.position, offset, int(ob.kind),
                     np.asarray(ob.centre, float), float(ob.radius), np.asarray(ob.normal, float), p.law, p.label,
+                    p.anywhere,
                 )
             )  # fmt: skip
         return cls(
@@ -258,6 +269,11 @@ class FemBeam:
     def npairs(self) -> int:
         """Number of contact pairs S."""
         return len(self.pairs)
+
+    @property
+    def any_anywhere(self) -> bool:
+        """Has some pair its contact point anywhere?"""
+        return any(p.anywhere for p in self.pairs)
 
     def contact_state(self, lawp: ContactState | np.ndarray | None) -> ContactState:
         """``lawp`` as a :class:`ContactState`: None = all pairs free, an array = pair 0 in contact under it."""
@@ -359,16 +375,50 @@ class FemBeam:
         return X, V, A
 
     def gap(self, z: np.ndarray, zd: np.ndarray, zdd: np.ndarray | None = None, pair: int = 0):
-        """(delta, delta', delta'', J_node) of the contact point of ``pair`` (0: P)."""
+        """(delta, delta', delta'', J_node) of the contact point of ``pair`` (0: P).
+
+        J_node = d delta / d(X, Y, psi) of the contact node (3); for a pair anywhere d delta / dz_e of the
+        element holding the nearest point (6, its two nodes' (X, Y, psi)).
+        """
         X, V, A = self.nodes(z, zd, zdd)
         return self._gap_of(X, V, A, pair)
 
     def _gap_of(self, X, V, A, pair: int):
-        J = np.empty(3)
         pr = self.pairs[pair]
+        if pr.anywhere:
+            J = np.empty(6)
+            d, vn, dd, _, _ = anywhere_gap(X, V, A, self.l0, pr.offset, pr.kind, pr.centre, pr.radius, pr.normal, J)
+            return float(d), float(vn), float(dd), J
+        J = np.empty(3)
         p = pr.node
         d, vn, dd = gap_at(X[p], V[p], A[p], pr.offset, pr.kind, pr.centre, pr.radius, pr.normal, J)
         return float(d), float(vn), float(dd), J
+
+    def contact_point(self, z: np.ndarray, pair: int = 0) -> tuple[int, float, float]:
+        """(element e, local xi, material coordinate x) of the contact point of ``pair`` (for a fixed pair its
+        node, as the start of the element after it, or the end of the last one)."""
+        pr = self.pairs[pair]
+        if not pr.anywhere:
+            e = min(pr.node, self.elements - 1)
+            return e, float(pr.node - e), float(self.x_nodes[pr.node])
+        X, V, A = self.nodes(z, np.zeros_like(z))
+        _, _, _, e, xi = anywhere_gap(
+            X, V, A, self.l0, pr.offset, pr.kind, pr.centre, pr.radius, pr.normal, np.empty(6)
+        )
+        return int(e), float(xi), float(self.x_nodes[e] + xi * self.l0[e])
+
+    def rotation_jacobian(self, z: np.ndarray, pair: int = 0) -> float:
+        """d delta / d theta of ``pair`` under a rigid rotation of the whole beam about the hub axis:
+        sum over the nodes a of J_a . (-Y_a, X_a, 1) (J_a the gap's derivative by node a's (X, Y, psi))."""
+        X, _, _ = self.nodes(z, np.zeros_like(z))
+        _, _, _, Jn = self.gap(z, np.zeros_like(z), pair=pair)
+        pr = self.pairs[pair]
+        first = self.contact_point(z, pair)[0] if pr.anywhere else pr.node
+        total = 0.0
+        for a in range(Jn.size // 3):
+            p = X[first + a]
+            total += float(Jn[3 * a : 3 * a + 3] @ np.array([-p[1], p[0], 1.0]))
+        return total
 
     def gaps(self, z: np.ndarray, zd: np.ndarray, zdd: np.ndarray | None = None) -> list[tuple]:
         """:meth:`gap` of every pair."""
@@ -379,12 +429,16 @@ class FemBeam:
         """d delta / dz of ``pair`` (dense, length 1 + 3N)."""
         _, _, _, Jn = self.gap(z, np.zeros_like(z), pair=pair)
         J = np.zeros(self.size)
-        p = self.pairs[pair].node
-        if p == 0:
-            th = z[0]
-            J[0] = Jn @ np.array([-self.hub_radius * math.sin(th), self.hub_radius * math.cos(th), 1.0])
-        else:
-            J[3 * p - 2 : 3 * p + 1] = Jn
+        pr = self.pairs[pair]
+        first = self.contact_point(z, pair)[0] if pr.anywhere else pr.node
+        for a in range(Jn.size // 3):
+            p = first + a
+            Ja = Jn[3 * a : 3 * a + 3]
+            if p == 0:
+                th = z[0]
+                J[0] += Ja @ np.array([-self.hub_radius * math.sin(th), self.hub_radius * math.cos(th), 1.0])
+            else:
+                J[3 * p - 2 : 3 * p + 1] += Ja
         return J
 
     def point_state(self, z: np.ndarray, zd: np.ndarray, where: tuple[int, float]):

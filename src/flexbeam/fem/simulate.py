@@ -11,7 +11,7 @@ from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from ..parameters.case import Case
-from ..solution import Solution
+from ..solution import PAIR_VARIABLES, Solution
 from .contact_law import law_force, law_potential
 from .eventdriven import Record, RunInfo, run
 from .integrator import FemIntegrator, State, StepResult
@@ -24,10 +24,7 @@ ELEMENT = "2-node co-rotational Euler-Bernoulli (Crisfield 1991), exact-kinetic-
 def _impact_rate(beam: FemBeam, theta: float, velocity: float) -> float:
     """Rigid rotation rate of the straight beam giving P the normal velocity ``velocity``."""
     z, _ = beam.straight(theta, 0.0)
-    X, _, _ = beam.nodes(z, np.zeros_like(z))
-    _, _, _, Jn = beam.gap(z, np.zeros_like(z))
-    p = X[beam.pnode]
-    J_theta = float(Jn @ np.array([-p[1], p[0], 1.0]))
+    J_theta = beam.rotation_jacobian(z)
     if J_theta == 0.0:
         raise ParameterError("initial.impact_velocity: P cannot move along the contact normal")
     return velocity / J_theta
@@ -127,13 +124,13 @@ class _Sampler:
         self._prev: tuple[float, float, float] | None = None
         self.dissipated = 0.0
         self.work = 0.0
-        self.pair_rows: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+        self.pair_rows: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
 
     def __call__(self, s: State, res: StepResult, phase: str, lawp: ContactState | np.ndarray | None) -> None:
         """Record the outputs at ``s``: pair 0's force, gap and rate (as the modal model's columns), the
         contact potential U_c = sum_k K_k d_k^(n_k+1)/(n_k+1) and the dissipated power
-        sum_k (F_k - F_k,elastic)(-delta_k') of the pairs in contact, and per pair (several pairs) the gap,
-        normal velocity and force."""
+        sum_k (F_k - F_k,elastic)(-delta_k') of the pairs in contact, and per pair (several pairs or a pair
+        anywhere) the gap, normal velocity, force and contact point's material coordinate x."""
         b = self.beam
         cs = b.contact_state(lawp)
         T, Ve, Vg = b.energies(s.z, s.zd)
@@ -142,6 +139,9 @@ class _Sampler:
             F, Fk = (res.force, res.elastic_force) if lawp is not None else (0.0, 0.0)
             Uc = float(law_potential(lawp, -res.gap)) if lawp is not None else 0.0
             p_diss = (F - Fk) * (-res.gap_rate)
+            if b.any_anywhere:
+                self.pair_rows.append((res.pair_gap.copy(), res.pair_gap_rate.copy(), res.pair_force.copy(),
+                                       res.pair_position.copy()))  # fmt: skip
         else:
             F = res.force if cs.laws[0] is not None else 0.0
             Uc = p_diss = 0.0
@@ -149,7 +149,9 @@ class _Sampler:
                 if p is not None:
                     Uc += float(law_potential(p, -res.pair_gap[k]))
                     p_diss += float(res.pair_force[k] - res.pair_elastic_force[k]) * float(-res.pair_gap_rate[k])
-            self.pair_rows.append((res.pair_gap.copy(), res.pair_gap_rate.copy(), res.pair_force.copy()))
+            self.pair_rows.append(
+                (res.pair_gap.copy(), res.pair_gap_rate.copy(), res.pair_force.copy(), res.pair_position.copy())
+            )
         p_drive = res.torque * float(s.zd[0])
         if self._prev is not None:
             t0, pd0, pw0 = self._prev
@@ -228,17 +230,9 @@ def check_supported(case: Case) -> None:
     """Raise a one-line :class:`~flexbeam.errors.ParameterError` (a ValueError) naming the first field of
     ``case`` that the FE reference does not model, instead of ignoring it.
 
-    The FE reference has contact pairs at fixed material points (``[contact]`` and each ``[[obstacles]]``
-    entry's) on rigidly held obstacles: no ``contact.anywhere`` (nor a pair's), no compliant
-    ``obstacle.support``.
+    The FE reference has contact pairs at fixed material points or anywhere (``[contact]`` and each
+    ``[[obstacles]]`` entry's) on rigidly held obstacles: no compliant ``obstacle.support``.
     """
-    if case.contact.anywhere:
-        raise ParameterError("contact.anywhere: the FE reference supports fixed contact points only")
-    for i, ob in enumerate(case.obstacles):
-        if ob.contact.anywhere:
-            raise ParameterError(
-                f"obstacles[{i}].contact.anywhere: the FE reference supports fixed contact points only"
-            )
     if case.obstacle.support.compliant:
         raise ParameterError("obstacle.support: the FE reference supports rigidly held obstacles only")
 
@@ -297,11 +291,9 @@ def build_solution(
     npts = len(beam.measuring)
     out["measuring_velocity"] = np.array([r[-1] for r in sampler.rows], float).reshape(m, npts)
     S = beam.npairs
-    if S > 1:  # per pair (samples x pairs), as the modal model's pair_gap, pair_normal_velocity, pair_contact_force
-        for j, name in enumerate(("pair_gap", "pair_normal_velocity", "pair_contact_force")):
+    if S > 1 or beam.any_anywhere:  # per pair (samples x pairs), as the modal model's pair_* variables
+        for j, name in enumerate(PAIR_VARIABLES):
             out[name] = np.array([r[j] for r in sampler.pair_rows], float).reshape(m, S)
-        # fixed contact points: each pair's material coordinate at every sample
-        out["pair_contact_position"] = np.tile([p.position for p in beam.pairs], (m, 1))
     out["q"] = np.empty((m, 0))
     out["q_rate"] = np.empty((m, 0))
     out["total_energy"] = (
@@ -361,22 +353,21 @@ def build_solution(
         },
         provenance=provenance,
         measuring_points=np.asarray(case.output.measuring_points, float),
-        _force_at=dense[0] if S == 1 else _total_force(dense),
+        force_at=_pair_force(dense) if any(f is not None for f in dense) else None,
     )
-    for ev in rec.contacts:
-        if S > 1:  # the peaks of a pair's contact on that pair's force (Solution caches them)
-            sol._force_at = dense[ev.pair]
+    for ev in rec.contacts:  # the peaks of a pair's contact on that pair's force
         peaks = sol.force_peaks(ev.index, threshold=0.0)
         if peaks:
             ev.peak_time, ev.peak_force = max(peaks, key=lambda p: p[1])
-    if S > 1:
-        sol._force_at = _total_force(dense)
     return sol
 
 
-def _total_force(dense: list[Callable[[float], float] | None]) -> Callable[[float], float] | None:
-    """t -> sum_k F_k(t) over the pairs' dense forces (None if no pair has any contact)."""
-    parts = [f for f in dense if f is not None]
-    if not parts:
-        return None
-    return lambda t: float(sum(f(t) for f in parts))
+def _pair_force(dense: list[Callable[[float], float] | None]) -> Callable[[float, int], float]:
+    """(t, pair) -> F_k(t), pair k's force on its dense output (0 for a pair that has no contact): the
+    ``force_at`` of :class:`~flexbeam.solution.Solution`."""
+
+    def force_at(t: float, pair: int = 0) -> float:
+        f = dense[pair]
+        return 0.0 if f is None else f(t)
+
+    return force_at
