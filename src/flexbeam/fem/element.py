@@ -86,6 +86,28 @@ def _local_rotations(c, s, p1, p2):
 
 
 @njit(cache=True)
+def element_chord(xe):
+    """The chord of an element from node A to node B: (dx, dy), its length l, its direction (c, s) = (dx, dy)/l
+    and the nodes' rotations theta_1, theta_2 relative to it (the co-rotational frame)."""
+    dx = xe[3] - xe[0]
+    dy = xe[4] - xe[1]
+    ell = math.sqrt(dx * dx + dy * dy)
+    c = dx / ell
+    s = dy / ell
+    t1, t2 = _local_rotations(c, s, xe[2], xe[5])
+    return dx, dy, ell, c, s, t1, t2
+
+
+@njit(cache=True)
+def chord_rates(ve, ell, c, s):
+    """Rates of an element's chord: (dx', dy'), its rotation beta' = (-s dx' + c dy')/l and stretching
+    l' = c dx' + s dy'."""
+    ddx = ve[3] - ve[0]
+    ddy = ve[4] - ve[1]
+    return ddx, ddy, (-s * ddx + c * ddy) / ell, c * ddx + s * ddy
+
+
+@njit(cache=True)
 def corotational_element(xe, l0, EA, EI, fe, Ke, want_K):
     """Internal force, tangent and strain energy of one co-rotational element.
 
@@ -198,16 +220,8 @@ def inertia_element(xe, ve, ae, l0, mu, g, gxi, gw, fin, Me, fg, G):
     T, V_g
         Kinetic and gravitational energy [J].
     """
-    dx = xe[3] - xe[0]
-    dy = xe[4] - xe[1]
-    ell = math.sqrt(dx * dx + dy * dy)
-    c = dx / ell
-    s = dy / ell
-    t1, t2 = _local_rotations(c, s, xe[2], xe[5])
-    ddx = ve[3] - ve[0]
-    ddy = ve[4] - ve[1]
-    bdot = (-s * ddx + c * ddy) / ell
-    ldot = c * ddx + s * ddy
+    dx, dy, ell, c, s, t1, t2 = element_chord(xe)
+    ddx, ddy, bdot, ldot = chord_rates(ve, ell, c, s)
     t1d = ve[2] - bdot
     t2d = ve[5] - bdot
     bdd0 = -2.0 * bdot * ldot / ell
@@ -253,12 +267,7 @@ def inertia_element(xe, ve, ae, l0, mu, g, gxi, gw, fin, Me, fg, G):
 @njit(cache=True)
 def point_on_element(xe, ve, l0, xi):
     """Position and velocity of the centre-line point xi in [0, 1] of an element."""
-    dx = xe[3] - xe[0]
-    dy = xe[4] - xe[1]
-    ell = math.sqrt(dx * dx + dy * dy)
-    c = dx / ell
-    s = dy / ell
-    t1, t2 = _local_rotations(c, s, xe[2], xe[5])
+    dx, dy, ell, c, s, t1, t2 = element_chord(xe)
     h1 = xi * (1.0 - xi) ** 2
     h2 = -xi * xi * (1.0 - xi)
     vb = l0 * (h1 * t1 + h2 * t2)
@@ -281,16 +290,8 @@ def point_kinematics(xe, ve, ae, l0, xi, G):
     r(xi) = (1 - xi) r_A + xi r_B + v(xi) e2(beta), r' = G z_e', r'' = G z_e'' + a0, with
     G = dr/dz_e (filled, 2 x 6) and a0 the velocity products of :func:`inertia_element`.
     """
-    dx = xe[3] - xe[0]
-    dy = xe[4] - xe[1]
-    ell = math.sqrt(dx * dx + dy * dy)
-    c = dx / ell
-    s = dy / ell
-    t1, t2 = _local_rotations(c, s, xe[2], xe[5])
-    ddx = ve[3] - ve[0]
-    ddy = ve[4] - ve[1]
-    bdot = (-s * ddx + c * ddy) / ell
-    ldot = c * ddx + s * ddy
+    dx, dy, ell, c, s, t1, t2 = element_chord(xe)
+    ddx, ddy, bdot, ldot = chord_rates(ve, ell, c, s)
     t1d = ve[2] - bdot
     t2d = ve[5] - bdot
     bdd0 = -2.0 * bdot * ldot / ell

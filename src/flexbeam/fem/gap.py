@@ -26,7 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .element import _local_rotations, point_kinematics
+from .element import chord_rates, element_chord, point_kinematics
 
 #: obstacle kinds
 SPHERE, HALF_PLANE = 0, 1
@@ -119,12 +119,7 @@ def _centre_line(xe, l0, xi):
     :mod:`flexbeam.fem.element`), so r_xi = r_B - r_A + v_xi e2 and r_xixi = v_xixi e2 with
     h1' = 1 - 4 xi + 3 xi^2, h2' = -2 xi + 3 xi^2, h1'' = -4 + 6 xi, h2'' = -2 + 6 xi.
     """
-    dx = xe[3] - xe[0]
-    dy = xe[4] - xe[1]
-    ell = math.sqrt(dx * dx + dy * dy)
-    c = dx / ell
-    s = dy / ell
-    t1, t2 = _local_rotations(c, s, xe[2], xe[5])
+    dx, dy, ell, c, s, t1, t2 = element_chord(xe)
     h1 = xi * (1.0 - xi) ** 2
     h2 = -xi * xi * (1.0 - xi)
     v = l0 * (h1 * t1 + h2 * t2)
@@ -267,15 +262,8 @@ def anywhere_gap(X, V, A, l0, tube, kind, centre, radius, normal, Jg):
         _, rx, _ = _centre_line(xe, l0[e], xi)
         f2 = _objective(xe, l0[e], xi, kind, centre, normal)[2]
         # r_xi' = (r_B' - r_A') + v_xi' e2 - v_xi beta' e1
-        dx = xe[3] - xe[0]
-        dy = xe[4] - xe[1]
-        ell = math.sqrt(dx * dx + dy * dy)
-        c = dx / ell
-        s = dy / ell
-        t1, t2 = _local_rotations(c, s, xe[2], xe[5])
-        ddx = ve[3] - ve[0]
-        ddy = ve[4] - ve[1]
-        bdot = (-s * ddx + c * ddy) / ell
+        _, _, ell, c, s, t1, t2 = element_chord(xe)
+        ddx, ddy, bdot, _ = chord_rates(ve, ell, c, s)
         d1 = 1.0 - 4.0 * xi + 3.0 * xi * xi
         d2 = -2.0 * xi + 3.0 * xi * xi
         vx = l0[e] * (d1 * t1 + d2 * t2)
