@@ -12,7 +12,6 @@ from __future__ import annotations
 import json
 import math
 import sys
-import time
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -24,6 +23,7 @@ except ImportError:  # pragma: no cover - older typer with click as a dependency
     from click import exceptions as click_exc
 
 from .errors import FlexbeamError, ParameterError, SolverError
+from .progress import StderrProgress
 from .registry import METHOD_NAMES
 
 app = typer.Typer(
@@ -50,42 +50,15 @@ def _load(case: str, sets: list[str] | None):
     return load_case(case, parse_overrides(sets or []))
 
 
-class _Progress:
-    """A Rich progress bar on stderr, shown only for runs longer than ~1 s on a terminal."""
-
-    def __init__(self, t_end: float, label: str) -> None:
-        self.t_end, self.label = t_end, label
-        self.start = time.perf_counter()
-        self.bar: Any = None
-        self.task: Any = None
-        self.enabled = sys.stderr.isatty()
-
-    def __call__(self, t: float) -> None:
-        if not self.enabled:
-            return
-        if self.bar is None:
-            if time.perf_counter() - self.start < 1.0:
-                return
-            from rich.console import Console
-            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
-            self.bar = Progress(
-                TextColumn("{task.description}"), BarColumn(), TextColumn("t = {task.completed:.4g} s"),
-                TimeElapsedColumn(), console=Console(stderr=True), transient=True,
-            )  # fmt: skip
-            self.bar.start()
-            self.task = self.bar.add_task(self.label, total=self.t_end)
-        self.bar.update(self.task, completed=t)
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.stop()
+def _run_progress(t_end: float, label: str) -> StderrProgress:
+    """A run's progress bar: the simulated time, shown for runs longer than ~1 s on a terminal."""
+    return StderrProgress(label, "s", total=t_end)
 
 
 def _simulate(case, method: str):
     from .simulation import simulate
 
-    progress = _Progress(case.solver.t_end, f"{case.name} [{method}]")
+    progress = _run_progress(case.solver.t_end, f"{case.name} [{method}]")
     try:
         return simulate(case, method, progress=progress)
     finally:
@@ -174,7 +147,7 @@ def compare(
     for m in chosen:
         if m not in METHOD_NAMES:
             raise ParameterError(f"--methods: unknown method '{m}'; allowed: {', '.join(METHOD_NAMES)}")
-    solutions, rows = run_compare(c, out, chosen, lambda m: _Progress(c.solver.t_end, f"{c.name} [{m}]"))
+    solutions, rows = run_compare(c, out, chosen, lambda m: _run_progress(c.solver.t_end, f"{c.name} [{m}]"))
     if json_:
         from .solution import jsonable
 
@@ -246,35 +219,6 @@ def frequencies(
         typer.echo(note)
 
 
-class _SweepProgress:
-    """A Rich progress bar of a sweep's cases on stderr (on a terminal)."""
-
-    def __init__(self, label: str) -> None:
-        self.label = label
-        self.bar: Any = None
-        self.task: Any = None
-        self.enabled = sys.stderr.isatty()
-
-    def __call__(self, done: int, total: int) -> None:
-        if not self.enabled or total == 0:
-            return
-        if self.bar is None:
-            from rich.console import Console
-            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-            self.bar = Progress(
-                TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TextColumn("cases"),
-                TimeElapsedColumn(), console=Console(stderr=True), transient=True,
-            )  # fmt: skip
-            self.bar.start()
-            self.task = self.bar.add_task(self.label, total=total)
-        self.bar.update(self.task, completed=done)
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.stop()
-
-
 @app.command()
 def sweep(
     case: Annotated[str, typer.Argument(help="built-in case name or TOML file")],
@@ -319,7 +263,7 @@ def sweep(
     if grid and count is not None:
         raise ParameterError("-n: only with --sample")
     c = _load(case, set_)
-    progress = _SweepProgress(f"{c.name} [{method}]")
+    progress = StderrProgress(f"{c.name} [{method}]", "cases", delay=0.0)
     # sys.exit rather than typer.Exit: main() runs the app with standalone_mode=False, where
     # typer turns Exit and Ctrl-C into a returned code instead of raising them
     try:

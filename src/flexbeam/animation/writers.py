@@ -7,8 +7,6 @@ on a terminal; :class:`VideoFallbackWarning` says a GIF was written because an M
 from __future__ import annotations
 
 import os
-import sys
-import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -16,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from PIL import Image
 
+from ..progress import StderrProgress
 from .renderer import FrameRenderer
 
 if TYPE_CHECKING:
@@ -26,36 +25,11 @@ class VideoFallbackWarning(UserWarning):
     """An MP4 was asked for but ``imageio-ffmpeg`` is not installed: a GIF was written instead."""
 
 
-class FrameProgress:
+class FrameProgress(StderrProgress):
     """A Rich progress bar of the rendered frames on stderr, shown on a terminal once rendering takes > 1 s."""
 
     def __init__(self, label: str) -> None:
-        self.label = label
-        self.start = time.perf_counter()
-        self.bar: Any = None
-        self.task: Any = None
-        self.enabled = sys.stderr.isatty()
-
-    def __call__(self, done: int, total: int) -> None:
-        if not self.enabled:
-            return
-        if self.bar is None:
-            if time.perf_counter() - self.start < 1.0:
-                return
-            from rich.console import Console
-            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-            self.bar = Progress(
-                TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TextColumn("frames"),
-                TimeElapsedColumn(), console=Console(stderr=True), transient=True,
-            )  # fmt: skip
-            self.bar.start()
-            self.task = self.bar.add_task(self.label, total=total)
-        self.bar.update(self.task, completed=done)
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.stop()
+        super().__init__(label, "frames")
 
 
 def write_animation(
