@@ -14,6 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
+from . import numerics as nm
 from .integrate.loop import RunResult, Segment
 from .kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
 from .model.system import SUPPORT_COLUMNS, BeamSystem
@@ -141,7 +142,7 @@ class RunSource:
         """int F dt of a pair over [t0, t1]: over whole steps of the compiled integrator the Gauss quadrature of
         its nodal forces (exact for the collocated force), else 8-point Gauss-Legendre per step on the dense
         output."""
-        x, w = np.polynomial.legendre.leggauss(8)
+        x, w = nm.leggauss(8)
         total = 0.0
         for seg in self._contact_segments(t0, t1, pair):
             if seg.t0 >= t0 and seg.t1 <= t1 and hasattr(seg.dense, "impulse"):
@@ -155,7 +156,7 @@ class RunSource:
                 continue
             t = (0.5 * (c - a)[:, None] * (x[None, :] + 1.0) + a[:, None]).ravel()
             F = self.pair_force(seg, t, pair).reshape(a.size, x.size)
-            total += float(np.sum(0.5 * (c - a) * (F @ w)))
+            total += nm.fsum(0.5 * (c - a) * nm.matmul(F, w))
         return total
 
     def mechanical_energy(self, t: float, after: bool = False) -> float:

@@ -9,6 +9,7 @@ from collections.abc import Callable
 import numpy as np
 
 from . import __version__
+from . import numerics as nm
 from .errors import ParameterError
 from .integrate.loop import PhaseMethod, RunResult, Stop, run_phases
 from .integrate.modal import ModalStepper
@@ -84,11 +85,11 @@ def release_state(system: BeamSystem, angle: float) -> np.ndarray:
     theta = angle
     if b.n:
         for _ in range(50):
-            s, c = math.sin(theta), math.cos(theta)
+            s, c = nm.sin(theta), nm.cos(theta)
             A = b.Kff - g * s * b.G + g * s * np.outer(b.d, b.sf)
-            rhs = -g * c * b.sf + g * c * (b.m1 - 0.5 * q @ b.G @ q) * b.d
-            q_new = np.linalg.solve(A, rhs)
-            theta_new = angle - float(b.d @ q_new)
+            rhs = -g * c * b.sf + g * c * (b.m1 - 0.5 * nm.dot(q, nm.matmul(b.G, q))) * b.d
+            q_new = nm.solve(A, rhs)
+            theta_new = angle - nm.dot(b.d, q_new)
             done = abs(theta_new - theta) <= 1e-15 * max(1.0, abs(angle)) and np.allclose(
                 q_new, q, rtol=1e-14, atol=0.0
             )
@@ -124,13 +125,13 @@ def solve_release_angle(system: BeamSystem, case: Case) -> float:
     if system.g <= 0.0 or b.m1 <= 0.0:
         raise ParameterError("initial.kind: 'release' needs gravity (model.gravity > 0)")
     # rigid estimate: g m1 (sin th_r - sin th_i) = 1/2 J_c rate^2 (falling towards -theta)
-    s = math.sin(th_i) + 0.5 * b.Jc * rate**2 / (system.g * b.m1)
+    s = nm.sin(th_i) + 0.5 * b.Jc * (rate * rate) / (system.g * b.m1)
     if s >= 1.0:
         raise ParameterError(
             f"initial.impact_velocity: {init.impact_velocity:g} m/s cannot be reached by release "
             "from rest under gravity"
         )
-    guess = math.asin(s)
+    guess = nm.asin(s)
     target = init.impact_velocity
 
     def miss(angle: float) -> float:

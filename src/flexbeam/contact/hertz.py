@@ -17,10 +17,12 @@ from __future__ import annotations
 
 import math
 
+from .. import numerics as nm
+
 
 def effective_modulus(E1: float, nu1: float, E2: float, nu2: float) -> float:
     """Effective contact modulus E* [Pa]: 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2."""
-    return 1.0 / ((1.0 - nu1**2) / E1 + (1.0 - nu2**2) / E2)
+    return 1.0 / ((1.0 - nu1 * nu1) / E1 + (1.0 - nu2 * nu2) / E2)
 
 
 def sphere_on_cylinder_stiffness(sphere_radius: float, cylinder_radius: float, E_star: float) -> float:
@@ -51,7 +53,7 @@ def rigid_hertz_impact(mass: float, speed: float, K: float, n: float = 1.5) -> t
     -------
     delta_max, F_max, t_c
     """
-    dmax = ((n + 1.0) * mass * speed**2 / (2.0 * K)) ** (1.0 / (n + 1.0))
+    dmax = nm.pow((n + 1.0) * mass * speed * speed / (2.0 * K), 1.0 / (n + 1.0))
     a = 1.0 / (n + 1.0)
-    factor = math.sqrt(math.pi) * math.gamma(1.0 + a) / math.gamma(0.5 + a)
-    return dmax, K * dmax**n, 2.0 * factor * dmax / speed
+    factor = math.sqrt(math.pi) * nm.gamma(1.0 + a) / nm.gamma(0.5 + a)
+    return dmax, K * nm.pow(dmax, n), 2.0 * factor * dmax / speed

@@ -19,6 +19,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from .. import numerics as nm
 from ..errors import ParameterError, closest
 
 
@@ -96,7 +97,7 @@ class LankaraniNikravesh(ContactLaw):
     name: ClassVar[str] = "lankarani_nikravesh"
 
     def chi(self) -> float:
-        return 0.75 * (1.0 - self.restitution**2)
+        return 0.75 * (1.0 - self.restitution * self.restitution)
 
 
 @dataclass(frozen=True)
@@ -118,7 +119,7 @@ class Gonthier(ContactLaw):
     needs_restitution: ClassVar[bool] = True
 
     def chi(self) -> float:
-        return (1.0 - self.restitution**2) / self.restitution
+        return (1.0 - self.restitution * self.restitution) / self.restitution
 
 
 def exact_hunt_crossley_chi(e: float) -> float:
@@ -138,7 +139,7 @@ def exact_hunt_crossley_chi(e: float) -> float:
         raise ParameterError("contact.restitution: must be > 0 for carvalho_martins")
 
     def f(chi: float) -> float:
-        return math.log1p(-e * chi) - math.log1p(chi) + (1.0 + e) * chi
+        return nm.log1p(-e * chi) - nm.log1p(chi) + (1.0 + e) * chi
 
     # f(0) = f'(0) = 0, f'' > 0 and f' = 0 again only at chi* = (1 - e)/e, so f > 0 on
     # (0, root) and the root lies in [chi*, 1/e).  For small e it sits within round-off
@@ -175,8 +176,8 @@ class KelvinVoigt(ContactLaw):
     needs_restitution: ClassVar[bool] = True
 
     def parameters(self, onset_rate: float, effective_mass: float) -> np.ndarray:
-        le = math.log(self.restitution)
-        zeta = -le / math.sqrt(math.pi**2 + le**2)
+        le = nm.log(self.restitution)
+        zeta = -le / math.sqrt(math.pi * math.pi + le * le)
         damping = 2.0 * zeta * math.sqrt(self.stiffness * effective_mass)
         return np.array([self.stiffness, 1.0, 0.0, damping])
 
@@ -205,4 +206,4 @@ def law_potential(p: np.ndarray, d: float) -> float:
     """Elastic contact potential U_c = K d^(n+1)/(n+1) [J] of parameters p at penetration d."""
     if d <= 0.0:
         return 0.0
-    return p[0] * d ** (p[1] + 1.0) / (p[1] + 1.0)
+    return p[0] * nm.pow(d, p[1] + 1.0) / (p[1] + 1.0)

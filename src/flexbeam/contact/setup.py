@@ -9,11 +9,11 @@ beam's cylinder unless a stiffness is given).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import numerics as nm
 from ..errors import ParameterError
 from ..parameters.case import SIDES, Case, Obstacle, PairContact
 from .hertz import effective_modulus, sphere_on_cylinder_stiffness
@@ -119,16 +119,16 @@ def check_overlaps(obstacles) -> None:
     for j, b in enumerate(obstacles):
         for i, a in enumerate(obstacles[:j]):
             if a.kind == OBSTACLE_SPHERE and b.kind == OBSTACLE_SPHERE:
-                dist = float(np.hypot(*(a.centre - b.centre)))
+                dist = nm.hypot(*(a.centre - b.centre))
                 bad = dist < a.radius + b.radius
                 what = f"its sphere is {dist:g} m from {_name(i)}'s, closer than the radii {a.radius + b.radius:g} m"
             elif a.kind == OBSTACLE_PLANE and b.kind == OBSTACLE_PLANE:
                 cross = a.normal[0] * b.normal[1] - a.normal[1] * b.normal[0]
-                bad = abs(cross) > 1e-12 or float(a.normal @ b.normal) > 0.0
+                bad = abs(cross) > 1e-12 or a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] > 0.0
                 what = f"its half-plane intersects {_name(i)}'s (not parallel and facing each other)"
             else:
                 sph, pl = (a, b) if a.kind == OBSTACLE_SPHERE else (b, a)
-                depth = float(pl.normal @ (sph.centre - pl.centre))
+                depth = nm.dot(pl.normal, sph.centre - pl.centre)
                 bad = depth < sph.radius
                 what = f"the sphere reaches {sph.radius - depth:g} m into the half-plane ({_name(i)} and it)"
             if bad:
@@ -157,7 +157,7 @@ def _outward(case: Case, side: str) -> np.ndarray:
     """The direction from a contact point on ``side`` of the straight beam toward its obstacle, at
     ``initial.impact_angle``: -e2 below (and at the centre line), +e2 above."""
     th = case.initial.impact_angle
-    e2 = np.array([-math.sin(th), math.cos(th)])
+    e2 = np.array([-nm.sin(th), nm.cos(th)])
     return e2 if side == "above" else -e2
 
 
@@ -165,8 +165,9 @@ def place_obstacle(case: Case, position: float, offset: float) -> ObstacleGeomet
     """Obstacle 0's arrays; without a centre it touches P (beam straight, hub at ``initial.impact_angle``)."""
     ob = case.obstacle
     th = case.initial.impact_angle
-    e1 = np.array([math.cos(th), math.sin(th)])
-    e2 = np.array([-math.sin(th), math.cos(th)])
+    s, c = nm.sin(th), nm.cos(th)
+    e1 = np.array([c, s])
+    e2 = np.array([-s, c])
     r_P = (case.hub.radius + position) * e1 - offset * e2
     towards = _outward(case, case.contact.side)
     if ob.centre is not None:
@@ -174,7 +175,7 @@ def place_obstacle(case: Case, position: float, offset: float) -> ObstacleGeomet
     else:
         centre = r_P + ob.radius * towards if ob.kind == "sphere" else r_P
     if ob.kind == "sphere":  # the contact normal at P, from the sphere's centre
-        norm = math.hypot(*(r_P - centre))
+        norm = nm.hypot(*(r_P - centre))
         towards = (centre - r_P) / norm if norm > 0.0 else towards
     return obstacle_geometry(ob, centre, towards)
 

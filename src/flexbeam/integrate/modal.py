@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import numerics as nm
 from ..kernels import core, pack_basis, pack_controls
 from ..model.system import BeamSystem
 from ..phases import EventKind, Phase
@@ -67,18 +68,18 @@ class ModalBasis:
             Psi = np.diag(1.0 / np.sqrt(np.diag(M0))) if nz else np.zeros((0, 0))
             w2 = np.diag(K0) / np.diag(M0) if nz else np.zeros(0)
         else:  # (K0, M0) through the Cholesky factor M0 = L L^T (no scipy at start-up)
-            Linv = np.linalg.inv(np.linalg.cholesky(M0))
-            w2, Y = np.linalg.eigh(Linv @ K0 @ Linv.T)
-            Psi = Linv.T @ Y
+            Linv = nm.inv(nm.cholesky(M0))
+            w2, Y = nm.eigh(nm.matmul(nm.matmul(Linv, K0), np.ascontiguousarray(Linv.T)))
+            Psi = nm.matmul(np.ascontiguousarray(Linv.T), Y)
             w2 = np.where(w2 < 1e-10 * max(float(np.max(w2, initial=0.0)), 1.0), 0.0, w2)
         omega = np.sqrt(np.maximum(w2, 0.0))
         if nz:
-            M0inv = np.linalg.inv(M0)
+            M0inv = nm.inv(M0)
             row0 = M0inv[0] if not system.prescribed else np.zeros(nz)
             inv00 = float(M0inv[0, 0]) if not system.prescribed else 0.0
         else:
             row0, inv00 = np.zeros(0), 0.0
-        toM = Psi.T @ M0
+        toM = nm.matmul(np.ascontiguousarray(Psi.T), M0)
         if system.compliant:  # the support's sqrt(m_s) s, frequency sqrt(k_s / m_s)
             ms, ks = float(system.contact.obstacle.support[0]), float(system.contact.obstacle.support[1])  # obstacle 0
             omega = np.append(omega, math.sqrt(ks / ms))
@@ -146,7 +147,7 @@ class ModalDense:
         """int F dt of a pair over the phase: each step's Gauss quadrature of its nodal contact force (or
         multiplier)."""
         c, w = gauss_nodes()
-        return float(np.sum(self.records[:, 1] * (self._forces(pair) @ w)))
+        return nm.fsum(self.records[:, 1] * nm.matmul(np.ascontiguousarray(self._forces(pair)), w))
 
     def nodal_forces(self, pair: int = 0) -> tuple[np.ndarray, np.ndarray]:
         """(times, values) of a pair's contact force (or multiplier) at every step's Gauss nodes."""
@@ -157,7 +158,7 @@ class ModalDense:
 
 def gauss_nodes() -> tuple[np.ndarray, np.ndarray]:
     """The 4 Gauss-Legendre nodes and weights on (0, 1) of the collocation."""
-    x, w = np.polynomial.legendre.leggauss(4)
+    x, w = nm.leggauss(4)
     return 0.5 * (x + 1.0), 0.5 * w
 
 
@@ -190,14 +191,14 @@ class ModalStepper:
             z[nz], zd[nz] = y[2 * nz], y[2 * nz + 1]
         if self.to_m is not None:  # a diagonal basis (the system frame): no matrix product
             return self.to_m * z, self.to_m * zd
-        return self.basis.toM @ z, self.basis.toM @ zd
+        return nm.matmul(self.basis.toM, z), nm.matmul(self.basis.toM, zd)
 
     def from_modal(self, eta: np.ndarray, v: np.ndarray, Ed: float, W: float) -> np.ndarray:
         nz, N = self.system.nz, self.basis.N
         if self.psi is not None:
             z, zd = self.psi * eta, self.psi * v
         else:
-            z, zd = self.basis.Psi @ eta, self.basis.Psi @ v
+            z, zd = nm.matmul(self.basis.Psi, eta), nm.matmul(self.basis.Psi, v)
         y = np.empty(self.system.size)
         y[:nz], y[nz : 2 * nz] = z[:nz], zd[:nz]
         if N > nz:

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import numerics as nm
 from ..contact.hertz import rigid_hertz_impact
 from ..integrate.loop import Stop
 from ..model.system import BeamSystem
@@ -100,7 +101,7 @@ class ImpactMethod:
             zdd = yd[n + 1 : 2 * n + 2]
         if sysm.compliant:  # s'' of the support coordinate
             zdd = np.append(zdd, yd[sysm.support_index + 1])
-        return float(J @ zdd + gamma)
+        return nm.dot(J, zdd) + gamma
 
     def approaching(self, t: float, y: np.ndarray, pair: int = 0, located: bool = False,
                     contacts: np.ndarray | None = None) -> bool:  # fmt: skip
@@ -158,7 +159,7 @@ class ImpactMethod:
             rows = [pairs.index(k) for k in kept]
             w = W[i, i]
             if rows:
-                w -= W[i, rows] @ np.linalg.solve(W[np.ix_(rows, rows)], W[rows, i])
+                w -= nm.dot(W[i, rows], nm.solve(W[np.ix_(rows, rows)], W[rows, i]))
             if w > self.REDUNDANT * W[i, i]:
                 kept.append(pairs[i])
         return kept

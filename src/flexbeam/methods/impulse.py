@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import numerics as nm
 from ..model.system import BeamSystem
 
 
@@ -73,14 +74,14 @@ def solve_impact_lcp(W: np.ndarray, v_minus: np.ndarray, e: np.ndarray) -> np.nd
             P = np.zeros(s)
             if idx:
                 Waa = W[np.ix_(idx, idx)]
-                P[idx] = np.linalg.lstsq(Waa, target[idx], rcond=1e-12)[0]
+                P[idx] = nm.lstsq_symmetric(Waa, target[idx], rcond=1e-12)
                 if np.any(P[idx] < -tol / max(float(np.max(np.abs(Waa))), 1e-300)):
                     continue
                 P[idx] = np.maximum(P[idx], 0.0)
-            slack = W @ P - target  # = v+ + e v-
+            slack = nm.matmul(W, P) - target  # = v+ + e v-
             if np.any(slack < -tol) or (idx and np.any(np.abs(slack[idx]) > tol)):
                 continue
-            if best is None or P @ P < best @ best - 1e-30:
+            if best is None or nm.dot(P, P) < nm.dot(best, best) - 1e-30:
                 best = P
     if best is None:
         raise ValueError("no solution of the impact LCP (W not positive semi-definite?)")
@@ -99,21 +100,21 @@ def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs
     M = system.mass_matrix(t, y)
     J = np.array([system.gap(t, y, k)[3] for k in pairs])
     zd = system.velocities(t, y)
-    v_minus = J @ zd
+    v_minus = nm.matmul(J, zd)
     free = slice(1, None) if system.prescribed else slice(None)
     Mr, Jr = M[free, free], J[:, free]
     T_minus = system.energies(t, y)["kinetic"]
     if Jr.shape[1] == 0:
         return Jump(y.copy(), np.zeros(len(pairs)), v_minus, v_minus, T_minus, T_minus)
-    MinvJ = np.linalg.solve(Mr, Jr.T)
-    W = Jr @ MinvJ
+    MinvJ = nm.solve(Mr, np.ascontiguousarray(Jr.T))
+    W = nm.matmul(Jr, MinvJ)
     P = solve_impact_lcp(W, v_minus, e)
     zd_plus = zd.copy()
-    zd_plus[free] += MinvJ @ P
+    zd_plus[free] += nm.matmul(MinvJ, P)
     y_plus = system.with_velocities(t, y, zd_plus)
-    v_plus = J @ zd_plus
+    v_plus = nm.matmul(J, zd_plus)
     T_plus = system.energies(t, y_plus)["kinetic"]
-    work_contact = float(0.5 * P @ (v_minus + v_plus))
+    work_contact = 0.5 * nm.dot(P, v_minus + v_plus)
     y_plus[-2] += -work_contact
     y_plus[-1] += (T_plus - T_minus) - work_contact
     return Jump(y_plus, P, v_minus, v_plus, T_minus, T_plus)

@@ -32,12 +32,12 @@ model sets D = G = H = 0.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import numerics as nm
 from ..parameters.case import Case
 from .modes import ModeShapes, mode_shapes
 
@@ -131,7 +131,7 @@ class ModalBeam:
             if x > 0.0:
                 xg, wg = _gauss(0.0, x, _auto_points(self.n, 0))
                 d1 = self.shapes(xg, 1)
-                H = H + (d1 * wg[:, None]).T @ d1
+                H = H + nm.gram(d1, wg)
             H = 0.5 * (H + H.T)  # exactly symmetric: the kernels read it by columns
         return PointData(float(x), self.hub_radius + x, phi, dphi, H, float(offset))
 
@@ -183,7 +183,7 @@ def _station_table(beam: ModalBeam, surface: float) -> StationTable:
         for j in range(1, M):
             xg, wg = _gauss(x[j - 1], x[j], 24)
             d1 = beam.shapes(xg, 1)
-            acc = acc + (d1 * wg[:, None]).T @ d1
+            acc = acc + nm.gram(d1, wg)
             H[j] = 0.5 * (acc + acc.T)
     fine = np.linspace(0.0, L, 8 * M)
     maxphi = 1.05 * np.max(np.abs(beam.shapes(fine, 0)), axis=0)
@@ -195,13 +195,8 @@ def _auto_points(n: int, requested: int) -> int:
     return requested if requested > 0 else 8 * n + 48
 
 
-@functools.cache
-def _leggauss(m: int) -> tuple[np.ndarray, np.ndarray]:
-    return np.polynomial.legendre.leggauss(m)
-
-
 def _gauss(a: float, b: float, m: int) -> tuple[np.ndarray, np.ndarray]:
-    xi, wi = _leggauss(m)
+    xi, wi = nm.leggauss(m)
     return 0.5 * (b - a) * xi + 0.5 * (b + a), 0.5 * (b - a) * wi
 
 
@@ -211,7 +206,7 @@ def case_shapes(case: Case) -> ModeShapes:
     L = beam.length
     if case.frame == "hub":
         return mode_shapes(case.model.modes, L)
-    inertia = hub.inertia / (beam.line_density * L**3)
+    inertia = hub.inertia / (beam.line_density * (L * L * L))
     return mode_shapes(case.model.modes, L, inertia, hub.radius / L)
 
 
@@ -247,17 +242,17 @@ def _build_modal_beam(case: Case) -> ModalBeam:
     d2 = shapes(x, 2)
     d = shapes(np.zeros(1), 1)[0] if case.frame == "system" else np.zeros(n)
     r = rh + x
-    J0 = float(np.sum(w * mu * r**2))
-    m1 = float(np.sum(w * mu * r))
-    Mff = (phi * (w * mu)[:, None]).T @ phi
-    Kff = (d2 * (w * EI)[:, None]).T @ d2
-    mtf = (w * mu * r) @ phi
-    sf = (w * mu) @ phi
+    J0 = nm.fsum(w * mu * (r * r))
+    m1 = nm.fsum(w * mu * r)
+    Mff = nm.gram(phi, w * mu)
+    Kff = nm.gram(d2, w * EI)
+    mtf = nm.matmul(w * mu * r, phi)
+    sf = nm.matmul(w * mu, phi)
     if model.coupling == "first-order" and n:
-        outer = mu * (rh * (L - x) + 0.5 * (L**2 - x**2))  # int_x^L mu (r_h + xi) dxi
+        outer = mu * (rh * (L - x) + 0.5 * (L * L - x * x))  # int_x^L mu (r_h + xi) dxi
         dd = np.outer(d, d)
-        D = rh * m1 * dd + (d1 * (w * outer)[:, None]).T @ d1
-        G = rh * mu * L * dd + (d1 * (w * mu * (L - x))[:, None]).T @ d1
+        D = rh * m1 * dd + nm.gram(d1, w * outer)
+        G = rh * mu * L * dd + nm.gram(d1, w * mu * (L - x))
     else:
         D = np.zeros((n, n))
         G = np.zeros((n, n))
@@ -307,7 +302,7 @@ def _orthogonality(
     if n == 0:
         return Mff, Kff, mtf
     beta = shapes.roots / L
-    Kff = EI * L * np.diag(beta**4)
+    Kff = EI * L * np.diag(nm.integer_power(beta, 4))
     Mff = mu * L * np.eye(n) - Jh * np.outer(d, d)
     if not shapes.clamped:
         mtf = -Jh * d
@@ -318,7 +313,7 @@ def hub_angle_rate(beam: ModalBeam, theta: float, omega: float, q: np.ndarray, q
     """Hub angle phi = theta + d q and rate phi' = theta' + d q' [rad, rad/s]."""
     if not beam.n:
         return theta, omega
-    return theta + float(beam.d @ q), omega + float(beam.d @ qd)
+    return theta + nm.dot(beam.d, q), omega + nm.dot(beam.d, qd)
 
 
 __all__ = ["ModalBeam", "PointData", "build_modal_beam", "case_shapes", "hub_angle_rate"]

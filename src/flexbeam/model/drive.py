@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from .. import numerics as nm
 from ..parameters.case import Drive
 
 
@@ -41,8 +42,9 @@ class JointDrive:
         T = self.spec.spin_up_time
         if t < T:
             a = 2.0 * math.pi / T
-            th = (W / T) * (0.5 * t * t + (math.cos(a * t) - 1.0) / (a * a))
-            thd = (W / T) * (t - math.sin(a * t) / a)
-            thdd = (W / T) * (1.0 - math.cos(a * t))
+            ca, sa = nm.cos(a * t), nm.sin(a * t)
+            th = (W / T) * (0.5 * t * t + (ca - 1.0) / (a * a))
+            thd = (W / T) * (t - sa / a)
+            thdd = (W / T) * (1.0 - ca)
             return self.theta0 + th, thd, thdd
         return self.theta0 + W * (t - 0.5 * T), W, 0.0

@@ -41,6 +41,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import numerics as nm
+
 
 @functools.cache
 def _root(k: int) -> float:
@@ -52,8 +54,9 @@ def _root(k: int) -> float:
     """
     z = 1.875 if k == 1 else (2 * k - 1) * math.pi / 2
     for _ in range(50):
-        f = math.cos(z) + 1.0 / math.cosh(z)
-        df = -math.sin(z) - math.tanh(z) / math.cosh(z)
+        ch = nm.cosh(z)
+        f = nm.cos(z) + 1.0 / ch
+        df = -nm.sin(z) - nm.tanh(z) / ch
         step = f / df
         z -= step
         if abs(step) <= 4e-16 * z:
@@ -73,8 +76,8 @@ def _root_rows(z: float, inertia: float, radius: float) -> tuple[float, float, f
     u(0) - r_h u'(0) = 0, row 2 is J_h w^2 u'(0) + EI (u''(0) - r_h u'''(0)) = 0 divided by EI/L^2
     (with w^2 = EI beta^4 / mu), each divided by its largest coefficient scale.
     """
-    E = math.exp(-z)
-    c, s = math.cos(z), math.sin(z)
+    E = nm.exp(-z)
+    c, s = nm.cos(z), nm.sin(z)
     # u(0), u'(0) L / z, u''(0) L^2 / z^2, u'''(0) L^3 / z^3 as (coefficient of a, coefficient of c)
     a0, c0 = E + c - s, 1.0 - E * E + 2.0 * E * s
     a1, c1 = E + s + c, -1.0 - E * E - 2.0 * E * c
@@ -84,7 +87,7 @@ def _root_rows(z: float, inertia: float, radius: float) -> tuple[float, float, f
     r1a, r1c = (a0 - rz * a1) / (1.0 + rz), (c0 - rz * c1) / (1.0 + rz)
     if math.isinf(inertia):
         return r1a, r1c, a1, c1
-    jz3 = inertia * z**3
+    jz3 = inertia * (z * z * z)
     scale = 1.0 + jz3 + rz
     return r1a, r1c, (jz3 * a1 + a2 - rz * a3) / scale, (jz3 * c1 + c2 - rz * c3) / scale
 
@@ -153,12 +156,12 @@ def hub_beam_roots(n: int, inertia: float, radius: float) -> np.ndarray:
 def _stable_terms(z: float, xi: np.ndarray):
     """e^(-z xi), e^(-z (1 - xi)), cos z(1 - xi), sin z(1 - xi)."""
     arg = z * (1.0 - xi)
-    return np.exp(-z * xi), np.exp(-arg), np.cos(arg), np.sin(arg)
+    return nm.exp(-z * xi), nm.exp(-arg), nm.cos(arg), nm.sin(arg)
 
 
 def _combine(z, a, c, terms, derivative):
     e1, e2, co, si = terms
-    E = np.exp(-z)
+    E = nm.exp(-z)
     d, b = a - c * E, 2.0 * c * E - a
     if derivative == 0:
         return c * e1 + d * e2 + a * co + b * si
@@ -209,7 +212,7 @@ class ModeShapes:
             return np.empty((x.size, 0))
         xi = (x / self.length)[:, None]
         z = self.roots[None, :]
-        return (z / self.length) ** derivative * _combine(
+        return nm.integer_power(z / self.length, derivative) * _combine(
             z, self.a[None, :], self.c[None, :], _stable_terms(z, xi), derivative
         )
 
@@ -223,14 +226,14 @@ def mode_shapes(n: int, length: float, inertia: float = math.inf, radius: float 
     roots = hub_beam_roots(n, inertia, radius)
     a = np.empty(n)
     c = np.empty(n)
-    xs, ws = np.polynomial.legendre.leggauss(8 * n + 48)
+    xs, ws = nm.leggauss(8 * n + 48)
     xi, wi = 0.5 * (xs + 1.0), 0.5 * ws
     for k, z in enumerate(roots):
         r1a, r1c, r2a, r2c = _root_rows(z, inertia, radius)
-        ak, ck = (r1c, -r1a) if math.hypot(r1a, r1c) >= math.hypot(r2a, r2c) else (r2c, -r2a)
+        ak, ck = (r1c, -r1a) if nm.hypot(r1a, r1c) >= nm.hypot(r2a, r2c) else (r2c, -r2a)
         terms = _stable_terms(z, xi)
         u = _combine(z, ak, ck, terms, 0)
-        norm2 = float(np.sum(wi * u * u))  # int_0^1 u^2 dxi
+        norm2 = nm.fsum(wi * u * u)  # int_0^1 u^2 dxi
         if not math.isinf(inertia):
             slope = _combine(z, ak, ck, _stable_terms(z, np.zeros(1)), 1)[0] * z  # du/dxi at 0
             norm2 += inertia * slope * slope  # (J_h / (mu L^3)) (du/dxi)^2 = (J_h / mu) u'(0)^2 / L
@@ -255,9 +258,10 @@ def pinned_free_roots(n: int) -> np.ndarray:
     for k in range(1, n + 1):
         z = (4 * k + 1) * math.pi / 4
         for _ in range(50):
-            t = math.exp(-2.0 * z)
-            f = math.sin(z) * (1.0 + t) - math.cos(z) * (1.0 - t)  # 2 e^-z (sin cosh - cos sinh)
-            df = math.cos(z) * (1.0 + t) + math.sin(z) * (1.0 - t) - 2.0 * t * (math.sin(z) + math.cos(z))
+            t = nm.exp(-2.0 * z)
+            sz, cz = nm.sin(z), nm.cos(z)
+            f = sz * (1.0 + t) - cz * (1.0 - t)  # 2 e^-z (sin cosh - cos sinh)
+            df = cz * (1.0 + t) + sz * (1.0 - t) - 2.0 * t * (sz + cz)
             step = f / df
             z -= step
             if abs(step) <= 4e-16 * z:

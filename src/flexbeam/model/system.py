@@ -21,6 +21,7 @@ from functools import cached_property
 
 import numpy as np
 
+from .. import numerics as nm
 from ..contact.setup import ContactSetup
 from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS, core, pack_contacts, pack_model
 from ..parameters.case import Case
@@ -143,7 +144,7 @@ class BeamSystem:
         th, thd, q, qd = self.split(t, y)
         if not self.n:
             return th, thd
-        return th + float(self.beam.d @ q), thd + float(self.beam.d @ qd)
+        return th + nm.dot(self.beam.d, q), thd + nm.dot(self.beam.d, qd)
 
     def support_state(self, y: np.ndarray) -> tuple[float, float]:
         """(s, s') of a compliant obstacle support; (0, 0) for a rigid obstacle."""
@@ -261,7 +262,7 @@ class BeamSystem:
             J, M = J[:, 1:], M[1:, 1:]
             if J.shape[1] == 0:
                 return np.zeros((len(pairs), len(pairs)))
-        return J @ np.linalg.solve(M, J.T)
+        return nm.matmul(J, nm.solve(M, np.ascontiguousarray(J.T)))
 
     # ------------------------------------------------------------- energies
     def energies(self, t: float, y: np.ndarray) -> dict[str, float]:

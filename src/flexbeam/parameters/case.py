@@ -72,7 +72,8 @@ class Beam(_Section):
         if self.area is not None:
             return self.area
         assert self.radius is not None
-        return math.pi * self.radius**2
+        r = self.radius
+        return math.pi * (r * r)  # products, not libm's pow: the same bits on every machine
 
     @property
     def section_second_moment(self) -> float:
@@ -80,7 +81,8 @@ class Beam(_Section):
         if self.second_moment is not None:
             return self.second_moment
         assert self.radius is not None
-        return math.pi * self.radius**4 / 4.0
+        r2 = self.radius * self.radius
+        return math.pi * (r2 * r2) / 4.0
 
     @property
     def surface_offset(self) -> float:

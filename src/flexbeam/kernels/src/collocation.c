@@ -218,7 +218,7 @@ static void solve_contacts(const fb_phase *ph, fb_work *w, const unknowns *u, co
         double M[MAXU * MAXU], rhs[MAXU];
         for (int a = 0; a < U; a++) {
             int k = u->pair[a], i = u->node[a];
-            rhs[a] = g0[k] * exp(-kappa * tb->c[i] * h) - (r0[a] + kappa * d0[a]);
+            rhs[a] = g0[k] * fb_exp(-kappa * tb->c[i] * h) - (r0[a] + kappa * d0[a]);
             for (int c = 0; c < U; c++) {
                 M[a * U + c] = B[a * U + c] + kappa * A[a * U + c];
                 rhs[a] += M[a * U + c] * F0[c];
@@ -247,7 +247,7 @@ static void solve_contacts(const fb_phase *ph, fb_work *w, const unknowns *u, co
                     Jac[a * U + c] = (a == c ? 1.0 : 0.0) + gd * A[a * U + c] + gr * B[a * U + c];
                 big = fmax(big, fabs(law));
             } else {
-                res[a] = g0[k] * exp(-kappa * tb->c[i] * h) - (r + kappa * d);
+                res[a] = g0[k] * fb_exp(-kappa * tb->c[i] * h) - (r + kappa * d);
                 for (int c = 0; c < U; c++) Jac[a * U + c] = B[a * U + c] + kappa * A[a * U + c];
                 w->Fk[k][i] = 0.0;
             }

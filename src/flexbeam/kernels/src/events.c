@@ -94,7 +94,7 @@ static double law_raw_x(const fb_dense *d, double x) {
     double rate, delta = gap_x(d, x, &rate), pen = -delta;
     const double *p = d->ph->c.p[d->pair];
     if (pen <= 0.0) return -1.0;
-    return p[0] * pow(pen, p[1]) * (1.0 + p[2] * (-rate)) + p[3] * (-rate);
+    return p[0] * fb_pow(pen, p[1]) * (1.0 + p[2] * (-rate)) + p[3] * (-rate);
 }
 
 /* Where the law's force switches between pushing and clipped to zero inside the step (a kink of the forcing,
@@ -105,7 +105,7 @@ double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, in
     double prev = 0.0;
     for (int i = 0; i < count; i++) {
         double pen = -known[i].delta, rate = -known[i].rate;
-        double raw = pen > 0.0 ? p[0] * pow(pen, p[1]) * (1.0 + p[2] * rate) + p[3] * rate : -1.0;
+        double raw = pen > 0.0 ? p[0] * fb_pow(pen, p[1]) * (1.0 + p[2] * rate) + p[3] * rate : -1.0;
         if (i > 0 && pen > 0.0 && -known[i - 1].delta > 0.0 && (prev > 0.0) != (raw > 0.0))
             return brent_fn(d, kx[i - 1], kx[i], prev, raw, law_raw_x);
         prev = raw;

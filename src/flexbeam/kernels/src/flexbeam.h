@@ -12,6 +12,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "detmath.h" /* sin, cos, exp, pow with the same bits on every machine */
+
 #define FB_LAYOUT_VERSION 2
 #define FB_PI 3.14159265358979323846
 #define FB_MAX_POINTS 64

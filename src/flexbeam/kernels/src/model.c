@@ -206,7 +206,7 @@ void fb_mass_matrix(const fb_model *m, const double *q, double *M) {
 double fb_forces(const fb_model *m, double th, double thd, const double *q, const double *qd, double tau, int elastic,
                  double *Q) {
     int n = m->n;
-    double c = cos(th), s = sin(th), g = m->g;
+    double c = fb_cos(th), s = fb_sin(th), g = m->g;
     double qMcqd = 0.0, qMcq = 0.0, qGq = 0.0, sfq = 0.0, mcq[MAXZ], gq[MAXZ];
     fb_symv(m->Mc, q, n, mcq);
     for (int i = 0; i < n; i++) {
@@ -245,7 +245,7 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double
                          const double *qd, fb_kin *out, double *dr) {
     int n = m->n, N = n + 1;
     double ang = dot(P->dphi, q, n), angd = dot(P->dphi, qd, n);
-    double sa = sin(ang), ca = cos(ang), ct = cos(th), st = sin(th), c = P->offset, ot = P->offset_t;
+    double sa = fb_sin(ang), ca = fb_cos(ang), ct = fb_cos(th), st = fb_sin(th), c = P->offset, ot = P->offset_t;
     double qHq = 0.0, rhod_x = 0.0, rhod_y = 0.0, qdHqd = 0.0, hq[MAXZ], hqd[MAXZ];
     fb_symv(P->H, q, n, hq);
     if (out->want_acc) {
@@ -344,7 +344,7 @@ double fb_law_force(const double *p, double d, double dd, double *fk, double *dF
         if (fk) *fk = 0.0;
         return 0.0;
     }
-    double kdn = p[0] * pow(d, p[1]);
+    double kdn = p[0] * fb_pow(d, p[1]);
     if (fk) *fk = kdn;
     double F = kdn * (1.0 + p[2] * dd) + p[3] * dd;
     if (F <= 0.0) return 0.0;
@@ -355,7 +355,7 @@ double fb_law_force(const double *p, double d, double dd, double *fk, double *dF
 
 double fb_law_potential(const double *p, double d) {
     if (d <= 0.0) return 0.0;
-    return p[0] * pow(d, p[1] + 1.0) / (p[1] + 1.0);
+    return p[0] * fb_pow(d, p[1] + 1.0) / (p[1] + 1.0);
 }
 
 /* Solve A x = b in place (b <- x) by Gaussian elimination with partial pivoting; A (n x n) is destroyed. */

@@ -37,7 +37,7 @@ double fb_tolerance(const fb_phase *ph, const double *eta0, const double *v0, co
  * elementary controller h (SAFETY / err)^(1/ORDER), its factor bounded to [FAC_MIN, FAC_MAX] (to [0.5, ...] after an
  * accepted step), and kept at 1 near 1 (hysteresis: unchanged weights are reused). */
 double fb_next_step(double h, double err, int accepted) {
-    double fac = err > 0.0 ? SAFETY * pow(err, -1.0 / ORDER) : FAC_MAX;
+    double fac = err > 0.0 ? SAFETY * fb_pow(err, -1.0 / ORDER) : FAC_MAX;
     if (fac > FAC_MAX) fac = FAC_MAX;
     if (fac < FAC_MIN) fac = FAC_MIN;
     if (accepted && fac < 1.0) fac = fac > 0.5 ? fac : 0.5;

@@ -1,0 +1,66 @@
+"""Fingerprints of runs of the built-in presets: a digest of everything a run reports.
+
+Run as a script (``python -m tests.validation.fingerprints``) it prints one JSON object, case -> digest, for the
+runs of :data:`RUNS`; ``test_same_answer.py`` runs it in child processes under different BLAS kernels, SIMD
+levels and libm variants and compares the digests: the modal model must give the same bits everywhere
+(``docs/methods.md``, "The same answer on every machine").
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import struct
+import sys
+
+import numpy as np
+
+import flexbeam as fb
+
+#: (preset, method, overrides): every preset with every method that runs on the compiled integrator, at lengths
+#: that reach each preset's contacts (seed-experiment-calibrated's CCM and IMM take scipy's DOP853, which calls the
+#: BLAS: they agree to a tolerance, not to the bit, and are left out)
+RUNS: list[tuple[str, str, dict]] = [
+    ("seed-experiment", "ccfm", {}),
+    ("seed-experiment", "ccm", {}),
+    ("seed-experiment", "imm", {}),
+    ("seed-experiment-calibrated", "ccfm", {}),
+    ("two-stops", "ccfm", {}),
+    ("two-stops", "ccm", {}),
+    ("two-stops", "imm", {}),
+    ("spinning-stop", "ccfm", {"solver.t_end": 0.2}),
+    ("spinning-stop", "ccm", {"solver.t_end": 0.2}),
+    ("spinning-stop", "imm", {"solver.t_end": 0.2}),
+    ("tip-wall", "ccfm", {}),
+    ("tip-wall", "ccm", {}),
+    ("tip-wall", "imm", {}),
+    ("kane-spinup", "ccfm", {"solver.t_end": 4.0}),
+    ("seed-experiment", "ccfm", {"initial.kind": "release", "solver.t_end": 0.02}),
+]
+
+
+def digest(sol) -> str:
+    """SHA-256 (first 16 hex digits) of the contact records, the step count, the final state and the metrics."""
+    h = hashlib.sha256()
+    for c in sol.contacts:
+        h.update(struct.pack("<8d", c.onset, c.end, c.velocity_before, c.velocity_after, c.impulse, c.peak_force,
+                             c.peak_time, float(c.pair)))  # fmt: skip
+    run = sol.source.run
+    h.update(struct.pack("<2q", run.steps, len(sol.contacts)))
+    if run.segments:
+        h.update(np.ascontiguousarray(run.segments[-1].y1, float).tobytes())
+    metrics = {k: v for k, v in sol.metrics().items() if k not in ("wall_time", "message")}
+    h.update(json.dumps(metrics, sort_keys=True, default=repr).encode())
+    return h.hexdigest()[:16]
+
+
+def fingerprints() -> dict[str, str]:
+    out = {}
+    for name, method, over in RUNS:
+        key = f"{name}/{method}" + "".join(f" {k}={v}" for k, v in over.items())
+        out[key] = digest(fb.simulate(fb.load_case(name, over), method))
+    return out
+
+
+if __name__ == "__main__":
+    json.dump(fingerprints(), sys.stdout, indent=1, sort_keys=True)
