@@ -131,9 +131,9 @@ void fb_drive_motion(const fb_model *m, double t, double *th, double *thd, doubl
     double Ts = m->spin_up_time;
     if (t < Ts) {
         double a = 2.0 * FB_PI / Ts;
-        *th = m->theta0 + (W / Ts) * (0.5 * t * t + (cos(a * t) - 1.0) / (a * a));
-        *thd = (W / Ts) * (t - sin(a * t) / a);
-        *thdd = (W / Ts) * (1.0 - cos(a * t));
+        *th = m->theta0 + (W / Ts) * (0.5 * t * t + (fb_cos(a * t) - 1.0) / (a * a));
+        *thd = (W / Ts) * (t - fb_sin(a * t) / a);
+        *thdd = (W / Ts) * (1.0 - fb_cos(a * t));
         return;
     }
     *th = m->theta0 + W * (t - 0.5 * Ts); *thd = W; *thdd = 0.0;
@@ -236,7 +236,7 @@ void fb_energies(const fb_model *m, double th, double thd, const double *q, cons
     int n = m->n;
     *T = 0.5 * thd * thd * (m->Jc + fb_quad(m->Mc, q, n)) + thd * dot(m->mtq, qd, n) + 0.5 * fb_quad(m->Mqq, qd, n);
     *Ve = 0.5 * fb_quad(m->K, q, n);
-    *Vg = m->g * (sin(th) * (m->m1 - 0.5 * fb_quad(m->G, q, n)) + cos(th) * dot(m->sf, q, n));
+    *Vg = m->g * (fb_sin(th) * (m->m1 - 0.5 * fb_quad(m->G, q, n)) + fb_cos(th) * dot(m->sf, q, n));
 }
 
 /* Position r, velocity v and the acceleration a0 at z'' = 0 (velocity-product terms, for J' z') of a point,
