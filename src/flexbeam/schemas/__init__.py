@@ -14,9 +14,14 @@ import json
 from importlib import resources
 from typing import Any
 
+from .._namespace import public_dir
+
 __all__ = ["run_schema"]
 
 
 def run_schema() -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of the ``flexbeam run --json`` output."""
     return json.loads(resources.files(__name__).joinpath("run.schema.json").read_text(encoding="utf-8"))
+
+
+__dir__ = public_dir(globals())

@@ -56,6 +56,7 @@ Modules
 
 from __future__ import annotations
 
+from .._namespace import public_dir
 from .cluster import ProgressFn, run_case
 from .dataset import METRICS, load, open_history, summary
 from .planning import Plan, Point, case_key, plan
@@ -81,3 +82,5 @@ __all__ = [
     "summary",
     "sweep",
 ]
+
+__dir__ = public_dir(globals())
