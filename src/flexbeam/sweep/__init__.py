@@ -39,9 +39,9 @@ its worker (``KilledWorker`` after Dask's retries) is not recorded and is comput
 by the next run.
 
 Library imports stay light here: Dask and xarray are imported when a sweep runs.  The
-local cluster starts its workers as new processes that import the calling script
-again, so a script that sweeps on it needs the usual ``if __name__ == "__main__":``
-guard (the ``flexbeam sweep`` command has it).
+local cluster starts its workers as new processes without running the calling script
+again (:func:`~flexbeam.sweep.cluster.workers_skip_main`), so a plain script may sweep at
+module level, without an ``if __name__ == "__main__":`` guard.
 
 Modules
 -------
