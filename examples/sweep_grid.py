@@ -12,10 +12,10 @@ solution, d = d_max f(t/t_c) with d_max ~ (m v^2 / K)^(2/5), so the peak force s
 as ``K^(2/5) |v|^(6/5)`` and the contact duration as ``K^(-2/5) |v|^(-1/5)`` -- whatever the
 law's damping.
 
-The cases run on an in-process Dask cluster (threads), so this script needs no
-``__main__`` guard around the sweep; ``fb.sweep`` without ``scheduler`` starts a local
-cluster of worker processes instead (then guard the call).  ``out="sweep"`` would
-keep each case on disk and make the sweep resumable.
+The cases run on an in-process Dask cluster (threads); ``fb.sweep`` without ``scheduler``
+starts a local cluster of worker processes instead (its workers do not run the calling
+script again, so neither needs a ``__main__`` guard around the sweep).  ``out="sweep"``
+would keep each case on disk and make the sweep resumable.
 """
 
 # %%

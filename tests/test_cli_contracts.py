@@ -29,7 +29,7 @@ FLOAT_KEYS = [
     "energy_drift",
     "wall_time",
 ]
-INT_KEYS = ["contacts", "steps"]
+INT_KEYS = ["contacts", "contact_records", "micro_impacts", "chatter_episodes", "steps"]
 LIST_KEYS = ["force_peaks", "force_peak_times"]
 STR_KEYS = ["method", "status", "message"]
 #: a timing, the only metric that differs between two runs of the same case
@@ -90,14 +90,20 @@ def assert_documented_types(data: dict[str, Any]) -> None:
     # pairs: one record per contact pair, the first pair's metrics repeated in the first one
     assert isinstance(data["pairs"], list) and data["pairs"] and data["pairs"][0]["pair"] == 0
     for record in data["pairs"]:
-        assert type(record["pair"]) is int and type(record["contacts"]) is int and isinstance(record["obstacle"], str)
+        assert type(record["pair"]) is int and isinstance(record["obstacle"], str)
+        assert all(type(record[key]) is int for key in ("contacts", "contact_records", "micro_impacts")), record
         for key in ("peak_force", "contact_duration", "impulse", "impact_velocity"):
             assert record[key] is None or type(record[key]) is float, (key, record)
     for key in ("peak_force", "contact_duration", "impulse"):
         assert data["pairs"][0][key] == data[key]
+    # events: one record per contact record (the full check against the schema: tests/test_json_schema.py)
+    assert isinstance(data["events"], list) and len(data["events"]) == data["contact_records"]
+    for record in data["events"]:
+        assert type(record["index"]) is int and type(record["pair"]) is int and type(record["onset"]) is float
+        assert record["kind"] in ("contact", "micro-impact"), record
     # every other metric is a number or null too (the contract may grow, by adding keys)
     for key, value in data.items():
-        if key not in (*INT_KEYS, *LIST_KEYS, *STR_KEYS, "pairs"):
+        if key not in (*INT_KEYS, *LIST_KEYS, *STR_KEYS, "pairs", "events"):
             assert value is None or type(value) in (float, int), (key, value)
 
 
@@ -129,7 +135,8 @@ def test_run_that_stops_at_max_contacts_exits_1_and_still_prints_its_metrics():
     r = flexbeam("run", "seed-experiment", "--json", *sets({**SHORT, "solver.t_end": 0.035, "solver.max_contacts": 1}))
     assert r.returncode == 1, r.stderr
     data = strict_json(r.stdout)
-    assert data["status"] == "max-contacts" and data["contacts"] == 1
+    # solver.max_contacts limits contact records; the one record is the run's largest, so a contact
+    assert data["status"] == "max-contacts" and data["contacts"] == data["contact_records"] == 1
     lines = r.stderr.splitlines()
     assert len(lines) == 1 and "max-contacts" in lines[0] and "solver.max_contacts" in lines[0]
     assert "Traceback" not in r.stderr

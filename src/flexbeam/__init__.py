@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from ._namespace import public_dir
 from .errors import FlexbeamError, ModelError, ParameterError, SolverError
 from .parameters import Case, builtin_cases, dump_case, load_case
 
@@ -85,3 +86,5 @@ __all__ = [
     "sweep",
     "__version__",
 ]
+
+__dir__ = public_dir(globals())

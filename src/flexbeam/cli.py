@@ -115,9 +115,11 @@ def _print_metrics(metrics: dict[str, Any], title: str) -> None:
     for key, value in metrics.items():
         if key == "pairs":  # one row per contact pair with several: its contacts and first peak
             for p in value if len(value) > 1 else []:
-                peak = p.get("peak_force", math.nan)
-                text = f"{p['contacts']} contacts, first peak " + ("-" if math.isnan(peak) else f"{peak:.6g} N")
+                peak = p["peak_force"]
+                text = _contacts_text(p) + ", first peak " + ("-" if math.isnan(peak) else f"{peak:.6g} N")
                 table.add_row(f"pair {p['pair']} ({p['obstacle']})", text)
+            continue
+        if key == "events":  # one per contact record: in --json only (their counts are rows)
             continue
         if isinstance(value, float):
             text = "-" if math.isnan(value) else f"{value:.6g}"
@@ -127,6 +129,15 @@ def _print_metrics(metrics: dict[str, Any], title: str) -> None:
             text = str(value)
         table.add_row(key, text)
     Console().print(table)
+
+
+def _contacts_text(counts: dict[str, Any]) -> str:
+    """``"3 contacts"``, with ``" (+37 micro-impacts in 1 chatter episode)"`` when there are micro-impacts."""
+    text = f"{counts['contacts']} contacts"
+    micro, episodes = counts["micro_impacts"], counts["chatter_episodes"]
+    if micro:
+        text += f" (+{micro} micro-impacts in {episodes} chatter episode{'s' if episodes != 1 else ''})"
+    return text
 
 
 @app.command()

@@ -35,6 +35,8 @@ SOLUTION_METRICS = (
     "peak_time",
     "contact_duration",
     "contacts",
+    "micro_impacts",
+    "chatter_episodes",
     "impact_velocity",
     "post_impact_velocity",
     "impulse",

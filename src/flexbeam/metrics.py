@@ -2,11 +2,14 @@
 read.  The names are a contract users script against: add, never rename.
 
 Each metric has its units, a long name, a kind (``number``, ``count``, ``numbers`` for a list, ``text``,
-``records`` for a list of per-pair dicts) and a
+``records`` for a list of dicts: per pair, per contact record) and a
 scope: ``first contact`` (computed from the first contact alone; a calibration of such features may stop the run
 after it), ``sensor`` (the first sensor pulse of a compliant obstacle support: present only with one), ``run``.
 ``fittable`` metrics can be calibration features; ``second_peak`` ones read 0 in a fit when a trial's force has a
 single peak (the limit of a vanishing shoulder).
+
+What counts as one contact (``contacts``, against ``contact_records``, ``micro_impacts`` and ``chatter_episodes``)
+is defined once, in :mod:`flexbeam.contact_counts` (docs/methods.md, *What one contact is*).
 """
 
 from __future__ import annotations
@@ -28,7 +31,23 @@ METRICS: dict[str, Metric] = {
     "method": Metric("", "Impact method", "text", "run", False),
     "status": Metric("", "Status of the run", "text", "run", False),
     "message": Metric("", "Why the run ended", "text", "run", False),
-    "contacts": Metric("1", "Number of contacts", "count", "run"),
+    "contacts": Metric(
+        "1",
+        "Number of contacts: records whose impulse or approach speed is >= 1 % of the pair's largest",
+        "count",
+        "run",
+    ),
+    "contact_records": Metric("1", "Number of contact records (contacts and micro-impacts)", "count", "run", False),
+    "micro_impacts": Metric(
+        "1",
+        "Number of micro-impacts: records whose impulse and approach speed are < 1 % of the pair's largest",
+        "count",
+        "run",
+        False,
+    ),
+    "chatter_episodes": Metric(
+        "1", "Number of chatter episodes (runs of consecutive micro-impacts)", "count", "run", False
+    ),
     "impact_velocity": Metric("m/s", "Normal velocity of P before the first contact"),
     "peak_force": Metric("N", "Peak force of the first contact"),
     "peak_time": Metric("s", "Time of the peak force after the first onset"),
@@ -54,9 +73,8 @@ METRICS: dict[str, Metric] = {
     "sensor_duration": Metric("s", "Duration of the first sensor pulse (force > 0)", scope="sensor"),
     "tip_deflection_min": Metric("m", "Smallest tip deflection", scope="run"),
     "tip_deflection_max": Metric("m", "Largest tip deflection", scope="run"),
-    "pairs": Metric(
-        "", "Per contact pair: its number of contacts and its first contact's metrics", "records", "run", False
-    ),  # fmt: skip
+    "pairs": Metric("", "Per contact pair: its counts and its first contact's metrics", "records", "run", False),
+    "events": Metric("", "Per contact record: times, peak force, velocities, impulse, kind", "records", "run", False),
 }
 
 #: metrics that are plain numbers (variables of a sweep's Dataset)

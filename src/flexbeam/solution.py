@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .contact_counts import ContactCounts, classify_contacts
 from .metrics import METRICS
 
 if TYPE_CHECKING:
@@ -379,23 +380,34 @@ class Solution:
         top = max(p[1] for p in peaks)
         return [p for p in peaks if p[1] > threshold * top], end - onset
 
-    def _contact_metrics(self, i: int) -> dict[str, Any]:
+    def _contact_metrics(self, i: int | None) -> dict[str, Any]:
         """The per-contact metrics of contact ``i`` (impact and post-impact velocity, duration, impulse, energies,
-        peak force and its time, local force maxima, second peak)."""
-        ev = self.contact(i)
+        peak force and its time, local force maxima, second peak); ``None``: the same keys, NaN and empty lists
+        (a pair that never touched)."""
         out: dict[str, Any] = {
-            "impact_velocity": ev.velocity_before,
-            "post_impact_velocity": ev.velocity_after,
-            "contact_duration": ev.duration,
-            "impulse": ev.impulse,
-            "energy_before": ev.energy_before,
-            "energy_after": ev.energy_after,
+            "impact_velocity": math.nan,
+            "post_impact_velocity": math.nan,
+            "contact_duration": math.nan,
+            "impulse": math.nan,
+            "energy_before": math.nan,
+            "energy_after": math.nan,
             "peak_force": math.nan,
             "peak_time": math.nan,
             "force_peaks": [],
             "force_peak_times": [],
             "second_peak_force": math.nan,
         }
+        if i is None:
+            return out
+        ev = self.contact(i)
+        out.update(
+            impact_velocity=ev.velocity_before,
+            post_impact_velocity=ev.velocity_after,
+            contact_duration=ev.duration,
+            impulse=ev.impulse,
+            energy_before=ev.energy_before,
+            energy_after=ev.energy_after,
+        )
         peaks = self.force_peaks(i)
         if peaks:
             tp, fp = max(peaks, key=lambda p: p[1])
@@ -409,18 +421,65 @@ class Solution:
             )
         return out
 
+    @property
+    def pair_labels(self) -> list[str]:
+        """The obstacle of each contact pair (pair 0: ``"obstacle"``, the case's ``[obstacle]``)."""
+        return list(self._provenance.get("contact_pairs") or ["obstacle"])
+
+    def contact_counts(self) -> ContactCounts:
+        """The contact records sorted into contacts and micro-impacts, the micro-impacts grouped into chatter
+        episodes: :func:`flexbeam.contact_counts.classify_contacts` on every record's impulse and approach speed
+        (docs/methods.md, *What one contact is*)."""
+        c = self.contacts
+        return classify_contacts(
+            [ev.pair for ev in c], [ev.impulse for ev in c], [-ev.velocity_before for ev in c], len(self.pair_labels)
+        )
+
+    def events(self, counts: ContactCounts | None = None) -> list[dict[str, Any]]:
+        """One dict per contact record, in the order of their onsets (the ``events`` of :meth:`metrics`).
+
+        ``index`` (the record's place in :attr:`contacts`), ``pair``, ``obstacle``, ``onset``, ``end`` [s],
+        ``duration`` [s], ``peak_force`` [N] and ``peak_time`` [s after the onset] (NaN without a force
+        history: an IMM impact), ``velocity_before``, ``velocity_after`` [m/s] (P's normal velocity, negative
+        approaching), ``impulse`` [N s], ``kind`` (``"contact"`` or ``"micro-impact"``) and ``chatter_episode``
+        (the micro-impact's episode, None for a contact); ``counts``: :meth:`contact_counts`, if already known.
+        """
+        counts = self.contact_counts() if counts is None else counts
+        labels = self.pair_labels
+        return [
+            {
+                "index": i,
+                "pair": ev.pair,
+                "obstacle": labels[ev.pair],
+                "onset": ev.onset,
+                "end": ev.end,
+                "duration": ev.duration,
+                "peak_force": ev.peak_force,
+                "peak_time": ev.peak_time - ev.onset,
+                "velocity_before": ev.velocity_before,
+                "velocity_after": ev.velocity_after,
+                "impulse": ev.impulse,
+                "kind": counts.kind(i),
+                "chatter_episode": counts.episode[i],
+            }
+            for i, ev in enumerate(self.contacts)
+        ]
+
     def metrics(self) -> dict[str, Any]:
         """The run's summary numbers (the ``--json`` contract of ``flexbeam run``), in the order, units and
         meaning of the registry :data:`flexbeam.metrics.METRICS` (NaN or an empty list when not defined).
 
         ``peak_force`` [N], ``peak_time`` [s after the first onset], ``contact_duration`` [s], ``force_peaks``
         (list of local maxima [N] above 5 % of the peak) with ``force_peak_times`` [s after onset],
-        ``contacts``, ``post_impact_velocity`` (P's normal velocity at the end of the first contact [m/s],
-        positive away from the obstacle), ``energy_drift``, ``wall_time`` [s], ``steps``; the per-contact ones are
-        those of the first contact of pair 0 (``[contact]`` against ``[obstacle]``), and ``pairs`` lists them for
-        the first contact of every pair with the pair's number of contacts; with a compliant
-        obstacle support also ``sensor_peak_force``, ``sensor_second_peak_force`` [N] and ``sensor_duration``
-        [s] of the first sensor-force pulse (:meth:`sensor_pulse`).
+        ``contacts`` (the records that are not micro-impacts, :meth:`contact_counts`) with ``contact_records``,
+        ``micro_impacts`` and ``chatter_episodes``, ``post_impact_velocity`` (P's normal velocity at the end of
+        the first contact [m/s], positive away from the obstacle), ``energy_drift``, ``wall_time`` [s],
+        ``steps``; the per-contact ones are those of the first contact record of pair 0 (``[contact]`` against
+        ``[obstacle]``); ``pairs`` lists, for every pair, its counts and its first record's metrics (the same
+        keys for every pair, NaN and empty lists for a pair that never touched); ``events`` lists every record
+        (:meth:`events`); with a compliant obstacle support also ``sensor_peak_force``,
+        ``sensor_second_peak_force`` [N] and ``sensor_duration`` [s] of the first sensor-force pulse
+        (:meth:`sensor_pulse`).
         """
         drift, drift_max = self.energy_drift()
         out: dict[str, Any] = {
@@ -428,26 +487,27 @@ class Solution:
             for name, m in METRICS.items()
             if m.scope != "sensor"
         }
+        counts = self.contact_counts()
         out.update(
             method=self.method,
             status=self.status,
             message=self.message,
-            contacts=len(self._contacts),
+            **counts.of_pair(None),
             energy_drift=drift,
             energy_drift_max=drift_max,
             wall_time=self.stats.get("wall_time", math.nan),
             steps=int(self.stats.get("steps", 0)),
             nfev=int(self.stats.get("nfev", 0)),
         )
-        labels = self._provenance.get("contact_pairs") or ["obstacle"]
+        labels = self.pair_labels
         firsts = [next((i for i, ev in enumerate(self._contacts) if ev.pair == k), None) for k in range(len(labels))]
         if firsts[0] is not None:
             out.update(self._contact_metrics(firsts[0]))
         out["pairs"] = [
-            {"pair": k, "obstacle": label, "contacts": sum(ev.pair == k for ev in self._contacts),
-             **(self._contact_metrics(i) if i is not None else {})}
+            {"pair": k, "obstacle": label, **counts.of_pair(k), **self._contact_metrics(i)}
             for k, (label, i) in enumerate(zip(labels, firsts))
-        ]  # fmt: skip
+        ]
+        out["events"] = self.events(counts)
         if self._provenance.get("compliant_support") or (self._samples is not None and "sensor_force" in self.arrays):
             peaks, duration = self.sensor_pulse()
             ranked = sorted((p[1] for p in peaks), reverse=True)
@@ -492,6 +552,8 @@ class Solution:
             data_vars[name] = (dims, arr, {"units": units, "long_name": long_name})
         data_vars["phase"] = (("time",), self.phase.astype(str), {"long_name": "Phase of motion"})
         c = self.contacts
+        counts = self.contact_counts()
+        episodes = [math.nan if k is None else k for k in counts.episode]
         contact_fields = {
             "contact_onset": ("s", "Contact onset time", [e.onset for e in c]),
             "contact_end": ("s", "Contact end time", [e.end for e in c]),
@@ -500,6 +562,8 @@ class Solution:
             "contact_impulse": ("N s", "Contact impulse", [e.impulse for e in c]),
             "contact_peak_force": ("N", "Peak contact force", [e.peak_force for e in c]),
             "contact_pair": ("1", "Contact pair of the contact (0: [contact] against [obstacle])", [e.pair for e in c]),
+            "contact_micro_impact": ("1", "1 for a micro-impact, 0 for a contact (docs/methods.md)", counts.micro),
+            "contact_chatter_episode": ("1", "Chatter episode of a micro-impact (NaN for a contact)", episodes),
         }
         for name, (units, long_name, values) in contact_fields.items():
             data_vars[name] = (("contact",), np.asarray(values, float), {"units": units, "long_name": long_name})

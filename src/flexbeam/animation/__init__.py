@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._namespace import public_dir
 from ..errors import ParameterError
 from .geometry import REFERENCES, auto_scale, beam_shape, coupling_matrices, frame_times
 from .geometry import TARGET_DEFLECTION as TARGET_DEFLECTION
@@ -221,3 +222,5 @@ __all__ = [
     "parse_window",
     "speed_label",
 ]
+
+__dir__ = public_dir(globals())

@@ -39,6 +39,7 @@ aftermath for first-contact features, the data's span for histories) unless
 
 from __future__ import annotations
 
+from .._namespace import public_dir
 from ..metrics import FEATURES, FIRST_CONTACT_FEATURES, SECOND_PEAKS
 from .fields import Parameter, parse_fit
 from .fitting import calibrate
@@ -62,3 +63,5 @@ __all__ = [
     "parse_fit",
     "read_measured",
 ]
+
+__dir__ = public_dir(globals())

@@ -33,7 +33,10 @@ its chi(e), the Hertz stiffness, the obstacle placement, the drive profile
 
 from __future__ import annotations
 
+from .._namespace import public_dir
 from .model import FemBeam, build_mesh
 from .simulate import simulate_fem
 
 __all__ = ["FemBeam", "build_mesh", "simulate_fem"]
+
+__dir__ = public_dir(globals())

@@ -23,9 +23,12 @@ The arrays are packed once per system into flat float64 buffers by :mod:`flexbea
 
 from __future__ import annotations
 
+from .._namespace import public_dir
 from . import _core
 from .layout import OUTPUT_COLUMNS, PAIR_COLUMNS, pack_basis, pack_contacts, pack_controls, pack_model
 
 __all__ = ["OUTPUT_COLUMNS", "PAIR_COLUMNS", "core", "pack_basis", "pack_contacts", "pack_controls", "pack_model"]
 
 core = _core
+
+__dir__ = public_dir(globals())

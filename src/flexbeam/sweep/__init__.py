@@ -39,9 +39,9 @@ its worker (``KilledWorker`` after Dask's retries) is not recorded and is comput
 by the next run.
 
 Library imports stay light here: Dask and xarray are imported when a sweep runs.  The
-local cluster starts its workers as new processes that import the calling script
-again, so a script that sweeps on it needs the usual ``if __name__ == "__main__":``
-guard (the ``flexbeam sweep`` command has it).
+local cluster starts its workers as new processes without running the calling script
+again (:func:`~flexbeam.sweep.cluster.workers_skip_main`), so a plain script may sweep at
+module level, without an ``if __name__ == "__main__":`` guard.
 
 Modules
 -------
@@ -56,6 +56,7 @@ Modules
 
 from __future__ import annotations
 
+from .._namespace import public_dir
 from .cluster import ProgressFn, run_case
 from .dataset import METRICS, load, open_history, summary
 from .planning import Plan, Point, case_key, plan
@@ -81,3 +82,5 @@ __all__ = [
     "summary",
     "sweep",
 ]
+
+__dir__ = public_dir(globals())

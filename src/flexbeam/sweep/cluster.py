@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import sys
 import time
 import uuid
 from collections.abc import Callable, Iterator
@@ -66,6 +67,32 @@ def cpu_count() -> int:
 
 
 @contextlib.contextmanager
+def workers_skip_main() -> Iterator[None]:
+    """Start worker processes that do not run the calling script again.
+
+    A process started by the "spawn" method -- Dask's for its local workers -- first runs the parent's main
+    module again, as ``__mp_main__`` (:func:`multiprocessing.spawn.get_preparation_data` sends its path, or its
+    module name under ``python -m``).  A script that calls :func:`flexbeam.sweep` at module level, without
+    ``if __name__ == "__main__":``, would so start a sweep inside each worker while it starts, and the local
+    cluster fail with 200 lines ending in "Nanny failed to start".  A worker needs nothing from the script (it
+    runs :func:`run_case`), so while the context is open the main module shows spawn neither a path nor a module
+    name (``__file__`` removed, ``__spec__`` None, as in an interactive session); both are restored on exit.  The
+    context spans the cluster's life, so a worker that its nanny restarts does not run the script either.
+    """
+    main = sys.modules.get("__main__")
+    hidden = {k: main.__dict__[k] for k in ("__file__", "__spec__") if k in main.__dict__} if main else {}
+    try:
+        if main is not None:
+            main.__dict__.pop("__file__", None)
+            main.__spec__ = None
+        yield
+    finally:
+        if main is not None:
+            main.__dict__.pop("__spec__", None)
+            main.__dict__.update(hidden)
+
+
+@contextlib.contextmanager
 def cluster_client(scheduler: Any, workers: int | None) -> Iterator[Any]:
     """A Dask client: the given one, one connected to ``scheduler``, or a new local cluster's."""
     from dask.distributed import Client, LocalCluster
@@ -87,6 +114,7 @@ def cluster_client(scheduler: Any, workers: int | None) -> Iterator[Any]:
         return
     # no dashboard; the scheduler's HTTP endpoints on a free port rather than 8787, which may be taken
     with (
+        workers_skip_main(),
         LocalCluster(
             n_workers=workers or cpu_count(),
             threads_per_worker=1,

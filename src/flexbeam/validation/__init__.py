@@ -18,6 +18,7 @@ is what ``tests/validation/test_report.py`` runs, so that the page cannot drift 
 
 from __future__ import annotations
 
+from .._namespace import public_dir
 from .references import (
     HERTZ_DURATION_CONSTANT,
     PUBLISHED_ROOTS,
@@ -59,3 +60,5 @@ __all__ = [
     "series_tip",
     "two_mass_chain",
 ]
+
+__dir__ = public_dir(globals())

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
+from ..._namespace import public_dir
 from ..report import Section
 from .frames import section_frames
 from .frequencies import section_roots, section_rotating
@@ -51,3 +52,5 @@ __all__ = [
     "section_rotating",
     "section_support",
 ]
+
+__dir__ = public_dir(globals())

@@ -221,7 +221,7 @@ def section_energy(reduced: bool, figdir: Path | None) -> Section:
                 sol.energy_drift()[1],
                 tol,
                 "abs",
-                extra={"run": f"{label} ({len(sol.contacts)} contacts)"},
+                extra={"run": f"{label} ({sol.contact_counts().of_pair(None)['contacts']} contacts)"},
             )
         )
     return s
