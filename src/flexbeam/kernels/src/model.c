@@ -131,9 +131,11 @@ void fb_drive_motion(const fb_model *m, double t, double *th, double *thd, doubl
     double Ts = m->spin_up_time;
     if (t < Ts) {
         double a = 2.0 * FB_PI / Ts;
-        *th = m->theta0 + (W / Ts) * (0.5 * t * t + (fb_cos(a * t) - 1.0) / (a * a));
-        *thd = (W / Ts) * (t - fb_sin(a * t) / a);
-        *thdd = (W / Ts) * (1.0 - fb_cos(a * t));
+        double sa, ca;
+        fb_sincos(a * t, &sa, &ca);
+        *th = m->theta0 + (W / Ts) * (0.5 * t * t + (ca - 1.0) / (a * a));
+        *thd = (W / Ts) * (t - sa / a);
+        *thdd = (W / Ts) * (1.0 - ca);
         return;
     }
     *th = m->theta0 + W * (t - 0.5 * Ts); *thd = W; *thdd = 0.0;
@@ -206,7 +208,8 @@ void fb_mass_matrix(const fb_model *m, const double *q, double *M) {
 double fb_forces(const fb_model *m, double th, double thd, const double *q, const double *qd, double tau, int elastic,
                  double *Q) {
     int n = m->n;
-    double c = fb_cos(th), s = fb_sin(th), g = m->g;
+    double c, s, g = m->g;
+    fb_sincos(th, &s, &c);
     double qMcqd = 0.0, qMcq = 0.0, qGq = 0.0, sfq = 0.0, mcq[MAXZ], gq[MAXZ];
     fb_symv(m->Mc, q, n, mcq);
     for (int i = 0; i < n; i++) {
@@ -236,7 +239,9 @@ void fb_energies(const fb_model *m, double th, double thd, const double *q, cons
     int n = m->n;
     *T = 0.5 * thd * thd * (m->Jc + fb_quad(m->Mc, q, n)) + thd * dot(m->mtq, qd, n) + 0.5 * fb_quad(m->Mqq, qd, n);
     *Ve = 0.5 * fb_quad(m->K, q, n);
-    *Vg = m->g * (fb_sin(th) * (m->m1 - 0.5 * fb_quad(m->G, q, n)) + fb_cos(th) * dot(m->sf, q, n));
+    double s, c;
+    fb_sincos(th, &s, &c);
+    *Vg = m->g * (s * (m->m1 - 0.5 * fb_quad(m->G, q, n)) + c * dot(m->sf, q, n));
 }
 
 /* Position r, velocity v and the acceleration a0 at z'' = 0 (velocity-product terms, for J' z') of a point,
@@ -245,7 +250,9 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double
                          const double *qd, fb_kin *out, double *dr) {
     int n = m->n, N = n + 1;
     double ang = dot(P->dphi, q, n), angd = dot(P->dphi, qd, n);
-    double sa = fb_sin(ang), ca = fb_cos(ang), ct = fb_cos(th), st = fb_sin(th), c = P->offset, ot = P->offset_t;
+    double sa, ca, ct, st, c = P->offset, ot = P->offset_t;
+    fb_sincos(ang, &sa, &ca);
+    fb_sincos(th, &st, &ct);
     double qHq = 0.0, rhod_x = 0.0, rhod_y = 0.0, qdHqd = 0.0, hq[MAXZ], hqd[MAXZ];
     fb_symv(P->H, q, n, hq);
     if (out->want_acc) {

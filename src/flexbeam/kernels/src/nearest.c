@@ -135,7 +135,8 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, double th, const 
     line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u};
     for (int j = 0; j < M; j++) w[j] = w1[j] = w2[j] = u[j] = NAN;
     /* the obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction) */
-    double ct = fb_cos(th), st = fb_sin(th), cx = o->cx + s * o->ux, cy = o->cy + s * o->uy, c[2];
+    double ct, st, cx = o->cx + s * o->ux, cy = o->cy + s * o->uy, c[2];
+    fb_sincos(th, &st, &ct);
     int sphere = o->kind == FB_SPHERE;
     if (sphere) {
         c[0] = ct * cx + st * cy, c[1] = -st * cx + ct * cy;
@@ -202,7 +203,8 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, double th, const 
     } else {
         dir[0] = -c[0], dir[1] = -c[1];
     }
-    double ang = dot(out->dphi, q, n), sa = fb_sin(ang), ca = fb_cos(ang), cs = m->surface;
+    double ang = dot(out->dphi, q, n), sa, ca, cs = m->surface;
+    fb_sincos(ang, &sa, &ca);
     out->x = x;
     out->P.base = ln.rh + x;
     out->P.offset_t = cs * (dir[0] * ca + dir[1] * sa);  /* c u . t */

@@ -92,11 +92,16 @@ static void osc_moments(double th, double cos_t, double sin_t, double *Cm, doubl
     }
 }
 
-void fb_moments(double th, double *Cm, double *Sm) { osc_moments(th, fb_cos(th), fb_sin(th), Cm, Sm); }
+void fb_moments(double th, double *Cm, double *Sm) {
+    double s, c;
+    fb_sincos(th, &s, &c);
+    osc_moments(th, c, s, Cm, Sm);
+}
 
 void fb_weights(double w, double h, double s, fb_weight *out) {
     const fb_tables *tb = fb_gauss();
-    double T = s * h, th = w * T, c = fb_cos(th), sn = fb_sin(th), Cm[FB_P], Sm[FB_P];
+    double T = s * h, th = w * T, c, sn, Cm[FB_P], Sm[FB_P];
+    fb_sincos(th, &sn, &c);
     osc_moments(th, c, sn, Cm, Sm);
     out->C = c;
     out->SW = w != 0.0 ? sn / w : T;
@@ -119,7 +124,8 @@ void fb_weights(double w, double h, double s, fb_weight *out) {
 }
 
 void fb_hop_weights(double w, double T, fb_hop *out) {
-    double th = w * T, c = fb_cos(th), sn = fb_sin(th), Cm[FB_P], Sm[FB_P];
+    double th = w * T, c, sn, Cm[FB_P], Sm[FB_P];
+    fb_sincos(th, &sn, &c);
     osc_moments(th, c, sn, Cm, Sm);
     out->C = c;
     out->SW = w != 0.0 ? sn / w : T;

@@ -164,7 +164,9 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
             Ve += 0.5 * o->ks * s * s;
         }
         double phi = th + dot(m->d, q, n), phid = thd + dot(m->d, qd, n);
-        double e2x = -fb_sin(phi), e2y = fb_cos(phi); /* the hub's normal */
+        double sphi, cphi;
+        fb_sincos(phi, &sphi, &cphi);
+        double e2x = -sphi, e2y = cphi; /* the hub's normal */
         fb_kin tip = {.want_acc = 0};
         fb_point_kinematics(m, &m->points[1], th, thd, q, qd, &tip, NULL);
         out[0] = phi;
