@@ -74,6 +74,27 @@ def test_ccm_keeps_the_gap_closed_with_compressive_force():
     assert sol.metrics()["peak_force"] > 0
 
 
+def test_ccm_releases_the_contact_when_the_multiplier_reaches_zero():
+    """Signorini's conditions: a held contact pushes (lambda >= 0) and lets go where lambda reaches zero, so at each
+    release the multiplier -- evaluated from the state there (the index-1 DAE's lambda(z, z')) -- is zero, and it
+    was never tensile before.  At fast_rtol 1e-10 (the multiplier's own accuracy ~ 1e-7 of its peak, collocation.c)
+    |lambda| at the releases measured <= 1.4e-11 of the contact's peak and min lambda >= -1.2e-11 of it; bound 1e-9
+    (a release late by 1e-3 N, 1.4e-6 of the peak, fails it)."""
+    case = seed(model__modes=4, solver__t_end=0.01, solver__fast_rtol=1e-10, solver__fast_atol=1e-13)
+    sol = fb.simulate(case, method="ccm")
+    assert sol.status == "success"
+    released = 0
+    for ev in sol.contacts:
+        if ev.end is None or ev.end <= ev.onset:
+            continue  # still held at t_end, or let go at once after the e = 0 jump
+        _, lam = sol.source.force_profile(ev.onset, ev.end, ev.pair)
+        peak = lam.max()
+        assert abs(lam[-1]) <= 1e-9 * peak
+        assert lam.min() >= -1e-9 * peak
+        released += 1
+    assert released >= 2
+
+
 def test_ccm_rod_resting_under_gravity_gives_static_reaction():
     """Moment balance about O: lambda x_P = m g L / 2."""
     case = seed(model__modes=0, initial__kind="state", initial__angle=0.0, initial__rate=0.0, solver__t_end=0.01)

@@ -33,6 +33,50 @@ def test_pinned_rod_reaches_horizontal_with_textbook_rate(theta0):
     assert_allclose(ev.velocity_before, -w * case.contact.position, rtol=1e-6)
 
 
+def _rod_about_O(case) -> tuple[float, float]:
+    """(m_1, J_O) of a uniform rod of mass m on a hub of radius r_h and inertia J_h, from the textbook integrals:
+    first moment m_1 = m (r_h + L/2), J_O = J_h + m (r_h^2 + r_h L + L^2/3)."""
+    m, _ = rigid_rod_mass_inertia(case)
+    L, rh = case.beam.length, case.hub.radius
+    return m * (rh + L / 2), case.hub.inertia + m * (rh * rh + rh * L + L * L / 3)
+
+
+@pytest.mark.parametrize("hub", [(0.0, 0.0), (0.05, 0.01)])
+def test_rigid_pendulum_angular_acceleration_at_horizontal(hub):
+    """Released at rest horizontal (theta = 0: the gravity torque is largest), theta'' = -g m_1 / J_O exactly,
+    through the compiled forces (``fb_forces``) that both integrators use.  Round-off only: rtol 1e-12."""
+    case = seed(model__modes=0, hub__radius=hub[0], hub__inertia=hub[1])
+    system = BeamSystem.from_case(case)
+    m1, J = _rod_about_O(case)
+    yd, _, _ = system.rhs(0.0, system.state(0.0, 0.0))
+    assert_allclose(yd[1], -case.model.gravity * m1 / J, rtol=1e-12)
+
+
+def test_rigid_pendulum_period_at_small_amplitude():
+    """The rod swinging about its hanging position (theta = -pi/2) with amplitude a = 0.1 rad under the default
+    integrator: period T = 4 K(sin^2(a/2)) / w0, w0^2 = g m_1 / J_O (the pendulum's exact period; the small-angle
+    2 pi / w0 is a^2/16 = 6e-4 shorter).  Periods from the upward zero crossings of theta' (linear between 1e-4 s
+    samples: theta' is linear to second order there).  Measured 1.4e-10; bound 1e-8."""
+    a = 0.1
+    case = seed(
+        model__modes=0,
+        initial__kind="state",
+        initial__angle=-math.pi / 2 + a,
+        initial__rate=0.0,
+        solver__t_end=3.0,
+        solver__sample_step=1e-4,
+    )
+    sol = fb.simulate(case)
+    assert sol.status == "success" and not sol.contacts
+    m1, J = _rod_about_O(case)
+    period = 4 * ellipk(math.sin(a / 2) ** 2) / math.sqrt(case.model.gravity * m1 / J)
+    t, r = sol.time, sol["theta_rate"]
+    i = np.nonzero((r[:-1] < 0.0) & (r[1:] >= 0.0))[0]
+    crossings = t[i] - r[i] * (t[i + 1] - t[i]) / (r[i + 1] - r[i])
+    assert crossings.size == 2
+    assert_allclose(np.diff(crossings), period, rtol=1e-8)
+
+
 def _hertz_closed_form(m, v, K):
     """Rigid body on a Hertz spring, Johnson (1985) Sec. 11.4, with his numbers: delta_max = (5 m v^2 / (4 K))^(2/5),
     F_max = K delta_max^(3/2), t_c = 2.9432 delta_max / v (Hunter 1957: 2.94)."""

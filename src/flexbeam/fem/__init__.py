@@ -22,7 +22,9 @@ compliant ``obstacle.support``) raises a ParameterError.
 * :mod:`flexbeam.fem.integrator` -- generalized-alpha (Chung & Hulbert 1993) step;
 * :mod:`flexbeam.fem.eventdriven` -- the run with contact-event location and step sizes;
 * :mod:`flexbeam.fem.simulate` -- :func:`simulate_fem`, returning a
-  :class:`~flexbeam.solution.Solution`.
+  :class:`~flexbeam.solution.Solution`;
+* :mod:`flexbeam.fem.jit` -- the kernels' Numba compilation, cached on disk under a key of all
+  the FE sources (an edit to any of them recompiles every kernel).
 
 It shares no equations with the modal model: the contact force and the gap are
 evaluated by its own kernels; only the case's inputs are interpreted alike (the law and

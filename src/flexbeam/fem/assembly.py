@@ -16,15 +16,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from .banded import BAND, band_solve, fix_first_dof
 from .contact_law import law_force
 from .element import corotational_element, inertia_element, point_on_element
 from .gap import anywhere_gap, gap_at
+from .jit import fem_jit
 
 
-@njit(cache=True)
+@fem_jit
 def node_states(z, zd, zdd, rh, X, V, A):
     """Fill node arrays (nn x 3) from the DOF vectors; node 0 follows the hub angle."""
     th, w, al = z[0], zd[0], zdd[0]
@@ -46,7 +46,7 @@ def node_states(z, zd, zdd, rh, X, V, A):
             A[i, k] = zdd[3 * i + k - 2]
 
 
-@njit(cache=True)
+@fem_jit
 def _dof_map(e, a, T0):
     node = e + a // 3
     k = a % 3
@@ -55,7 +55,7 @@ def _dof_map(e, a, T0):
     return 3 * node + k - 2, 1.0
 
 
-@njit(cache=True)
+@fem_jit
 def assemble(
     z, zd, zdd, t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
     cM, cC, cK, want_S,
@@ -181,7 +181,7 @@ def assemble(
     return pout[0, 0], pout[0, 1], pout[0, 2], pout[0, 3]
 
 
-@njit(cache=True)
+@fem_jit
 def _anywhere_pair(
     q, X, V, A, l0, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout, cK, cC, want_S, R, ab, R0node, Jg
 ):
@@ -216,7 +216,7 @@ def _anywhere_pair(
     pout[q, 4] = x
 
 
-@njit(cache=True)
+@fem_jit
 def energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
     """(kinetic, elastic, gravitational) energy [J] of the mesh and hub."""
     nel = l0.size
@@ -249,7 +249,7 @@ def energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
     return T, Ve, Vg
 
 
-@njit(cache=True)
+@fem_jit
 def newton(
     z, zd, zdd, a, cM, cC, ca, scale, tol, max_iter, prescribed,
     t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
@@ -288,7 +288,7 @@ def newton(
     return max_iter, 1
 
 
-@njit(cache=True)
+@fem_jit
 def normal_velocities(z, zd, rh, l0, elems, xis):
     """Velocities along e2(theta) of centre-line points (element, xi) [m/s]."""
     nn = l0.size + 1

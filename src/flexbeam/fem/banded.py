@@ -8,13 +8,14 @@ first BAND rows are workspace for the pivoting LU).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from .jit import fem_jit
 
 #: half-bandwidth of the assembled matrices
 BAND = 5
 
 
-@njit(cache=True)
+@fem_jit
 def fix_first_dof(ab):
     """Replace row and column 0 of a band matrix by the identity (theta held)."""
     off = 2 * BAND
@@ -26,7 +27,7 @@ def fix_first_dof(ab):
     ab[off, 0] = 1.0
 
 
-@njit(cache=True)
+@fem_jit
 def band_solve(ab, x):
     """Solve A x = b in place (b given in x) by band LU *without* pivoting.
 

@@ -16,10 +16,10 @@ checks them against the published expressions and the exact restitution).
 
 from __future__ import annotations
 
-from numba import njit
+from .jit import fem_jit
 
 
-@njit(cache=True)
+@fem_jit
 def law_force(p, d, dd):
     """Contact force and its partial derivatives at penetration ``d`` [m] and rate ``dd`` [m/s].
 
@@ -48,7 +48,7 @@ def law_force(p, d, dd):
     return force, elastic, n * K * d ** (n - 1.0) * (1.0 + h * dd), elastic * h + C
 
 
-@njit(cache=True)
+@fem_jit
 def law_potential(p, d):
     """Elastic contact potential U_c = K d^(n+1)/(n+1) [J] at penetration ``d`` (0 when apart)."""
     if d <= 0.0:

@@ -71,21 +71,22 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from .jit import fem_jit
 
 _G4 = np.polynomial.legendre.leggauss(4)
 GAUSS_XI = 0.5 * (_G4[0] + 1.0)  # points on [0, 1]
 GAUSS_W = 0.5 * _G4[1]  # weights on [0, 1]
 
 
-@njit(cache=True)
+@fem_jit
 def _local_rotations(c, s, p1, p2):
     t1 = math.atan2(c * math.sin(p1) - s * math.cos(p1), c * math.cos(p1) + s * math.sin(p1))
     t2 = math.atan2(c * math.sin(p2) - s * math.cos(p2), c * math.cos(p2) + s * math.sin(p2))
     return t1, t2
 
 
-@njit(cache=True)
+@fem_jit
 def element_chord(xe):
     """The chord of an element from node A to node B: (dx, dy), its length l, its direction (c, s) = (dx, dy)/l
     and the nodes' rotations theta_1, theta_2 relative to it (the co-rotational frame)."""
@@ -98,7 +99,7 @@ def element_chord(xe):
     return dx, dy, ell, c, s, t1, t2
 
 
-@njit(cache=True)
+@fem_jit
 def chord_rates(ve, ell, c, s):
     """Rates of an element's chord: (dx', dy'), its rotation beta' = (-s dx' + c dy')/l and stretching
     l' = c dx' + s dy'."""
@@ -107,7 +108,7 @@ def chord_rates(ve, ell, c, s):
     return ddx, ddy, (-s * ddx + c * ddy) / ell, c * ddx + s * ddy
 
 
-@njit(cache=True)
+@fem_jit
 def corotational_element(xe, l0, EA, EI, fe, Ke, want_K):
     """Internal force, tangent and strain energy of one co-rotational element.
 
@@ -171,7 +172,7 @@ def corotational_element(xe, l0, EA, EI, fe, Ke, want_K):
     return 0.5 * N * u + k * (2.0 * t1 * t1 + 2.0 * t1 * t2 + 2.0 * t2 * t2)
 
 
-@njit(cache=True)
+@fem_jit
 def _shape_G(xi, l0, ell, c, s, vb, G):
     """Fill G = dr/dz_e (2 x 6) at xi; returns (h1, h2)."""
     h1 = xi * (1.0 - xi) ** 2
@@ -197,7 +198,7 @@ def _shape_G(xi, l0, ell, c, s, vb, G):
     return h1, h2
 
 
-@njit(cache=True)
+@fem_jit
 def inertia_element(xe, ve, ae, l0, mu, g, gxi, gw, fin, Me, fg, G):
     """Inertia force, mass matrix, gravity force and energies of one element.
 
@@ -264,7 +265,7 @@ def inertia_element(xe, ve, ae, l0, mu, g, gxi, gw, fin, Me, fg, G):
     return T, Vg
 
 
-@njit(cache=True)
+@fem_jit
 def point_on_element(xe, ve, l0, xi):
     """Position and velocity of the centre-line point xi in [0, 1] of an element."""
     dx, dy, ell, c, s, t1, t2 = element_chord(xe)
@@ -283,7 +284,7 @@ def point_on_element(xe, ve, l0, xi):
     return r, v
 
 
-@njit(cache=True)
+@fem_jit
 def point_kinematics(xe, ve, ae, l0, xi, G):
     """Position r, velocity r' and acceleration r'' of the centre-line point xi of an element.
 

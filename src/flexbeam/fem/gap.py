@@ -24,15 +24,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from .element import chord_rates, element_chord, point_kinematics
+from .jit import fem_jit
 
 #: obstacle kinds
 SPHERE, HALF_PLANE = 0, 1
 
 
-@njit(cache=True)
+@fem_jit
 def surface_point(xp, vp, c):
     """Surface point P at offset c below the centre line along the section normal.
 
@@ -48,7 +48,7 @@ def surface_point(xp, vp, c):
     return r, v, dpsi, a0
 
 
-@njit(cache=True)
+@fem_jit
 def obstacle_gap(r, v, a, kind, centre, radius, normal):
     """Gap of a point at ``r`` moving with ``v``, ``a`` to a sphere or half-plane.
 
@@ -70,7 +70,7 @@ def obstacle_gap(r, v, a, kind, centre, radius, normal):
     return delta, nx * v[0] + ny * v[1], nx * a[0] + ny * a[1], nx, ny
 
 
-@njit(cache=True)
+@fem_jit
 def gap_at(xp, vp, ap, c, kind, centre, radius, normal, J):
     """Gap delta, rate delta', acceleration delta'' of P at a node and d delta/d(X, Y, psi).
 
@@ -86,7 +86,7 @@ def gap_at(xp, vp, ap, c, kind, centre, radius, normal, J):
     return delta, rate, accel
 
 
-@njit(cache=True)
+@fem_jit
 def hermite_dip(g0, v0, g1, v1, h):
     """Fraction s in (0, 1) at which the cubic Hermite of the gap is lowest if < 0, else -1.
 
@@ -111,7 +111,7 @@ def hermite_dip(g0, v0, g1, v1, h):
 ANYWHERE_SAMPLES = 8
 
 
-@njit(cache=True)
+@fem_jit
 def _centre_line(xe, l0, xi):
     """Centre-line point of an element and its first two xi-derivatives (nodal coordinates fixed).
 
@@ -131,7 +131,7 @@ def _centre_line(xe, l0, xi):
     return r, rx, rxx
 
 
-@njit(cache=True)
+@fem_jit
 def _objective(xe, l0, xi, kind, centre, normal):
     """f(xi) minimised by the nearest point and f', f'' in xi: |r - C| for a sphere (f'' = n . r_xixi +
     (|r_xi|^2 - (n . r_xi)^2)/|r - C|), n . (r - C) for a half-plane."""
@@ -151,7 +151,7 @@ def _objective(xe, l0, xi, kind, centre, normal):
     return f, nx * rx[0] + ny * rx[1], nx * rxx[0] + ny * rxx[1]
 
 
-@njit(cache=True)
+@fem_jit
 def _refine(xe, l0, a, b, kind, centre, normal):
     """Minimiser of f on [a, b] (f unimodal there): an end whose slope points outwards, else the root of f'
     by Newton's method safeguarded by bisection.  Returns (xi, f)."""
@@ -178,7 +178,7 @@ def _refine(xe, l0, a, b, kind, centre, normal):
     return x, f
 
 
-@njit(cache=True)
+@fem_jit
 def nearest_point(X, l0, kind, centre, normal):
     """Element e, local coordinate xi and value f of the centre-line point minimising f (see :func:`_objective`).
 
@@ -226,7 +226,7 @@ def nearest_point(X, l0, kind, centre, normal):
     return re, rxi, rbest
 
 
-@njit(cache=True)
+@fem_jit
 def anywhere_gap(X, V, A, l0, tube, kind, centre, radius, normal, Jg):
     """Gap of the beam's capsule surface (radius ``tube`` about the centre line) to an obstacle, contact anywhere.
 

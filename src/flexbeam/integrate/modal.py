@@ -28,7 +28,12 @@ from .loop import PhaseRun
 
 OMEGA_RIGID_DEFAULT = 1e3  # [rad/s] weighs a rigid angle error when the beam has no flexible mode
 FIRST_STEP = 1e-5  # [s] first step of a phase (the controller grows it by up to 5x per step)
-_ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE = 0, 1, 2, 3, 4
+_ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED = 0, 1, 2, 3, 4, 5
+#: the kernel's info row (``phase.h``): [event kind, steps, rejected, node evaluations, event pair, phase start,
+#: rejections by cause (_REJECT_CAUSES, in order)]
+_INFO_T0, _INFO_REJECT = 5, 6
+_REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
+_INFO_SIZE = _INFO_REJECT + len(_REJECT_CAUSES)
 _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4}
 
 
@@ -156,6 +161,18 @@ class ModalDense:
         return t.ravel(), self._forces(pair).ravel()
 
 
+def stalled_message(phase: str, t1: float, h: float, info: np.ndarray) -> str:
+    """The failure of a phase that exhausted its step budget (``EFFORT_*`` in ``kernels/src/phase.c``): where it
+    stopped, how little its attempts advanced it and why its steps were rejected, the most frequent cause first."""
+    t0, steps, rejected = float(info[_INFO_T0]), int(info[1]), int(info[2])
+    causes = sorted(zip(info[_INFO_REJECT:], _REJECT_CAUSES), key=lambda c: -c[0])
+    why = ", ".join(f"{int(n)} by the {name}" for n, name in causes if n) or "none"
+    return (
+        f"no progress at t = {t1:.9g} s ({phase} phase): {steps + rejected} step attempts advanced the phase "
+        f"{t1 - t0:.3g} s from t = {t0:.9g} s, the step size now {h:.3g} s; {rejected} rejected ({why})"
+    )
+
+
 def gauss_nodes() -> tuple[np.ndarray, np.ndarray]:
     """The 4 Gauss-Legendre nodes and weights on (0, 1) of the collocation."""
     x, w = nm.leggauss(4)
@@ -219,7 +236,7 @@ class ModalStepper:
             rtol=self.rtol, atol=self.atol, max_step=min(self.max_step, phase.max_step), omega_rigid=self.omega_rigid,
             event_bits=sum(_EVENT_BITS[e] for e in phase.events), contacts=phase.buffer,
         )  # fmt: skip
-        info = np.zeros(5)
+        info = np.zeros(_INFO_SIZE)
         chunks = []
         capacity = 64
         while True:
@@ -240,4 +257,6 @@ class ModalStepper:
             failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_NONFINITE:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
+        elif code == _ADV_STALLED:
+            failure = stalled_message(phase.name, t1, float(state[1]), info)
         return PhaseRun(t1, y1, event, dense, int(info[1]), int(info[3]), failure, int(info[4]))

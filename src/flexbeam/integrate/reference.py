@@ -12,7 +12,11 @@ time, in the spirit of ``solve_ivp`` but with control over each step:
   subdivision, so that a grazing impact inside one step is not lost;
 * in free flight the next step is bounded from the state: P may travel at most a
   quarter of the obstacle's size, or half the gap, per step, so that P cannot pass
-  through an obstacle between two check points.
+  through an obstacle between two check points;
+* a phase that cannot make progress (its steps collapsing, e.g. on a right-hand side
+  that switches at every step) ends as a failure once its steps exceed
+  ``EFFORT_BASE + EFFORT_RATE r (t - t0)``, r the phase's characteristic rate
+  (:meth:`ReferenceStepper.rate`).
 
 The phase loop (:mod:`flexbeam.integrate.loop`) restarts it at every event.
 """
@@ -29,9 +33,15 @@ import numpy as np
 from ..model.system import BeamSystem
 from ..phases import ContactMode, EventKind, Phase
 from .loop import PhaseRun
+from .modal import OMEGA_RIGID_DEFAULT, ModalBasis
 
 CHECK_POINTS = 4
 _HERMITE_DEPTH = 3
+#: Bounded effort: a phase may take EFFORT_BASE + EFFORT_RATE r (t - t0) steps.  An explicit method needs about one
+#: step per 1 / omega_max (its stability bound); measured over the test suite (fast and slow) and the presets: at
+#: most 7547 steps in a phase and 5.6 per unit of r (t - t0); the bound is >= 18 times every phase's use.
+EFFORT_BASE = 2000
+EFFORT_RATE = 100.0
 
 
 @dataclass
@@ -187,6 +197,12 @@ class ReferenceStepper:
         self.system = system
         self.rtol, self.atol = rtol, atol
         self.max_step = max_step or math.inf
+        self.omega_max = float(np.max(ModalBasis.of(system).omega, initial=0.0))
+
+    def rate(self, phase: Phase) -> float:
+        """The phase's characteristic rate [1/s]: the linearised system's highest frequency (what limits an explicit
+        method's step; ``OMEGA_RIGID_DEFAULT`` for a rigid beam), or the phase's step bound if tighter."""
+        return max(self.omega_max, OMEGA_RIGID_DEFAULT, 1.0 / min(self.max_step, phase.max_step))
 
     def _events(self, phase: Phase) -> list[Event]:
         """Per pair the event its mode can end on: a free pair's impact, a pair under its law separating, a held
@@ -243,6 +259,7 @@ class ReferenceStepper:
         ts: list[float] = [t]
         pieces: list[Any] = []
         steps = 0
+        t0, rate = t, self.rate(phase)
         while solver.status == "running":
             ta = solver.t
             try:
@@ -278,6 +295,13 @@ class ReferenceStepper:
                 return self._result(t_stop, y, hit[1].kind, ts, pieces, steps, solver, pair=hit[1].pair)
             if limit is not None:
                 solver.max_step = min(cap, limit(tb, y))
+            if steps >= EFFORT_BASE + EFFORT_RATE * rate * (tb - t0) and solver.status == "running":
+                failure = (
+                    f"no progress at t = {tb:.9g} s ({phase.name} phase): {steps} steps advanced the phase "
+                    f"{tb - t0:.3g} s from t = {t0:.9g} s, the step size now {solver.step_size:.3g} s "
+                    f"({solver.nfev} evaluations of the right-hand side)"
+                )
+                return self._result(tb, y, None, ts, pieces, steps, solver, failure)
         return self._result(solver.t, y, None, ts, pieces, steps, solver)
 
     @staticmethod

@@ -240,7 +240,7 @@ static PyObject *py_advance(PyObject *self, PyObject *args) {
         model_from(&b[0], &m) || basis_from(&b[1], &bs))
         goto fail;
     int R = fb_record_size(bs.N, m.npairs);
-    if (LEN(b[3]) != (size_t)fb_state_buffer_size(bs.N, m.npairs) || LEN(b[4]) % R || LEN(b[5]) < 5 ||
+    if (LEN(b[3]) != (size_t)fb_state_buffer_size(bs.N, m.npairs) || LEN(b[4]) % R || LEN(b[5]) < FB_INFO_SIZE ||
         bs.N > FB_MAXN) {
         PyErr_SetString(PyExc_ValueError, "advance: array sizes do not match");
         goto fail;
