@@ -31,6 +31,8 @@ from ..phases import ContactMode, EventKind, Phase
 from .loop import PhaseRun
 
 CHECK_POINTS = 4
+#: exceptions of a step that end a phase as a numerical failure
+_FAILURES = (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError, ValueError, OverflowError)
 _HERMITE_DEPTH = 3
 
 
@@ -231,6 +233,16 @@ class ReferenceStepper:
         return out
 
     def advance(self, phase: Phase, t: float, y: np.ndarray, t_end: float) -> PhaseRun:
+        # an overflow or invalid operation (a case scaled beyond double precision) ends the phase as a failure with
+        # its time, as a non-finite state does on the compiled path, instead of a RuntimeWarning and NaN states
+        with np.errstate(over="raise", invalid="raise", divide="raise"):
+            try:
+                return self._advance(phase, t, y, t_end)
+            except _FAILURES as exc:
+                return PhaseRun(float(t), np.asarray(y, float).copy(), None, None, 0, 0,
+                                f"step failed at t = {t:.9g} s: {type(exc).__name__}: {exc}")  # fmt: skip
+
+    def _advance(self, phase: Phase, t: float, y: np.ndarray, t_end: float) -> PhaseRun:
         from scipy.integrate import DOP853  # imported here: the compiled path does not need scipy
 
         fun = self.system.rhs_function(phase.buffer)
@@ -247,7 +259,7 @@ class ReferenceStepper:
             ta = solver.t
             try:
                 msg = solver.step()
-            except (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError, ValueError) as exc:
+            except _FAILURES as exc:
                 return self._result(
                     ta,
                     y,
