@@ -30,8 +30,8 @@ an obstacle is taken to spend all of ``t_end`` in contact (a falling beam ends r
 seed's 2 s), at the upper end of the measured contact rates; tighter tolerances than the defaults scale the rates as
 (rtol_default / rtol)^(1/3) (measured: x8 in free flight and x4 in contact for 1e-9 against 1e-6), and
 ``solver.max_step`` bounds the step.  It overestimates short runs (the seed's 0.1 s: 8 MB of records estimated,
-0.15 MB held) and is within 3x-5x of long ones (the seed's 2 s: 0.16 GB estimated, 0.02 GB held); it exists to
-stop a run that would exhaust the machine (``solver.t_end = 1e9``: ~1e17 B), not to size one exactly.
+0.15 MB held) and is within ~9x of long ones (the seed's 2 s: 0.16 GB estimated, 0.019 GB held); it exists to
+stop a run that would exhaust the machine (``solver.t_end = 1e9``: 8e16 B), not to size one exactly.
 
 The output samples are counted twice.  Before the run, the samples every run has: all of ``t_end`` on the coarser
 of the two spacings (how long the beam stays in contact, where the fine spacing applies, only the run tells; the
