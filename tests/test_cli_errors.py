@@ -82,6 +82,15 @@ SET_CASES = [
     ("model.gravity=-9.81", "model.gravity", "greater than or equal to 0"),
     ("beam.poisson_ratio=-1", "beam.poisson_ratio", "greater than -1"),
     ("model.quadrature_points=3", "model.quadrature_points", ">= model.modes + 1"),
+    # found by the schema fuzz (tests/test_fuzz_case.py): values that overflowed, divided by zero or hung a run
+    ("beam.radius=1e300", "beam.radius", "section area S of inf"),
+    ("beam.radius=1e-300", "beam.radius", "section area S of 0"),
+    ("hub.radius=1e300", "hub.radius", "less than or equal to 1000"),
+    ("obstacle.radius=1e-300", "obstacle.radius", "at least 1e-06 m"),
+    ("model.gravity=1e300", "model.gravity", "less than or equal to 10000"),
+    ("initial.angle=1e300", "initial.angle", "less than or equal to 1000"),
+    ("initial.impact_velocity=nan", "initial.impact_velocity", "finite"),
+    ("contact.position=5e-324", "initial.impact_velocity", "needs a hub rate above 10000 rad/s"),
 ]
 
 
@@ -226,6 +235,19 @@ OBSTACLE_CASES = [
         "obstacles[0].centre",
         "overlaps obstacle",
     ),
+    # the entry's own fields are named by index, as --set takes them (not "obstacles.0.centre")
+    ({"kind": "sphere", "radius": 0.01}, "obstacles[0].centre", "required field is missing"),
+    (
+        {"kind": "half-plane", "centre": [0.3, -0.03], "normal": [1.0, 1.0], "contact": {"stiffness": 1e9}},
+        "obstacles[0].normal",
+        "unit vector",
+    ),
+    ({"kind": "sphere", "radius": 0.0, "centre": [0.3, -0.03]}, "obstacles[0].radius", "> 0 m"),
+    (
+        {"kind": "sphere", "radius": 0.01, "centre": [0.3, -0.03], "contact": {"postion": 0.3}},
+        "obstacles[0].contact.postion",
+        "did you mean position?",
+    ),
 ]
 
 
@@ -241,3 +263,45 @@ def test_more_than_seven_obstacles(tmp_path):
     data = seed_data()
     data["obstacles"] = [{"kind": "sphere", "radius": 0.001, "centre": [0.05 * k, -0.03]} for k in range(1, 9)]
     assert_one_line_error(flexbeam("run", str(write_toml(tmp_path / "c.toml", data)), "--json"), "obstacles", "7")
+
+
+# the start overlap, the memory estimate and the slender-beam range (issue 23): refused before the run, one line
+@pytest.mark.parametrize(
+    "case, assignment, field",
+    [
+        ("two-stops", "obstacles[0].centre=[0.585,0.0]", "obstacles[0].centre"),  # the upper stop inside the beam
+        ("seed-experiment", "obstacle.centre=[0.585,0.0]", "obstacle.centre"),  # deep inside the hemisphere
+    ],
+)
+def test_an_obstacle_overlapping_the_beam_at_the_start(case, assignment, field):
+    """The sphere's centre on the beam's centre line: it reaches r_s + c = 0.01 + 0.0145 m into the beam."""
+    r = flexbeam("run", case, "--json", "--set", assignment)
+    assert_one_line_error(r, field, "the beam starts 0.0245 m inside this obstacle", "x = 0.585 m")
+
+
+def test_a_run_too_long_for_the_memory(tmp_path):
+    r = flexbeam("run", "seed-experiment", "--json", "--set", "solver.t_end=1e9", "--out", str(tmp_path / "out"))
+    assert_one_line_error(r, "solver.t_end", "would hold about", "allowed here: solver.t_end <= ", "memory_limit")
+    assert not (tmp_path / "out").exists()
+
+
+def test_output_samples_too_many_for_the_memory_are_refused_before_anything_is_written(tmp_path):
+    """0.5 s of the seed runs within 130 MB, but its samples (178 000, most on the 0.2 us contact grid) need
+    ~150 MB: exit 2 after the run, before the output directory is made."""
+    sets = ("--set", "solver.t_end=0.5", "--set", "solver.memory_limit=1.3e8")
+    r = flexbeam("run", "seed-experiment", "--json", *sets, "--out", str(tmp_path / "out"))
+    assert_one_line_error(r, "solver.contact_sample_step", "output samples", "solver.memory_limit")
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_beam_too_thick_for_euler_bernoulli_theory():
+    r = flexbeam("run", "seed-experiment", "--json", "--set", "beam.radius=0.5")
+    assert_one_line_error(r, "beam.radius", "r/L = 0.7143", "r/L <= 0.217")
+
+
+def test_a_thick_beam_runs_with_one_warning_line():
+    """r/L = 0.071 (1.2 % above Timoshenko's first frequency): exit 0, the metrics on stdout, one stderr line."""
+    r = flexbeam("run", "seed-experiment", "--json", "--set", "beam.radius=0.05", "--set", "solver.t_end=1e-3")
+    assert r.returncode == 0, r.stderr
+    assert r.stderr.splitlines() == [r.stderr.strip()] and r.stderr.startswith("warning: beam.radius: r/L = 0.07143")
+    assert '"status": "success"' in r.stdout

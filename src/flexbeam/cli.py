@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import math
 import sys
+import warnings
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -22,7 +23,7 @@ try:  # typer >= 0.22 vendors click
 except ImportError:  # pragma: no cover - older typer with click as a dependency
     from click import exceptions as click_exc
 
-from .errors import FlexbeamError, ParameterError, SolverError
+from .errors import FlexbeamError, FlexbeamWarning, ParameterError, SolverError
 from .progress import StderrProgress
 from .registry import METHOD_NAMES
 
@@ -55,12 +56,13 @@ def _run_progress(t_end: float, label: str) -> StderrProgress:
     return StderrProgress(label, "s", total=t_end)
 
 
-def _simulate(case, method: str):
+def _simulate(case, method: str, outputs: bool = False):
+    """Run a case (``outputs``: its output samples will be written or drawn, so the memory estimate counts them)."""
     from .simulation import simulate
 
     progress = _run_progress(case.solver.t_end, f"{case.name} [{method}]")
     try:
-        return simulate(case, method, progress=progress)
+        return simulate(case, method, progress=progress, outputs=outputs)
     finally:
         progress.close()
 
@@ -75,7 +77,7 @@ def run(
 ) -> None:
     """Simulate one case and print its metrics."""
     c = _load(case, set_)
-    sol = _simulate(c, method)
+    sol = _simulate(c, method, outputs=out is not None)
     metrics = sol.metrics()
     if out is not None:
         from .report import write_run_outputs
@@ -436,7 +438,7 @@ def animate(
         result: Any = Path(source)
     else:
         c = _load(source, set_)
-        result = _simulate(c, method)
+        result = _simulate(c, method, outputs=True)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", VideoFallbackWarning)
         path = render(result, out, **options)
@@ -454,7 +456,23 @@ def _one_line(message: object) -> str:
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Console-script entry point: one-line errors with exit code 2 for bad input."""
+    """Console-script entry point: one-line errors with exit code 2 for bad input; flexbeam's warnings
+    (:class:`~flexbeam.errors.FlexbeamWarning`) as one line ``warning: ...`` on stderr, each once."""
+    with warnings.catch_warnings():
+        shown = warnings.showwarning
+
+        def show(message, category, filename, lineno, file=None, line=None) -> None:
+            if issubclass(category, FlexbeamWarning):
+                sys.stderr.write(f"warning: {_one_line(message)}\n")
+            else:
+                shown(message, category, filename, lineno, file, line)
+
+        warnings.simplefilter("default", FlexbeamWarning)  # whatever filters the caller set
+        warnings.showwarning = show
+        _main(argv)
+
+
+def _main(argv: list[str] | None) -> None:
     try:
         rc = app(args=argv, standalone_mode=False, prog_name="flexbeam")
         if isinstance(rc, int) and rc != 0:

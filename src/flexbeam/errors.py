@@ -5,6 +5,9 @@
 * :class:`ModelError` -- a request the model cannot represent (e.g. a Hertz stiffness
   for a contact whose geometry is not Hertzian).
 * :class:`SolverError` -- a numerical failure; carries the time at which it happened.
+
+Warnings: :class:`FlexbeamWarning` and its subclasses (:class:`SlenderBeamWarning`) -- accepted input that is near
+the edge of the model's validity.  The CLI prints each as one line ``warning: ...`` on stderr.
 """
 
 from __future__ import annotations
@@ -40,6 +43,15 @@ class SolverError(FlexbeamError, RuntimeError):
         self.time = time
         where = f" at t = {time:.6g} s" if time is not None else ""
         super().__init__(f"{message}{where}")
+
+
+class FlexbeamWarning(UserWarning):
+    """Base class of the warnings flexbeam emits on purpose (the CLI prints each as one line on stderr)."""
+
+
+class SlenderBeamWarning(FlexbeamWarning):
+    """The beam is thick enough for Euler-Bernoulli theory to be off by more than 1 % in its first bending
+    frequency (:mod:`flexbeam.parameters.slenderness`)."""
 
 
 def closest(name: str, choices: Iterable[str]) -> str:

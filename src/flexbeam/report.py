@@ -15,6 +15,7 @@ def write_run_outputs(sol: Solution, case: Case, out: str | Path) -> dict[str, P
     from .plotting import plot_contact_force, plot_normal_velocity
 
     out = Path(out)
+    _ = sol.time  # the output samples first: too many for the memory limit, they are refused before any file
     out.mkdir(parents=True, exist_ok=True)
     reference = reference_data(case.name)
     summary = {
@@ -103,7 +104,7 @@ def compare(
     for method in methods:
         progress = progress_factory(method) if progress_factory else None
         try:
-            solutions.append(simulate(case, method, progress=progress))
+            solutions.append(simulate(case, method, progress=progress, outputs=out is not None))
         finally:
             if progress is not None:
                 progress.close()

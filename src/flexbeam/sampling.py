@@ -17,6 +17,7 @@ import numpy as np
 from . import numerics as nm
 from .integrate.loop import RunResult, Segment
 from .kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
+from .memory import check_samples
 from .model.system import SUPPORT_COLUMNS, BeamSystem
 
 #: force evaluations per step when searching a contact's force for local maxima
@@ -31,6 +32,13 @@ def sample_grid(t0: float, t1: float, step: float) -> np.ndarray:
     grid = np.arange(k0, k1 + 1) * step if k1 >= k0 else np.empty(0)
     grid = grid[(grid > t0) & (grid < t1)]
     return np.concatenate(([t0], grid, [t1]))
+
+
+def sample_count(t0: float, t1: float, step: float) -> int:
+    """The number of samples :func:`sample_grid` gives (or at most 2 more), without building it."""
+    if t1 <= t0:
+        return 1
+    return max(0, math.floor(t1 / step) - math.floor(t0 / step)) + 2
 
 
 class RunSource:
@@ -64,6 +72,11 @@ class RunSource:
         """(time, phase name, arrays) over the whole run."""
         sysm = self.system
         n, nz = sysm.n, sysm.nz
+        counts = {True: 0, False: 0}  # on the contact spacing or not
+        fine = sysm.case.solver.contact_sample_step
+        for seg in self.segments:
+            counts[seg.phase.sample_step == fine] += sample_count(seg.t0, seg.t1, seg.phase.sample_step)
+        check_samples(sysm.case, sysm.pairs, counts[False], counts[True])  # the exact count, before evaluating
         times, phases, parts = [], [], []
         for seg in self.segments:
             t = sample_grid(seg.t0, seg.t1, seg.phase.sample_step)

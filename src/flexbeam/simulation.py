@@ -13,12 +13,14 @@ from . import numerics as nm
 from .errors import ParameterError
 from .integrate.loop import PhaseMethod, RunResult, Stop, run_phases
 from .integrate.modal import ModalStepper
+from .memory import check as check_memory
 from .methods.base import ImpactMethod
 from .methods.ccfm import CCFM
+from .model.clearance import penetrations
 from .model.system import BeamSystem
 from .parameters.case import Case
 from .parameters.io import dump_case
-from .registry import IMPACT_METHODS, METHOD_NAMES, impact_method
+from .registry import IMPACT_METHODS, METHOD_NAMES, check_method, impact_method
 from .sampling import RunSource
 from .solution import Solution
 
@@ -35,19 +37,48 @@ def initial_state(system: BeamSystem, case: Case) -> tuple[np.ndarray, dict[str,
       :func:`scipy.optimize.brentq` on the free flight) so that P reaches the obstacle at the impact velocity.
     """
     y, info = _initial_state(system, case)
-    for k, pair in enumerate(system.contact.pairs):  # no pair may start inside its obstacle
-        delta = system.gap(0.0, y, k)[0]
-        if delta < -START_INSIDE:
-            field = "obstacle" if pair.obstacle == 0 else f"obstacles[{pair.obstacle - 1}]"
-            raise ParameterError(
-                f"{field}.centre: the beam starts {-delta:.3g} m inside this obstacle (its contact point at "
-                f"x = {pair.position:g} m); move the obstacle or the initial state"
-            )
+    check_start(system, case, y)
     return y, info
 
 
-#: a contact point may start this far inside an obstacle (round-off of the placement) [m]
+#: a contact point, or any point of the beam, may start this far inside an obstacle [m]: the round-off of the
+#: placement and of the body's geometry (~1e-16 of the beam's reach, 1e-15 m here) with a wide margin
 START_INSIDE = 1e-9
+
+
+def check_start(system: BeamSystem, case: Case, y: np.ndarray) -> None:
+    """Refuse a start state ``y`` at t = 0 in which the beam reaches into an obstacle.
+
+    Each contact pair's gap (its point's, or for ``contact.anywhere`` the capsule's of ``kernels/src/nearest.c``)
+    must be >= -:data:`START_INSIDE`, and so must every obstacle's clearance from the whole body of the beam -- its
+    deformed centre line thickened by the surface offset, with flat end faces
+    (:func:`flexbeam.model.clearance.penetrations`).  A contact that starts exactly closed (gap 0, as the
+    ``impact`` initial kind places it) passes.
+
+    Raises
+    ------
+    ParameterError
+        Naming the obstacle's ``centre`` field, the depth and where along the beam.
+    """
+    for k, pair in enumerate(system.contact.pairs):  # no pair may start inside its obstacle
+        delta = system.gap(0.0, y, k)[0]
+        if delta < -START_INSIDE:
+            raise ParameterError(
+                f"{_obstacle_field(pair.obstacle)}.centre: the beam starts {-delta:.3g} m inside this obstacle (its "
+                f"contact point at x = {pair.position:g} m); move the obstacle or the initial state"
+            )
+    theta, _, q, _ = system.split(0.0, y)
+    for p in penetrations(system.beam, case.beam.surface_offset, theta, q, system.contact.obstacles):
+        if p.depth > START_INSIDE:
+            raise ParameterError(
+                f"{_obstacle_field(p.obstacle)}.centre: the beam starts {p.depth:.3g} m inside this obstacle, deepest "
+                f"at x = {p.x:.6g} m ({p.surface}); allowed: no overlap (a contact may start closed, to "
+                f"{START_INSIDE:g} m); move the obstacle or the initial state"
+            )
+
+
+def _obstacle_field(index: int) -> str:
+    return "obstacle" if index == 0 else f"obstacles[{index - 1}]"
 
 
 def _initial_state(system: BeamSystem, case: Case) -> tuple[np.ndarray, dict[str, float]]:
@@ -60,9 +91,7 @@ def _initial_state(system: BeamSystem, case: Case) -> tuple[np.ndarray, dict[str
     if init.kind == "impact":
         y = system.state(init.impact_angle, 0.0)
         J_theta = system.gap(0.0, y)[3][0]
-        if J_theta == 0.0:
-            raise ParameterError("initial.impact_velocity: P cannot move along the contact normal")
-        y = system.state(init.impact_angle, init.impact_velocity / J_theta)
+        y = system.state(init.impact_angle, init.impact_rate(J_theta))
         return y, {"impact_rate": float(y[system.n + 1])}
     angle = init.release_angle
     info: dict[str, float] = {}
@@ -119,8 +148,7 @@ def solve_release_angle(system: BeamSystem, case: Case) -> float:
     init = case.initial
     th_i = init.impact_angle
     y = system.state(th_i, 0.0)
-    J_theta = system.gap(0.0, y)[3][0]
-    rate = init.impact_velocity / J_theta
+    rate = init.impact_rate(system.gap(0.0, y)[3][0])
     b = system.beam
     if system.g <= 0.0 or b.m1 <= 0.0:
         raise ParameterError("initial.kind: 'release' needs gravity (model.gravity > 0)")
@@ -153,14 +181,23 @@ def simulate(
     case: Case,
     method: str = "ccfm",
     progress: Callable[[float], None] | None = None,
+    outputs: bool = False,
 ) -> Solution:
-    """Run ``case`` with an impact method and return the :class:`Solution`."""
+    """Run ``case`` with an impact method and return the :class:`Solution`.
+
+    Before it starts, the memory the run will hold is estimated (:func:`flexbeam.memory.estimate`; with
+    ``outputs``, its output samples included, for a caller that will write or plot them) and a run above
+    ``solver.memory_limit`` is refused with a :class:`~flexbeam.errors.ParameterError`.
+    """
+    check_method(method)  # an unknown method is named before anything else
+    check_memory(case, method, outputs)
     if method == "fem":
         if case.obstacle.support.compliant:
             raise ParameterError(
                 "obstacle.support: the finite-element reference (method 'fem') takes a rigidly "
                 "fixed obstacle only; omit obstacle.support.stiffness"
             )
+        initial_state(BeamSystem.from_case(case), case)  # the same start checks as the modal model's
         from .fem import simulate_fem
 
         return simulate_fem(case, progress=progress)

@@ -74,11 +74,12 @@ def unit_case(delta: float, modes: int = MODES, coupling: str = "first-order") -
         {
             "beam": {
                 "length": 1.0,
-                "density": 1.0,
-                "youngs_modulus": 1.0,
+                # rho S = 1, EI = 1 (exact: powers of two) on a slender section, sqrt(I/S)/L = 2^-8
+                "density": 2.0**8,
+                "youngs_modulus": 2.0**24,
                 "section": "general",
-                "area": 1.0,
-                "second_moment": 1.0,
+                "area": 2.0**-8,
+                "second_moment": 2.0**-24,
                 "half_depth": 0.0,
             },
             "hub": {"radius": delta},

@@ -201,11 +201,12 @@ def make_case(
         {
             "beam": {
                 "length": L,
-                "density": 2.0,
-                "youngs_modulus": 3.0,
+                # rho S = MU, E I = EI as before (scaled by powers of two) on a slender section (sqrt(I/S)/L = 0.016)
+                "density": 2.0 * 2.0**12,
+                "youngs_modulus": 3.0 * 2.0**24,
                 "section": "general",
-                "area": MU / 2.0,
-                "second_moment": EI / 3.0,
+                "area": MU / 2.0 / 2.0**12,
+                "second_moment": EI / 3.0 / 2.0**24,
                 "half_depth": 0.05,
             },
             "hub": {"radius": hub_radius, "inertia": hub_inertia},

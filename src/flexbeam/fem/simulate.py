@@ -24,10 +24,7 @@ ELEMENT = "2-node co-rotational Euler-Bernoulli (Crisfield 1991), exact-kinetic-
 def _impact_rate(beam: FemBeam, theta: float, velocity: float) -> float:
     """Rigid rotation rate of the straight beam giving P the normal velocity ``velocity``."""
     z, _ = beam.straight(theta, 0.0)
-    J_theta = beam.rotation_jacobian(z)
-    if J_theta == 0.0:
-        raise ParameterError("initial.impact_velocity: P cannot move along the contact normal")
-    return velocity / J_theta
+    return beam.case.initial.impact_rate(beam.rotation_jacobian(z), velocity)
 
 
 def release_state(beam: FemBeam, angle: float) -> tuple[np.ndarray, np.ndarray]:

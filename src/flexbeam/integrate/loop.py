@@ -123,7 +123,12 @@ class RunResult:
 def run_phases(
     method: PhaseMethod, stepper: Stepper, y0: np.ndarray, t_end: float, progress: Callable[[float], None] | None = None
 ) -> RunResult:
-    """Integrate from t = 0 to ``t_end``, switching phases at events as ``method`` decides."""
+    """Integrate from t = 0 to ``t_end``, switching phases at events as ``method`` decides.
+
+    A floating-point overflow, division by zero or invalid operation outside the compiled kernels (in the impulse
+    map, an event's root, a state scaled beyond double precision) ends the run with ``status = "failed"`` at its
+    time, keeping what was computed, instead of a RuntimeWarning and NaN states.
+    """
     wall0 = time.perf_counter()
     y0 = np.asarray(y0, float)
     segments: list[Segment] = []
@@ -138,32 +143,36 @@ def run_phases(
     if not np.array_equal(y, y0):  # a jump at the start: keep the state before it
         segments.append(Segment(method.free_phase(), 0.0, 0.0, y0.copy(), y0.copy()))
     stalled = 0
-    while t < t_end:
-        run = stepper.advance(phase, t, y, t_end)
-        steps += run.steps
-        nfev += run.nfev
-        phase_steps.append((phase.name, run.steps))
-        segments.append(Segment(phase, t, run.t1, y.copy(), run.y1.copy(), run.dense))
-        stalled = stalled + 1 if run.t1 == t else 0
-        t, y = run.t1, run.y1
-        if progress is not None:
-            progress(t)
-        if run.failure:
-            status, message = "failed", run.failure
-            break
-        if run.event is None:
-            break
-        events += 1
+    with np.errstate(over="raise", invalid="raise", divide="raise"):
         try:
-            phase, y = method.transition(phase, run.event, t, y, run.pair)
-        except Stop as stop:
-            status, message = stop.status, stop.message
-            break
-        except SolverError as err:
-            status, message = "failed", str(err)
-            break
-        if stalled > MAX_STALLED:
-            status, message = "failed", f"events keep recurring without progress at t = {t:.9g} s"
-            break
+            while t < t_end:
+                run = stepper.advance(phase, t, y, t_end)
+                steps += run.steps
+                nfev += run.nfev
+                phase_steps.append((phase.name, run.steps))
+                segments.append(Segment(phase, t, run.t1, y.copy(), run.y1.copy(), run.dense))
+                stalled = stalled + 1 if run.t1 == t else 0
+                t, y = run.t1, run.y1
+                if progress is not None:
+                    progress(t)
+                if run.failure:
+                    status, message = "failed", run.failure
+                    break
+                if run.event is None:
+                    break
+                events += 1
+                try:
+                    phase, y = method.transition(phase, run.event, t, y, run.pair)
+                except Stop as stop:
+                    status, message = stop.status, stop.message
+                    break
+                except SolverError as err:
+                    status, message = "failed", str(err)
+                    break
+                if stalled > MAX_STALLED:
+                    status, message = "failed", f"events keep recurring without progress at t = {t:.9g} s"
+                    break
+        except (FloatingPointError, OverflowError, ZeroDivisionError) as exc:
+            status, message = "failed", f"floating-point failure at t = {t:.9g} s: {exc}"
     wall = time.perf_counter() - wall0
     return RunResult(segments, status, message, t, wall, steps, nfev, stepper.name, events, phase_steps)

@@ -36,6 +36,8 @@ from .loop import PhaseRun
 from .modal import OMEGA_RIGID_DEFAULT, ModalBasis
 
 CHECK_POINTS = 4
+#: exceptions of a step that end a phase as a numerical failure
+_FAILURES = (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError, ValueError, OverflowError)
 _HERMITE_DEPTH = 3
 #: Bounded effort: a phase may take EFFORT_BASE + EFFORT_RATE r (t - t0) steps.  An explicit method needs about one
 #: step per 1 / omega_max (its stability bound); measured over the test suite (fast and slow) and the presets: at
@@ -247,6 +249,16 @@ class ReferenceStepper:
         return out
 
     def advance(self, phase: Phase, t: float, y: np.ndarray, t_end: float) -> PhaseRun:
+        # an overflow or invalid operation (a case scaled beyond double precision) ends the phase as a failure with
+        # its time, as a non-finite state does on the compiled path, instead of a RuntimeWarning and NaN states
+        with np.errstate(over="raise", invalid="raise", divide="raise"):
+            try:
+                return self._advance(phase, t, y, t_end)
+            except _FAILURES as exc:
+                return PhaseRun(float(t), np.asarray(y, float).copy(), None, None, 0, 0,
+                                f"step failed at t = {t:.9g} s: {type(exc).__name__}: {exc}")  # fmt: skip
+
+    def _advance(self, phase: Phase, t: float, y: np.ndarray, t_end: float) -> PhaseRun:
         from scipy.integrate import DOP853  # imported here: the compiled path does not need scipy
 
         fun = self.system.rhs_function(phase.buffer)
@@ -264,7 +276,7 @@ class ReferenceStepper:
             ta = solver.t
             try:
                 msg = solver.step()
-            except (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError, ValueError) as exc:
+            except _FAILURES as exc:
                 return self._result(
                     ta,
                     y,

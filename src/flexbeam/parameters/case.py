@@ -14,9 +14,10 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
+from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
 from ..contact.laws import LAW_NAMES, NEEDS_RESTITUTION
+from . import slenderness
 
 
 def _finite(value: float) -> float:
@@ -28,6 +29,28 @@ def _finite(value: float) -> float:
 Finite = Annotated[float, AfterValidator(_finite)]
 Positive = Annotated[float, Field(gt=0), AfterValidator(_finite)]
 NonNegative = Annotated[float, Field(ge=0), AfterValidator(_finite)]
+
+
+def _finite_first(value: object) -> object:
+    """NaN and +-inf named as such before a bounded field's range is checked."""
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError("must be a finite number")
+    return value
+
+
+def Bounded(lo: float, hi: float):  # noqa: N802 - a type
+    """A finite float in [lo, hi]."""
+    return Annotated[float, BeforeValidator(_finite_first), Field(ge=lo, le=hi)]
+
+
+#: an angle [rad]: within +-1000 rad (160 turns), where double precision still resolves 1e-13 rad; at 1e6 rad the
+#: integrators cannot resolve the motion of a step (measured: step-size underflow after 3.5e5 steps)
+Angle = Bounded(-1e3, 1e3)
+#: an angular rate [rad/s]: within +-1e4 rad/s (~1e5 rpm; a 1 m beam's tip would move at 10 km/s)
+MAX_RATE = 1e4
+Rate = Bounded(-MAX_RATE, MAX_RATE)
+#: the smallest sphere obstacle [m]
+MIN_SPHERE_RADIUS = 1e-6
 
 CONTACT_LAWS = LAW_NAMES  # the registry of contact laws (flexbeam.contact.laws.LAWS)
 
@@ -41,6 +64,10 @@ class Beam(_Section):
 
     ``section = "circle"`` takes ``radius``; ``section = "general"`` takes ``area``,
     ``second_moment`` and ``half_depth`` (centre line to the surface at the contact).
+    The beam must be slender (Euler-Bernoulli theory neglects shear and rotary inertia): a
+    first bending frequency more than 1 % above Timoshenko's is warned about, more than 10 %
+    refused -- for a solid circle with nu = 0.3, r/L above 0.066 and above 0.217
+    (:mod:`flexbeam.parameters.slenderness`).
     """
 
     length: Positive = Field(description="beam length L [m]")
@@ -64,7 +91,31 @@ class Beam(_Section):
             for name in ("area", "second_moment", "half_depth"):
                 if getattr(self, name) is None:
                     raise ValueError(f"beam.{name}: required when beam.section = 'general'")
+        self._representable()
+        slenderness.check(self)  # Euler-Bernoulli theory: warn above r/L ~ 0.066, refuse above ~ 0.22
         return self
+
+    def _representable(self) -> None:
+        """The derived section and beam properties must be positive finite doubles (a radius of 1e-300 m has an
+        area of 0, one of 1e300 m an infinite one); the message names the field that made each."""
+        size = "beam.radius" if self.section == "circle" else "beam.area"
+        derived = (
+            ("section area S", size, lambda: self.section_area),
+            ("second moment I", "beam.radius" if self.section == "circle" else "beam.second_moment",
+             lambda: self.section_second_moment),
+            ("mass per length rho S", "beam.density", lambda: self.line_density),
+            ("bending stiffness E I", "beam.youngs_modulus", lambda: self.bending_stiffness),
+            ("mass rho S L", "beam.length", lambda: self.mass),
+            ("first bending frequency sqrt(E I / rho S) / L^2", "beam.length",
+             lambda: math.sqrt(self.bending_stiffness / self.line_density) / self.length**2),
+        )  # fmt: skip
+        for what, name, value in derived:
+            try:
+                v = value()
+            except (OverflowError, ZeroDivisionError):
+                v = math.inf
+            if not 1e-300 < v < 1e300:
+                raise ValueError(f"{name}: gives a {what} of {v:.3g}, outside the positive doubles (1e-300, 1e300)")
 
     @property
     def section_area(self) -> float:
@@ -111,7 +162,9 @@ class Beam(_Section):
 class Hub(_Section):
     """Rigid hub at the revolute joint O: the beam root sits at ``radius`` along e1."""
 
-    radius: NonNegative = Field(0.0, description="hub radius r_h [m]")
+    # positions ~ r_h + L carry a round-off of ~1e-16 (r_h + L), and the beam's rotary inertia the difference
+    # (r_h + L)^3 - r_h^3: at most 1e3 m keeps both well resolved for a beam of a millimetre or more
+    radius: Bounded(0.0, 1e3) = Field(0.0, description="hub radius r_h [m] (at most 1e3 m)")
     inertia: NonNegative = Field(0.0, description="hub moment of inertia about O, J_h [kg m^2]")
 
 
@@ -136,7 +189,9 @@ class Model(_Section):
         "first-order",
         description="first-order keeps the coupling deformation u_x (centrifugal stiffening)",
     )
-    gravity: NonNegative = Field(9.81, description="gravitational acceleration g [m/s^2] (0 = off)")
+    gravity: Bounded(0.0, 1e4) = Field(
+        9.81, description="gravitational acceleration g [m/s^2] (0 = off; at most 1e4, ~1000 g)"
+    )
     quadrature_points: Annotated[int, Field(ge=0, le=4000)] = Field(
         0, description="Gauss points for the modal integrals (0 = automatic, else >= modes + 1)"
     )
@@ -167,7 +222,7 @@ class Drive(_Section):
     kind: Literal["free", "torque", "prescribed"] = "free"
     torque: Finite = Field(0.0, description="constant joint torque tau [N m] (kind = torque)")
     profile: Literal["constant-rate", "kane-spinup"] = "constant-rate"
-    spin_rate: Finite = Field(0.0, description="final spin rate Omega_s [rad/s]")
+    spin_rate: Rate = Field(0.0, description="final spin rate Omega_s [rad/s]")
     spin_up_time: Positive = Field(15.0, description="spin-up time T_s [s] (kane-spinup)")
 
 
@@ -218,11 +273,16 @@ class Obstacle(_Section):
     touches the contact point P with the beam straight at ``initial.impact_angle``
     (sphere directly beneath P along the beam normal; plane tangent there).
     ``support``: rigid, or a mass-spring-damper (see :class:`Support`).
+    No obstacle may overlap the beam's body at t = 0 (a contact may start closed, gap 0).
     """
 
     kind: Literal["sphere", "half-plane"] = "sphere"
     centre: tuple[Finite, Finite] | None = Field(None, description="obstacle centre [m]")
-    radius: NonNegative = Field(0.01, description="hemisphere radius r_s [m] (> 0 for a sphere)")
+    # the gap |r - c| - r_s of a sphere of radius r_s carries a round-off of ~1e-16 r_s: at most 1e3 m keeps it
+    # below 1e-12 m (a plane is the limit of a larger sphere)
+    radius: Bounded(0.0, 1e3) = Field(
+        0.01, description="hemisphere radius r_s [m] (> 0 for a sphere; at most 1e3 m: beyond, a half-plane)"
+    )
     normal: tuple[Finite, Finite] | None = Field(
         None, description="outward unit normal of a half-plane (default: beam normal at impact)"
     )
@@ -234,9 +294,13 @@ class Obstacle(_Section):
 
     @model_validator(mode="after")
     def _normal_is_unit(self) -> Obstacle:
-        if self.kind == "sphere" and self.radius == 0.0:
-            # the gap |r - c| - r_s of a point never closes, and its normal is undefined at contact
-            raise ValueError("obstacle.radius: must be > 0 m for a sphere obstacle (got 0)")
+        if self.kind == "sphere" and self.radius < MIN_SPHERE_RADIUS:
+            # the gap |r - c| - r_s of a point never closes, and its normal is undefined at contact; a radius below
+            # a micrometre has no Hertz stiffness in double precision (1e-300 m gives K = 0)
+            raise ValueError(
+                f"obstacle.radius: must be > 0 m for a sphere obstacle, at least {MIN_SPHERE_RADIUS:g} m "
+                f"(got {self.radius:g})"
+            )
         if self.normal is not None:
             norm = math.hypot(*self.normal)
             if not math.isclose(norm, 1.0, rel_tol=1e-9):
@@ -310,13 +374,30 @@ class Initial(_Section):
     """
 
     kind: Literal["impact", "release", "state"] = "impact"
-    impact_velocity: Finite = Field(
-        -0.4, description="normal velocity of P at first contact [m/s] (negative = approaching)"
+    impact_velocity: Bounded(-1e3, 1e3) = Field(
+        -0.4,
+        description="normal velocity of P at first contact [m/s] (negative = approaching; at most 1e3 m/s, "
+        "beyond elastic impact)",
     )
-    impact_angle: Finite = Field(0.0, description="hub angle at first contact [rad]")
-    release_angle: Finite | None = Field(None, description="release hub angle [rad]")
-    angle: Finite = Field(0.0, description="initial hub angle theta_0 [rad] (kind = state)")
-    rate: Finite = Field(0.0, description="initial hub rate theta'_0 [rad/s] (kind = state)")
+    impact_angle: Angle = Field(0.0, description="hub angle at first contact [rad]")
+    release_angle: Angle | None = Field(None, description="release hub angle [rad]")
+    angle: Angle = Field(0.0, description="initial hub angle theta_0 [rad] (kind = state)")
+    rate: Rate = Field(0.0, description="initial hub rate theta'_0 [rad/s] (kind = state)")
+
+    def impact_rate(self, J_theta: float, velocity: float | None = None) -> float:
+        """The hub rate giving P the normal velocity ``velocity`` (default ``impact_velocity``) when P moves
+        ``J_theta`` m per radian along its normal; a one-line ParameterError when that needs more than
+        :data:`MAX_RATE` (P at or next to the joint)."""
+        from ..errors import ParameterError
+
+        v = self.impact_velocity if velocity is None else velocity
+        J_theta = float(J_theta)
+        if not abs(v) <= MAX_RATE * abs(J_theta):
+            raise ParameterError(
+                f"initial.impact_velocity: P (contact.position) moves {abs(J_theta):.3g} m per radian along the "
+                f"contact normal, so {v:g} m/s needs a hub rate above {MAX_RATE:g} rad/s"
+            )
+        return v / J_theta
 
     @model_validator(mode="after")
     def _approaching(self) -> Initial:
@@ -334,6 +415,9 @@ class Solver(_Section):
     obstacle and CCFM on a compliant ``obstacle.support``; constrained phases against a
     compliant support (CCM, IMM's resting contact) take the reference path.
     ``"reference"``: scipy's DOP853, event-driven (``rtol``/``atol``).
+
+    A run whose estimated memory (dense output, phases and, when they are written or drawn, output
+    samples; :func:`flexbeam.memory.estimate`) exceeds ``memory_limit`` is refused before it starts.
     """
 
     integrator: Literal["exponential", "reference"] = Field(
@@ -360,6 +444,11 @@ class Solver(_Section):
     baumgarte_frequency: NonNegative = Field(2000.0, description="CCM: Baumgarte stabilisation alpha = beta [1/s]")
     rest_velocity: NonNegative = Field(
         1e-6, description="IMM: impacts slower than this [m/s] start resting contact (Zeno)"
+    )
+    memory_limit: Positive | None = Field(
+        None,
+        description="largest memory a run may hold [B], estimated before it starts (omitted = half the "
+        "physical memory)",
     )
 
 
@@ -411,6 +500,14 @@ class Case(_Section):
     @model_validator(mode="after")
     def _consistent(self) -> Case:
         L = self.beam.length
+        rh, mu = self.hub.radius, self.beam.line_density
+        try:  # the rigid rotary inertia about O, J_h + mu ((r_h + L)^3 - r_h^3) / 3
+            inertia = self.hub.inertia + mu * ((rh + L) ** 3 - rh**3) / 3.0
+        except OverflowError:
+            inertia = math.inf
+        if not inertia < 1e300:
+            field = "hub.inertia" if self.hub.inertia >= 0.5 * inertia else "beam.density"
+            raise ValueError(f"{field}: gives a rotary inertia about O of {inertia:.3g} kg m^2, not a finite double")
         if not self.contact.position <= L:
             raise ValueError(
                 f"contact.position: must lie on the beam, 0 <= x_P <= beam.length = {L:g} m "

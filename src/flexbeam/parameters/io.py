@@ -71,9 +71,13 @@ def _format_validation_error(exc: ValidationError) -> str:
     msg = str(err["msg"])
     if msg.startswith("Value error, "):
         msg = msg[len("Value error, ") :]
-    loc = ".".join(str(p) for p in err["loc"])
+    loc = dotted_key(err["loc"])
+    where = err["loc"][:2]
+    if len(where) == 2 and where[0] == "obstacles" and isinstance(where[1], int) and msg.startswith("obstacle."):
+        # a check of [obstacle]'s model run on an [[obstacles]] entry: name the entry's field
+        return f"obstacles[{where[1]}]." + msg[len("obstacle.") :]
     if err["type"] == "extra_forbidden":
-        return unknown_field_message([str(p) for p in err["loc"]], isinstance(err.get("input"), dict))
+        return unknown_field_message(key_parts(err["loc"]), isinstance(err.get("input"), dict))
     if err["type"] == "missing":
         return f"{loc}: required field is missing"
     if loc and not msg.startswith(loc.split(".")[0] + "."):
@@ -84,6 +88,23 @@ def _format_validation_error(exc: ValidationError) -> str:
 
 
 _INDEXED = re.compile(r"^(\w+)\[(\d+)\]$")
+
+
+def key_parts(loc: tuple) -> list[str]:
+    """A validation error's location as the parts of the dotted key ``--set`` takes: ``("obstacles", 0, "centre")``
+    -> ``["obstacles[0]", "centre"]``."""
+    parts: list[str] = []
+    for part in loc:
+        if isinstance(part, int) and parts:
+            parts[-1] += f"[{part}]"
+        else:
+            parts.append(str(part))
+    return parts
+
+
+def dotted_key(loc: tuple) -> str:
+    """A validation error's location as the dotted key ``--set`` takes: ``"obstacles[0].centre"``."""
+    return ".".join(key_parts(loc))
 
 
 def _split(part: str) -> tuple[str, int | None]:
