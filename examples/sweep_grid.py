@@ -28,7 +28,9 @@ import flexbeam as fb
 GRID = {"contact.stiffness": [2e9, 4e9], "initial.impact_velocity": [-0.2, -0.4]}
 RIGID_FIRST_CONTACT = {"model.modes": 0, "model.gravity": 0.0, "solver.t_end": 2e-3}
 
-with Client(processes=False, n_workers=1, threads_per_worker=1, dashboard_address=None) as client:
+# (no dashboard, and the scheduler's HTTP endpoints on a free port: 8787 may be taken by another cluster)
+CLUSTER = {"processes": False, "n_workers": 1, "threads_per_worker": 1, "dashboard_address": None}
+with Client(**CLUSTER, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"}) as client:
     ds = fb.sweep("seed-experiment", grid=GRID, overrides=RIGID_FIRST_CONTACT, scheduler=client)
 
 # %%
