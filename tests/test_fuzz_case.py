@@ -16,6 +16,7 @@ why) or 2 (bad input: exactly one line on stderr naming a field), never with a t
 from __future__ import annotations
 
 import contextlib
+import copy
 import io
 import math
 import signal
@@ -150,7 +151,7 @@ def value_for(draw, ann: Any, old: Any) -> Any:
         factor = draw(st.sampled_from([0.0, 0.5, 0.9, 1.1, 2.0, -1.0, 10.0, 1e3]))
         return type(old)(old * factor) if math.isfinite(old * factor) else old
     if kind == "bad":
-        return draw(st.sampled_from(BAD))
+        return draw(st.sampled_from(BAD).map(copy.deepcopy))
     if kind == "delete":
         return _DELETE
     return draw(typed(ann))
@@ -166,10 +167,13 @@ def cases(draw) -> tuple[dict, list[str]]:
             path, ann = draw(st.sampled_from(CASE_LEAVES))
             _set(data, path, draw(value_for(ann, _get(data, path))))
         elif what == "obstacles":
-            entries = st.one_of(section(ExtraObstacle), st.sampled_from(BAD))
+            entries = st.one_of(section(ExtraObstacle), st.sampled_from(BAD).map(copy.deepcopy))
             data["obstacles"] = draw(st.lists(entries, max_size=9))
         elif what == "obstacle-field" and isinstance(data.get("obstacles"), list) and data["obstacles"]:
-            entry = draw(st.sampled_from([e for e in data["obstacles"] if isinstance(e, dict)] or [{}]))
+            dicts = [i for i, e in enumerate(data["obstacles"]) if isinstance(e, dict)]
+            if not dicts:
+                continue
+            entry = data["obstacles"][draw(st.sampled_from(dicts))]
             path, ann = draw(st.sampled_from(OBSTACLE_LEAVES))
             _set(entry, path, draw(value_for(ann, _get(entry, path))))
         elif what == "unknown":
@@ -178,7 +182,7 @@ def cases(draw) -> tuple[dict, list[str]]:
             if table is None:
                 data[key] = 1.0
             elif isinstance(data.get(table), dict):
-                data[table][key] = draw(st.sampled_from(BAD))
+                data[table][key] = draw(st.sampled_from(BAD).map(copy.deepcopy))
         else:
             data[draw(st.sampled_from([*Case.model_fields]))] = {}
     sets = []

@@ -125,12 +125,14 @@ def _penetration(k: int, ob: ObstacleGeometry, x: np.ndarray, lower: np.ndarray,
 
 def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Distances from point p to the segments [a_i, b_i] (rows) and the parameter in [0, 1] of the nearest point."""
-    ab = b - a
-    ll = np.einsum("ij,ij->i", ab, ab)
-    t = np.where(ll > 0.0, np.einsum("ij,ij->i", p - a, ab) / np.where(ll > 0.0, ll, 1.0), 0.0)
-    t = np.clip(t, 0.0, 1.0)
-    d = p - (a + t[:, None] * ab)
-    return np.hypot(d[:, 0], d[:, 1]), t
+    with np.errstate(over="ignore", invalid="ignore"):  # an obstacle ~1e300 m away: its distance is inf, not NaN
+        ab = b - a
+        ll = np.einsum("ij,ij->i", ab, ab)
+        t = np.where(ll > 0.0, np.einsum("ij,ij->i", p - a, ab) / np.where(ll > 0.0, ll, 1.0), 0.0)
+        t = np.clip(np.nan_to_num(t, nan=0.0), 0.0, 1.0)
+        d = p - (a + t[:, None] * ab)
+        dist = np.hypot(d[:, 0], d[:, 1])
+    return np.where(np.isnan(dist), np.inf, dist), t
 
 
 def _covered(p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> bool:
