@@ -69,8 +69,8 @@ from typing import Any
 import numpy as np
 
 import flexbeam as fb
+from flexbeam.integrate.phases import ContactMode
 from flexbeam.model.system import BeamSystem
-from flexbeam.phases import ContactMode
 from flexbeam.simulation import initial_state
 
 CASE = "seed-experiment"

@@ -13,18 +13,10 @@ from numpy.testing import assert_allclose
 from PIL import Image
 
 import flexbeam as fb
-from flexbeam.animation import (
-    History,
-    Scene,
-    VideoFallbackWarning,
-    animate,
-    auto_scale,
-    beam_shape,
-    frame_times,
-)
 from flexbeam.cli import main
 from flexbeam.errors import ModelError
 from flexbeam.model.system import BeamSystem
+from flexbeam.views.animation import History, Scene, VideoFallbackWarning, animate, auto_scale, beam_shape, frame_times
 
 SMALL = {"model.modes": 2, "solver.t_end": 2e-3}
 CLI_SMALL = ["--set", "model.modes=2", "--set", "solver.t_end=0.002", "--frames", "10", "--size", "160x120"]
@@ -289,7 +281,7 @@ def two_stops_run():
 def test_two_stops_animation_draws_every_obstacle_and_each_pairs_force(two_stops_run, tmp_path):
     """Every obstacle is drawn (one artist each), each pair has its contact point and its force at the frames
     (the first pair's is ``force``), and the GIF has the frames asked."""
-    from flexbeam.animation import FrameRenderer
+    from flexbeam.views.animation import FrameRenderer
 
     sol = two_stops_run
     scene = Scene.build(History.load(sol), None, 8, 0.5, "contact", "auto")

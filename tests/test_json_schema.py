@@ -12,7 +12,7 @@ from jsonschema import Draft202012Validator
 
 import flexbeam as fb
 from flexbeam.cli import main
-from flexbeam.metrics import METRICS
+from flexbeam.results.metrics import METRICS
 from flexbeam.schemas import run_schema
 
 COUNTS = ("contacts", "contact_records", "micro_impacts", "chatter_episodes")

@@ -1,9 +1,10 @@
 """The public namespace: ``dir()`` of flexbeam and of each of its packages shows its public API (``__all__``), not
 the helper names its ``__init__`` binds (``annotations``, ``Any``, ``TYPE_CHECKING``, private aliases).
 
-Submodules are not listed (``flexbeam.solution``, ``flexbeam.errors``, ``flexbeam.metrics``, ``flexbeam.schemas``,
-...): a user imports them by name.  A package without ``__all__`` (``flexbeam.model``, ``flexbeam.methods``, ...)
-is only a folder of submodules: its ``dir()`` may show the submodules imported so far, and nothing else.
+Submodules are not listed (``flexbeam.results.solution``, ``flexbeam.errors``, ``flexbeam.results.metrics``,
+``flexbeam.schemas``, ...): a user imports them by name.  A package without ``__all__`` (``flexbeam.model``,
+``flexbeam.methods``, ...) is only a folder of submodules: its ``dir()`` may show the submodules imported so far,
+and nothing else.
 """
 
 from __future__ import annotations

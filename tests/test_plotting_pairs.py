@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 
 import flexbeam as fb
-from flexbeam import plotting
-from flexbeam.display import solution_html
+from flexbeam.views import plotting
+from flexbeam.views.display import solution_html
 
 
 @pytest.fixture(scope="module")

@@ -20,12 +20,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from ._namespace import public_dir
-from .errors import FlexbeamError, ModelError, ParameterError, SolverError
-from .parameters import Case, builtin_cases, dump_case, load_case
-
-__version__ = "0.1.0"
-
 # ``sweep`` and ``calibrate`` are both submodules and functions of the package.  The
 # submodules are imported here (they are light: Dask, xarray and scipy.optimize are
 # imported when used) so that the functions defined below are what ``fb.sweep`` and
@@ -33,12 +27,17 @@ __version__ = "0.1.0"
 # the package attribute to the module.
 from . import calibrate as _calibrate_module
 from . import sweep as _sweep_module
+from ._namespace import public_dir
+from .errors import FlexbeamError, ModelError, ParameterError, SolverError
+from .parameters import Case, builtin_cases, dump_case, load_case
+from .version import __version__
+from .views import accessor as _views  # noqa: F401 - registers Solution.plot, .animate and the notebook display
 
 if TYPE_CHECKING:
     import xarray as xr
 
     from .calibrate import Calibration
-    from .solution import Solution
+    from .results.solution import Solution
 
 
 def simulate(case: Case | str, method: str = "ccfm", **overrides: Any) -> Solution:

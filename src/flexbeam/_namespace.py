@@ -9,7 +9,7 @@ from typing import Any
 def public_dir(namespace: dict[str, Any]) -> Callable[[], list[str]]:
     """A module ``__dir__`` (PEP 562) for the package whose globals are ``namespace``: its ``__all__`` and its
     dunders, not the helper names its ``__init__`` binds (``annotations``, ``Any``, ``TYPE_CHECKING``, private
-    aliases) nor its submodules, which stay importable by name (``import flexbeam.solution``).
+    aliases) nor its submodules, which stay importable by name (``import flexbeam.results.solution``).
 
     Use as the last line of an ``__init__``: ``__dir__ = public_dir(globals())``.
     """

@@ -80,11 +80,11 @@ def run(
     sol = _simulate(c, method, outputs=out is not None)
     metrics = sol.metrics()
     if out is not None:
-        from .report import write_run_outputs
+        from .views.report import write_run_outputs
 
         write_run_outputs(sol, c, out)
     if json_:
-        from .solution import metrics_json
+        from .results.files import metrics_json
 
         typer.echo(metrics_json(metrics))
     else:
@@ -152,8 +152,8 @@ def compare(
 ) -> None:
     """Run CCFM, CCM and the FE reference on one case; figures and a table against the paper."""
     from .parameters.io import reference_data
-    from .report import compare as run_compare
-    from .report import markdown_table
+    from .views.report import compare as run_compare
+    from .views.report import markdown_table
 
     c = _load(case, set_)
     chosen = tuple(m.strip() for m in methods.split(",") if m.strip())
@@ -162,7 +162,7 @@ def compare(
             raise ParameterError(f"--methods: unknown method '{m}'; allowed: {', '.join(METHOD_NAMES)}")
     solutions, rows = run_compare(c, out, chosen, lambda m: _run_progress(c.solver.t_end, f"{c.name} [{m}]"))
     if json_:
-        from .solution import jsonable
+        from .results.files import jsonable
 
         typer.echo(json.dumps(jsonable(rows), indent=2))
     else:
@@ -302,7 +302,7 @@ def sweep(
     info = summary(ds)
     info["result"] = str(out / "result.nc")
     if json_:
-        from .solution import jsonable
+        from .results.files import jsonable
 
         typer.echo(json.dumps(jsonable(info), indent=2))
     else:
@@ -420,8 +420,8 @@ def animate(
     contacts."""
     import warnings
 
-    from .animation import VideoFallbackWarning, parse_scale, parse_size, parse_window
-    from .animation import animate as render
+    from .views.animation import VideoFallbackWarning, parse_scale, parse_size, parse_window
+    from .views.animation import animate as render
 
     options = {
         "scale": parse_scale(scale),

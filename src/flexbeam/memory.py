@@ -45,20 +45,16 @@ holds.
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 
 import numpy as np
 
 from .contact.setup import OBSTACLE_SPHERE, ContactSetup
 from .errors import ParameterError
-from .kernels import OUTPUT_COLUMNS, PAIR_COLUMNS, core
+from .kernels import core
 from .parameters.case import Case
-
-#: share of the physical memory a run may hold when ``solver.memory_limit`` is omitted
-DEFAULT_FRACTION = 0.5
-#: the limit when the physical memory cannot be read (no ``os.sysconf``) [B]
-FALLBACK_LIMIT = 8 * 2**30
+from .results.limits import memory_limit, sample_bytes
+from .results.limits import size_text as _size
 
 #: compiled (exponential) integrator: records per simulated second at the default tolerances
 RATE_FREE = 2.0e3
@@ -73,30 +69,8 @@ RECORD_OVERHEAD = 48.0
 SEGMENT_BYTES = 8192.0
 #: FE reference: bytes per step (one output row, peak while the Solution is built; more with per-pair rows)
 FE_STEP_BYTES, FE_PAIR_STEP_BYTES = 1200.0, 700.0
-#: output samples: bytes per float at peak (the arrays, plus the parts they are joined from; 816 B measured for the
-#: seed's 43 floats)
-SAMPLE_BYTES_PER_FLOAT = 20.0
 #: the tolerance scaling of the step rates: (rtol_default / rtol) ** RATE_EXPONENT (measured 0.19 - 0.31)
 RATE_EXPONENT = 1.0 / 3.0
-
-
-def physical_memory() -> float | None:
-    """The machine's physical memory [B] (``os.sysconf``), None where it cannot be read."""
-    try:
-        pages, size = os.sysconf("SC_PHYS_PAGES"), os.sysconf("SC_PAGE_SIZE")
-    except (AttributeError, ValueError, OSError):
-        return None
-    return float(pages * size) if pages > 0 and size > 0 else None
-
-
-def memory_limit(case: Case) -> tuple[float, str]:
-    """(limit [B], how it was set): ``solver.memory_limit``, else :data:`DEFAULT_FRACTION` of the physical memory."""
-    if case.solver.memory_limit is not None:
-        return float(case.solver.memory_limit), "solver.memory_limit"
-    phys = physical_memory()
-    if phys is None:
-        return float(FALLBACK_LIMIT), "the default limit (physical memory unknown)"
-    return DEFAULT_FRACTION * phys, f"{100 * DEFAULT_FRACTION:g} % of the physical memory, the default"
 
 
 @dataclass(frozen=True)
@@ -137,13 +111,6 @@ class MemoryEstimate:
             f"solver.t_end: a run of {self.t_end:g} s would hold about {_size(self.total)} in memory ({parts}), more "
             f"than the limit of {_size(self.limit)} ({self.limit_source}); {way}, or raise solver.memory_limit [B]"
         )
-
-
-def _size(nbytes: float) -> str:
-    for unit, scale in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
-        if nbytes >= scale:
-            return f"{nbytes / scale:.3g} {unit}"
-    return f"{nbytes:.3g} B"
 
 
 def reachable(case: Case, contact: ContactSetup | None = None) -> bool:
@@ -216,19 +183,6 @@ def estimate(case: Case, method: str = "ccfm", outputs: bool = False) -> MemoryE
     return MemoryEstimate(t_end, steps * record, phases * SEGMENT_BYTES, samples, limit, source, bound)
 
 
-def sample_bytes(case: Case, pairs: int, count: float) -> float:
-    """Bytes held at peak by ``count`` output samples of ``case`` (``pairs`` contact pairs)."""
-    n = case.model.modes
-    columns = len(OUTPUT_COLUMNS) - (0 if case.obstacle.support.compliant else 2)
-    per_pair = len(PAIR_COLUMNS) * pairs if pairs > 1 or _anywhere(case) else 0
-    floats = columns + 2 * n + len(case.output.measuring_points) + per_pair + 3  # + total energy, time, phase
-    return count * floats * SAMPLE_BYTES_PER_FLOAT
-
-
-def _anywhere(case: Case) -> bool:
-    return case.contact.anywhere or any(ob.contact.anywhere for ob in case.obstacles)
-
-
 def _fe_step(case: Case, contact: ContactSetup, touching: bool) -> float:
     """The FE reference's step: ``fem.time_step``, else h_c = t_c / STEPS_PER_CONTACT (in contact; twice that in
     free flight) from the rigid Hertz impact of the reference mass at the impact speed, as
@@ -268,19 +222,4 @@ def check(case: Case, method: str = "ccfm", outputs: bool = False) -> MemoryEsti
     return est
 
 
-def check_samples(case: Case, pairs: int, free: int, contact: int) -> None:
-    """Refuse to evaluate the output samples of a finished run -- ``free`` on the ``solver.sample_step`` grid,
-    ``contact`` on the ``solver.contact_sample_step`` one -- when they would exceed the memory limit: one line
-    naming the sample step that gives most of them."""
-    need = sample_bytes(case, pairs, free + contact)
-    limit, source = memory_limit(case)
-    if need > limit:
-        field = "solver.contact_sample_step" if contact > free else "solver.sample_step"
-        raise ParameterError(
-            f"{field}: the {free + contact} output samples of this run ({contact} in contact) would hold about "
-            f"{_size(need)}, more than the limit of {_size(limit)} ({source}); allowed here: a {field} "
-            f"about {need / limit:.3g} times coarser, or raise solver.memory_limit [B]"
-        )
-
-
-__all__ = ["MemoryEstimate", "check", "check_samples", "estimate", "memory_limit", "physical_memory", "reachable"]
+__all__ = ["MemoryEstimate", "check", "estimate", "reachable"]

@@ -8,7 +8,6 @@ from collections.abc import Callable
 
 import numpy as np
 
-from . import __version__
 from . import numerics as nm
 from .errors import ParameterError
 from .integrate.loop import PhaseMethod, RunResult, Stop, run_phases
@@ -21,8 +20,9 @@ from .model.system import BeamSystem
 from .parameters.case import Case
 from .parameters.io import dump_case
 from .registry import IMPACT_METHODS, METHOD_NAMES, check_method, impact_method
-from .sampling import RunSource
-from .solution import Solution
+from .results.arrays import RunSource
+from .results.solution import Solution
+from .version import __version__
 
 
 def initial_state(system: BeamSystem, case: Case) -> tuple[np.ndarray, dict[str, float]]:
@@ -239,7 +239,7 @@ def collect(
     run: RunResult, method: ImpactMethod, system: BeamSystem, case: Case, info: dict[str, float], stepper=None
 ) -> Solution:
     """The Solution of a run: the contact log is completed and the outputs evaluated on demand, from the dense
-    output (:class:`~flexbeam.sampling.RunSource`)."""
+    output (:class:`~flexbeam.results.arrays.RunSource`)."""
     exponential = isinstance(stepper, ModalStepper)
     provenance = {
         "flexbeam_version": __version__,

@@ -15,7 +15,7 @@ import flexbeam as fb
 from flexbeam.errors import ParameterError
 from flexbeam.fem import FemBeam, build_mesh, simulate_fem
 from flexbeam.parameters.case import Case
-from flexbeam.solution import PAIR_VARIABLES
+from flexbeam.results.records import PAIR_VARIABLES
 from tests.fem.cases import seed
 
 

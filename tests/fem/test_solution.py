@@ -11,7 +11,7 @@ import flexbeam as fb
 from flexbeam.errors import ParameterError
 from flexbeam.fem import FemBeam, build_mesh, simulate_fem
 from flexbeam.model.system import SUPPORT_COLUMNS
-from flexbeam.solution import PAIR_VARIABLES, VARIABLES
+from flexbeam.results.records import PAIR_VARIABLES, VARIABLES
 from tests.fem.cases import seed
 
 

@@ -1,4 +1,4 @@
-"""What one contact is (flexbeam.contact_counts): constructed record lists whose classification is known by
+"""What one contact is (flexbeam.results.counts): constructed record lists whose classification is known by
 construction, and the robustness of the counts to round-off."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from flexbeam.contact_counts import MICRO_IMPACT_FRACTION, classify_contacts
+from flexbeam.results.counts import MICRO_IMPACT_FRACTION, classify_contacts
 
 #: a relative change of one value in its last bits, and far more (float64 round-off is 1.1e-16)
 BITS = 1e-12

@@ -1,4 +1,4 @@
-"""Notebook reprs (flexbeam.display) and the compressed NetCDF output of a Solution."""
+"""Notebook reprs (flexbeam.views.display) and the compressed NetCDF output of a Solution."""
 
 from __future__ import annotations
 

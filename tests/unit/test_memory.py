@@ -15,7 +15,8 @@ import pytest
 import flexbeam as fb
 from flexbeam import memory
 from flexbeam.errors import ParameterError
-from flexbeam.sampling import sample_count
+from flexbeam.results import limits
+from flexbeam.results.arrays import sample_count
 
 
 def held(sol) -> tuple[float, int, int]:
@@ -47,7 +48,7 @@ def test_estimate_bounds_what_each_preset_holds(name, method):
     records, phases, samples = held(sol)
     assert records <= est.records
     assert phases * memory.SEGMENT_BYTES <= est.segments
-    assert est.samples <= memory.sample_bytes(case, sol.source.system.pairs, samples)
+    assert est.samples <= limits.sample_bytes(case, sol.source.system.pairs, samples)
 
 
 @pytest.mark.parametrize("t_end, factor", [(0.1, 100.0), (0.5, 60.0), (2.0, 15.0)])
@@ -135,17 +136,17 @@ def test_an_obstacle_out_of_reach_means_free_flight_rates():
 
 
 def test_default_limit_is_half_the_physical_memory(monkeypatch):
-    monkeypatch.setattr(memory, "physical_memory", lambda: 4e9)
-    limit, source = memory.memory_limit(fb.load_case("seed-experiment"))
+    monkeypatch.setattr(limits, "physical_memory", lambda: 4e9)
+    limit, source = limits.memory_limit(fb.load_case("seed-experiment"))
     assert limit == 2e9 and source.startswith("50 % of the physical memory")
-    monkeypatch.setattr(memory, "physical_memory", lambda: None)
-    assert memory.memory_limit(fb.load_case("seed-experiment"))[0] == memory.FALLBACK_LIMIT
+    monkeypatch.setattr(limits, "physical_memory", lambda: None)
+    assert limits.memory_limit(fb.load_case("seed-experiment"))[0] == limits.FALLBACK_LIMIT
 
 
 def test_the_physical_memory_is_read_from_sysconf():
     import os
 
-    phys = memory.physical_memory()
+    phys = limits.physical_memory()
     assert phys is None or phys == os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
 
 

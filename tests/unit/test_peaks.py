@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from flexbeam.solution import interior_maxima
+from flexbeam.results.peaks import interior_maxima
 
 
 def test_two_hertz_like_peaks_are_found_at_fine_sampling():

@@ -8,7 +8,7 @@ import math
 import pytest
 
 import flexbeam as fb
-from flexbeam.contact_counts import MICRO_IMPACT_FRACTION
+from flexbeam.results.counts import MICRO_IMPACT_FRACTION
 from tests.conftest import seed
 
 V0 = 0.4  # the seed case's approach speed of P [m/s]

@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 
 import flexbeam as fb
-from flexbeam.solution import Solution
+from flexbeam.results.solution import Solution
 from tests.conftest import seed
 
 TIGHT = {"solver__fast_rtol": 1e-10, "solver__fast_atol": 1e-13}

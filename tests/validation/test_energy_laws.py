@@ -31,7 +31,7 @@ import pytest
 
 import flexbeam as fb
 from flexbeam.contact.laws import LAWS
-from flexbeam.solution import Solution
+from flexbeam.results.solution import Solution
 from flexbeam.validation import law_restitution
 from tests.conftest import rigid_rod_mass_inertia, seed
 

@@ -40,7 +40,7 @@ aftermath for first-contact features, the data's span for histories) unless
 from __future__ import annotations
 
 from .._namespace import public_dir
-from ..metrics import FEATURES, FIRST_CONTACT_FEATURES, SECOND_PEAKS
+from ..results.metrics import FEATURES, FIRST_CONTACT_FEATURES, SECOND_PEAKS
 from .fields import Parameter, parse_fit
 from .fitting import calibrate
 from .measured import ROLES, Measured, parse_columns, parse_features, read_measured

@@ -8,9 +8,9 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ParameterError, closest
-from ..metrics import FEATURES
 from ..parameters.case import Case
 from ..parameters.io import load_case
+from ..results.metrics import FEATURES
 from .fields import Parameter, parse_fit
 from .measured import Measured, read_measured
 from .problem import ResidualProblem, covariance

@@ -7,16 +7,16 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from ..errors import ModelError, ParameterError, SolverError
-from ..metrics import FIRST_CONTACT_FEATURES, SECOND_PEAKS
 from ..parameters.case import Case
 from ..parameters.io import load_case
+from ..results.metrics import FIRST_CONTACT_FEATURES, SECOND_PEAKS
 from .fields import Parameter
 from .measured import Measured
 
 if TYPE_CHECKING:
     import numpy as np
 
-    from ..solution import Solution
+    from ..results.solution import Solution
 
 
 def covariance(jac: np.ndarray, residuals: np.ndarray) -> tuple[np.ndarray, float, int]:

@@ -15,7 +15,7 @@ from .measured import Measured
 if TYPE_CHECKING:
     import numpy as np
 
-    from ..solution import Solution
+    from ..results.solution import Solution
 
 
 @dataclass
@@ -59,14 +59,14 @@ class Calibration:
         return {p.key: float(v) for p, v in zip(self.parameters, self.values)}
 
     def _repr_html_(self) -> str:
-        """Notebook display (:func:`flexbeam.display.calibration_html`)."""
-        from ..display import calibration_html
+        """Notebook display (:func:`flexbeam.views.display.calibration_html`)."""
+        from ..views.display import calibration_html
 
         return calibration_html(self)
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON report (``flexbeam calibrate --json``)."""
-        from ..solution import jsonable
+        from ..results.files import jsonable
 
         m_fit, m_init = self.solution.metrics(), self.initial_solution.metrics()
         out: dict[str, Any] = {
@@ -122,7 +122,7 @@ class Calibration:
         """``calibration.json``, ``fitted.toml`` (runs with ``flexbeam run``), ``overlay.png``
         and, for histories, ``residuals.csv`` in the directory ``out``."""
         from ..parameters.io import dump_case
-        from ..solution import write_text_atomic
+        from ..results.files import write_text_atomic
 
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
@@ -145,7 +145,7 @@ class Calibration:
 
     def plot(self, path: str | Path) -> Path:
         """Measured data (or feature values) overlaid on the initial and fitted model."""
-        from ..plotting import pyplot, save_figure
+        from ..views.plotting import pyplot, save_figure
 
         plt = pyplot()
         label = ", ".join(f"{p.key} = {v:.4g}" for p, v in zip(self.parameters, self.values))

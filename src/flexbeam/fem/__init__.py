@@ -22,7 +22,7 @@ compliant ``obstacle.support``) raises a ParameterError.
 * :mod:`flexbeam.fem.integrator` -- generalized-alpha (Chung & Hulbert 1993) step;
 * :mod:`flexbeam.fem.eventdriven` -- the run with contact-event location and step sizes;
 * :mod:`flexbeam.fem.simulate` -- :func:`simulate_fem`, returning a
-  :class:`~flexbeam.solution.Solution`;
+  :class:`~flexbeam.results.solution.Solution`;
 * :mod:`flexbeam.fem.jit` -- the kernels' Numba compilation, cached on disk under a key of all
   the FE sources (an edit to any of them recompiles every kernel).
 
@@ -30,7 +30,7 @@ It shares no equations with the modal model: the contact force and the gap are
 evaluated by its own kernels; only the case's inputs are interpreted alike (the law and
 its chi(e), the Hertz stiffness, the obstacle placement, the drive profile
 :class:`flexbeam.model.drive.JointDrive`) and the results go into the same
-:class:`~flexbeam.solution.Solution`.
+:class:`~flexbeam.results.solution.Solution`.
 """
 
 from __future__ import annotations

@@ -43,7 +43,7 @@ import numpy as np
 
 from ..contact.hertz import rigid_hertz_impact
 from ..errors import SolverError
-from ..solution import ContactEvent
+from ..results.records import ContactEvent
 from .banded import BAND, fix_first_dof
 from .gap import hermite_dip
 from .integrator import FemIntegrator, NewtonFailure, State, StepResult

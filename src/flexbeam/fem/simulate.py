@@ -11,7 +11,8 @@ from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from ..parameters.case import Case
-from ..solution import PAIR_VARIABLES, Solution
+from ..results.records import PAIR_VARIABLES
+from ..results.solution import Solution
 from .contact_law import law_force, law_potential
 from .eventdriven import Record, RunInfo, run
 from .integrator import FemIntegrator, State, StepResult
@@ -256,8 +257,8 @@ def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) ->
     ParameterError
         For a case field the FE reference does not model (see :func:`check_supported`).
     """
-    from .. import __version__
     from ..parameters.io import dump_case
+    from ..version import __version__
 
     check_supported(case)
     beam = FemBeam.from_case(case)
@@ -278,7 +279,7 @@ def build_solution(
     version: str,
     case_toml: str,
 ) -> Solution:
-    """Assemble the :class:`~flexbeam.solution.Solution` from the recorded samples."""
+    """Assemble the :class:`~flexbeam.results.solution.Solution` from the recorded samples."""
     m = len(sampler.times)
     t = np.asarray(sampler.times, float)
     phase = np.asarray(sampler.phases, dtype=object)
@@ -361,7 +362,7 @@ def build_solution(
 
 def _pair_force(dense: list[Callable[[float], float] | None]) -> Callable[[float, int], float]:
     """(t, pair) -> F_k(t), pair k's force on its dense output (0 for a pair that has no contact): the
-    ``force_at`` of :class:`~flexbeam.solution.Solution`."""
+    ``force_at`` of :class:`~flexbeam.results.solution.Solution`."""
 
     def force_at(t: float, pair: int = 0) -> float:
         f = dense[pair]

@@ -2,7 +2,7 @@
 
 An integrator (a *stepper*: :class:`~flexbeam.integrate.modal.ModalStepper`, compiled and the default, or
 :class:`~flexbeam.integrate.reference.ReferenceStepper`, scipy's DOP853) advances one
-:class:`~flexbeam.phases.Phase` until one of its events or t_end and returns the phase's dense output; at each
+:class:`~flexbeam.integrate.phases.Phase` until one of its events or t_end and returns the phase's dense output; at each
 event the impact method decides the next phase and may make the velocities jump.  Every phase, and every jump,
 starts a new :class:`Segment`.  A numerical failure ends the run with ``status = "failed"`` and a message with
 the time and the cause; what was computed is kept.
@@ -18,7 +18,7 @@ from typing import Protocol
 import numpy as np
 
 from ..errors import SolverError
-from ..phases import EventKind, Phase
+from .phases import EventKind, Phase
 
 MAX_STALLED = 100  # consecutive zero-length phases before the run is declared stalled
 

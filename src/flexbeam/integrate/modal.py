@@ -23,8 +23,8 @@ import numpy as np
 from .. import numerics as nm
 from ..kernels import core, pack_basis, pack_controls
 from ..model.system import BeamSystem
-from ..phases import EventKind, Phase
 from .loop import PhaseRun
+from .phases import EventKind, Phase
 
 OMEGA_RIGID_DEFAULT = 1e3  # [rad/s] weighs a rigid angle error when the beam has no flexible mode
 FIRST_STEP = 1e-5  # [s] first step of a phase (the controller grows it by up to 5x per step)

@@ -31,9 +31,9 @@ from typing import Any
 import numpy as np
 
 from ..model.system import BeamSystem
-from ..phases import ContactMode, EventKind, Phase
 from .loop import PhaseRun
 from .modal import OMEGA_RIGID_DEFAULT, ModalBasis
+from .phases import ContactMode, EventKind, Phase
 
 CHECK_POINTS = 4
 #: exceptions of a step that end a phase as a numerical failure

@@ -113,7 +113,7 @@ def pack_model(
 
 
 def pack_contacts(modes: Sequence[int], parameters: np.ndarray, alpha: float = 0.0, beta: float = 0.0) -> np.ndarray:
-    """The contacts buffer: per pair its :class:`~flexbeam.phases.ContactMode` and law parameters
+    """The contacts buffer: per pair its :class:`~flexbeam.integrate.phases.ContactMode` and law parameters
     [K, n, chi/d'_0, C] (rows of ``parameters``), and the constraints' Baumgarte alpha, beta."""
     S = len(modes)
     out = np.empty(3 + 5 * S)

@@ -14,10 +14,10 @@ import numpy as np
 from .. import numerics as nm
 from ..contact.hertz import rigid_hertz_impact
 from ..integrate.loop import Stop
+from ..integrate.phases import ContactMode, EventKind, Phase
 from ..model.system import BeamSystem
 from ..parameters.case import Case
-from ..phases import ContactMode, EventKind, Phase
-from ..solution import ContactEvent
+from ..results.records import ContactEvent
 from .impulse import Jump
 
 #: steps per (estimated) contact duration at least: a contact phase's step is bounded by t_c / CONTACT_STEPS
@@ -31,7 +31,7 @@ class ImpactMethod:
     """Base of CCFM, CCM and IMM: the phases, the impact events and the transitions back to free flight.
 
     A phase says, pair by pair, whether the pair is free, under its law or held by its constraint
-    (:class:`~flexbeam.phases.Phase`); subclasses say what an impact of some pairs starts (:meth:`on_impact`).
+    (:class:`~flexbeam.integrate.phases.Phase`); subclasses say what an impact of some pairs starts (:meth:`on_impact`).
     """
 
     system: BeamSystem

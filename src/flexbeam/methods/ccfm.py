@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..phases import ContactMode, Phase
+from ..integrate.phases import ContactMode, Phase
 from .base import ImpactMethod
 
 

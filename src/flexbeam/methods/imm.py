@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..phases import ContactMode, Phase
+from ..integrate.phases import ContactMode, Phase
 from .base import ImpactMethod
 from .impulse import impulse_jump
 

@@ -87,8 +87,8 @@ class BeamSystem:
         return self.contacts()
 
     def contacts(self, modes=None, parameters=None, alpha: float = 0.0, beta: float = 0.0) -> np.ndarray:
-        """The kernels' contacts buffer: per pair its :class:`~flexbeam.phases.ContactMode` (default: free) and
-        law parameters [K, n, chi/d'_0, C] (rows), and the constraints' Baumgarte alpha and beta."""
+        """The kernels' contacts buffer: per pair its :class:`~flexbeam.integrate.phases.ContactMode` (default:
+        free) and law parameters [K, n, chi/d'_0, C] (rows), and the constraints' Baumgarte alpha and beta."""
         S = self.pairs
         modes = [0] * S if modes is None else [int(m) for m in modes]
         parameters = np.zeros((S, 4)) if parameters is None else parameters

@@ -1,7 +1,7 @@
 """JSON Schemas (draft 2020-12) of flexbeam's machine-readable output, shipped as package data.
 
 * ``run.schema.json`` -- the object that ``flexbeam run --json`` prints:
-  :meth:`flexbeam.solution.Solution.metrics` as strict JSON (null where a value is not defined), with its
+  :meth:`flexbeam.results.solution.Solution.metrics` as strict JSON (null where a value is not defined), with its
   ``pairs`` and ``events`` records (docs/usage.md, *The --json output*).
 
 A program in any language can read the file from the installed package (``flexbeam/schemas/run.schema.json``);

@@ -26,7 +26,7 @@ def run_case(data: dict[str, Any], method: str, histories: bool = False) -> tupl
     """
     import socket
 
-    from .. import __version__
+    from ..version import __version__
 
     t0 = time.perf_counter()
     record: dict[str, Any] = {

@@ -8,8 +8,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..errors import ParameterError
-from ..metrics import METRICS as REGISTRY
-from ..metrics import SCALARS
+from ..results.metrics import METRICS as REGISTRY
+from ..results.metrics import SCALARS
 from .planning import Plan, plain
 from .store import FAILED, Store
 
@@ -35,7 +35,7 @@ def build_dataset(
     import numpy as np
     import xarray as xr
 
-    from .. import __version__
+    from ..version import __version__
 
     keys = spec["cases"]
     if spec["kind"] == "grid":

@@ -69,8 +69,8 @@ def sweep(
         outside a field's range, ``"missing"`` when not computed), ``error`` and
         ``case_key``; attributes ``computed``, ``reused``, ``failed``, ``missing``.
     """
-    from .. import __version__
     from ..registry import METHOD_NAMES
+    from ..version import __version__
 
     if method not in METHOD_NAMES:
         raise ParameterError(

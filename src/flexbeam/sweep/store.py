@@ -48,7 +48,7 @@ class Store:
 
     def save(self, record: dict[str, Any], history: Any = None) -> None:
         """History first, then the record: the record's presence marks the case finished."""
-        from ..solution import atomic_path, jsonable, write_text_atomic
+        from ..results.files import atomic_path, jsonable, write_text_atomic
 
         key = record["key"]
         if history is not None:
@@ -57,7 +57,7 @@ class Store:
         write_text_atomic(self.record_path(key), json.dumps(jsonable(record), indent=1, sort_keys=True))
 
     def write_manifest(self, spec: dict[str, Any]) -> None:
-        from ..solution import jsonable, write_text_atomic
+        from ..results.files import jsonable, write_text_atomic
 
         write_text_atomic(self.path / "sweep.json", json.dumps(jsonable(spec), indent=1))
 
@@ -68,7 +68,7 @@ class Store:
             raise ParameterError(f"store: no sweep in '{self.path}' (sweep.json missing or unreadable)") from None
 
     def write_result(self, ds: xr.Dataset) -> Path:
-        from ..solution import atomic_path
+        from ..results.files import atomic_path
 
         path = self.path / "result.nc"
         with atomic_path(path) as tmp:

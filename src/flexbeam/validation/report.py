@@ -89,7 +89,7 @@ def _fmt_err(x: float) -> str:
 
 def render(sections: list[Section], reduced: bool, seconds: float) -> str:
     """The Markdown page."""
-    from .. import __version__
+    from ..version import __version__
 
     mode = "reduced" if reduced else "full"
     stamp = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")

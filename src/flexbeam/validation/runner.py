@@ -27,7 +27,7 @@ def run_validation(
 
     Figures go to ``out/figures``; every file is written atomically (temporary file, rename).
     """
-    from ..solution import write_text_atomic
+    from ..results.files import write_text_atomic
 
     figdir = None if out is None else Path(out) / "figures"
     if figdir is not None:

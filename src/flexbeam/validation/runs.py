@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from ..parameters.case import Case
-    from ..solution import Solution
+    from ..results.solution import Solution
 
 
 def preset(name: str, **overrides: Any) -> Case:

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...plotting import pyplot, save_figure
+from ...views.plotting import pyplot, save_figure
 from ..references import PUBLISHED_ROOTS, ROTATING_DATA, published_rotating_values, reference_flapwise
 from ..report import Row, Section
 

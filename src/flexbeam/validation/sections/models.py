@@ -42,7 +42,7 @@ def section_fem(reduced: bool, figdir: Path | None) -> Section:
         "tuned to those numbers (see README)."
     )
     if figdir is not None:
-        from ...plotting import plot_contact_force
+        from ...views.plotting import plot_contact_force
 
         plot_contact_force(
             [modal[12], fem],
@@ -146,7 +146,7 @@ def section_kane(reduced: bool, figdir: Path | None) -> Section:
         "modes (2 modes: -0.5735 m, 5 modes: -0.5744 m at W = 6 rad/s)."
     )
     if figdir is not None:
-        from ...plotting import plot_tip_deflection
+        from ...views.plotting import plot_tip_deflection
 
         fo = [sol for sol, lab in plotted if lab.startswith("first")]
         lim = 2.0 * max(float(np.max(np.abs(sol["tip_deflection"]))) for sol in fo)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...plotting import pyplot, save_figure
+from ...views.plotting import pyplot, save_figure
 from ..references import HERTZ_DURATION_CONSTANT, law_restitution
 from ..report import Row, Section
 from ..runs import rod_mass_and_inertia, seed, simulate

@@ -9,7 +9,7 @@ after it), ``sensor`` (the first sensor pulse of a compliant obstacle support: p
 single peak (the limit of a vanishing shoulder).
 
 What counts as one contact (``contacts``, against ``contact_records``, ``micro_impacts`` and ``chatter_episodes``)
-is defined once, in :mod:`flexbeam.contact_counts` (docs/methods.md, *What one contact is*).
+is defined once, in :mod:`flexbeam.results.counts` (docs/methods.md, *What one contact is*).
 """
 
 from __future__ import annotations

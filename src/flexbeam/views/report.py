@@ -5,9 +5,10 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from .parameters.case import Case
-from .parameters.io import reference_data
-from .solution import Solution, jsonable, write_text_atomic
+from ..parameters.case import Case
+from ..parameters.io import reference_data
+from ..results.files import jsonable, write_text_atomic
+from ..results.solution import Solution
 
 
 def write_run_outputs(sol: Solution, case: Case, out: str | Path) -> dict[str, Path]:
@@ -98,7 +99,7 @@ def compare(
     case: Case, out: str | Path | None = None, methods: tuple[str, ...] = COMPARE_METHODS, progress_factory=None
 ) -> tuple[list[Solution], list[dict]]:
     """Run ``case`` with several methods; write overlaid figures and the comparison table."""
-    from .simulation import simulate
+    from ..simulation import simulate
 
     solutions = []
     for method in methods:

@@ -1,7 +1,7 @@
 """Reading a result for an animation: :class:`History`, the samples of the hub angle, the modal coordinates and the
 contact force (and, with several contact pairs or a contact anywhere, each pair's force and contact point), the
-contact intervals and the case, from a :class:`~flexbeam.solution.Solution`, its
-:meth:`~flexbeam.solution.Solution.to_xarray` dataset or a saved ``result.nc``.
+contact intervals and the case, from a :class:`~flexbeam.results.solution.Solution`, its
+:meth:`~flexbeam.results.solution.Solution.to_xarray` dataset or a saved ``result.nc``.
 """
 
 from __future__ import annotations
@@ -13,11 +13,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 
 if TYPE_CHECKING:
-    from ..parameters.case import Case
-    from ..solution import Solution
+    from ...parameters.case import Case
+    from ...results.solution import Solution
 
 
 @dataclass
@@ -43,7 +43,7 @@ class History:
 
     @classmethod
     def from_solution(cls, sol: Solution, case: Case | None = None) -> History:
-        """The arrays and contact log of a :class:`~flexbeam.solution.Solution`."""
+        """The arrays and contact log of a :class:`~flexbeam.results.solution.Solution`."""
         case = case if case is not None else _case_from_toml(sol.provenance.get("case_toml"))
         support = sol.arrays.get("support_displacement")
         pair_force, pair_position = (sol.arrays.get(name) for name in ("pair_contact_force", "pair_contact_position"))
@@ -62,7 +62,8 @@ class History:
 
     @classmethod
     def from_dataset(cls, ds: Any, case: Case | None = None) -> History:
-        """The variables of a result dataset (:meth:`~flexbeam.solution.Solution.to_xarray`, or ``result.nc``)."""
+        """The variables of a result dataset (:meth:`~flexbeam.results.solution.Solution.to_xarray`, or
+        ``result.nc``)."""
         for name in ("time", "theta", "q", "contact_force"):
             if name not in ds.variables:
                 raise ParameterError(f"result: the dataset has no variable '{name}' (not a flexbeam result)")
@@ -124,7 +125,7 @@ def _one_line(message: object) -> str:
 
 
 def _case_from_toml(text: Any) -> Case:
-    from ..parameters.io import load_case
+    from ...parameters.io import load_case
 
     if not isinstance(text, str) or not text:
         raise ParameterError("result: it records no case (provenance 'case_toml'); pass case=")

@@ -14,7 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from .solution import Solution, atomic_path
+from ..results.files import atomic_path
+from ..results.solution import Solution
 
 _STYLE = {"ccfm": "C0", "ccm": "C3", "imm": "C2", "fem": "C1"}
 #: colours of the further pairs of one run (its first pair keeps the method's colour)

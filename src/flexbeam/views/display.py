@@ -1,4 +1,4 @@
-"""Rich display in notebooks: HTML for a :class:`~flexbeam.solution.Solution` and a calibration.
+"""Rich display in notebooks: HTML for a :class:`~flexbeam.results.solution.Solution` and a calibration.
 
 Jupyter calls an object's ``_repr_html_``; those of ``Solution`` and ``Calibration`` are
 thin calls into this module.  Each gives a self-contained, well-formed HTML fragment
@@ -21,12 +21,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .sweep import METRICS
+from ..results.metrics import METRICS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from .solution import Solution
+    from ..results.solution import Solution
 
 #: metrics shown in a solution's table, in this order (when present and not NaN)
 SOLUTION_METRICS = (
@@ -160,13 +160,13 @@ def _metric_rows(metrics: Mapping[str, Any], names: Iterable[str]) -> list[tuple
         value = metrics.get(name)
         if value is None or (isinstance(value, float) and math.isnan(value)):
             continue
-        units = METRICS.get(name, ("", ""))[0]
+        units = METRICS[name].units if name in METRICS else ""
         rows.append((name, value, "" if units == "1" else units))
     return rows
 
 
 def solution_html(sol: Solution) -> str:
-    """HTML of a :class:`~flexbeam.solution.Solution`: status, metrics table, inline plot."""
+    """HTML of a :class:`~flexbeam.results.solution.Solution`: status, metrics table, inline plot."""
     m = sol.metrics()
     case = str(sol.provenance.get("case_name", ""))
     title = f"flexbeam Solution: {case}, {sol.method.upper()}" if case else f"flexbeam Solution ({sol.method.upper()})"

@@ -3,27 +3,27 @@ contact-force trace (one per contact pair, with several) with a moving cursor, r
 (Pillow) or an MP4 (ffmpeg).
 
 The beam's centre line at a time comes from the modal coordinates q and the hub angle phi of the result
-(:func:`~flexbeam.animation.geometry.beam_shape`, the kinematics of ``docs/formulation.md``).  Its deflection --
+(:func:`~flexbeam.views.animation.geometry.beam_shape`, the kinematics of ``docs/formulation.md``).  Its deflection --
 micrometres to millimetres against a beam of a metre -- is drawn magnified by a stated factor about a rigid
 reference line, the large overall motion at its true scale.  The frames are placed non-uniformly in time
-(:func:`~flexbeam.animation.geometry.frame_times`): a fixed share of them inside the contacts, the rest at a
+(:func:`~flexbeam.views.animation.geometry.frame_times`): a fixed share of them inside the contacts, the rest at a
 uniform rate in free flight, so the animation runs in slow motion through each contact; every frame shows the
 simulated time and the slow-motion factor.
 
 MP4 needs ``imageio-ffmpeg`` (``pip install "flexbeam[video]"``), whose wheel ships an ffmpeg binary; without it
-an MP4 request writes a GIF next to it and warns (:class:`~flexbeam.animation.writers.VideoFallbackWarning`).
+an MP4 request writes a GIF next to it and warns (:class:`~flexbeam.views.animation.writers.VideoFallbackWarning`).
 Matplotlib is used through its object API on the Agg canvas (no pyplot state).
 
-The entry point is :func:`animate` (also :meth:`flexbeam.solution.Solution.animate` and ``flexbeam animate``),
+The entry point is :func:`animate` (also :meth:`flexbeam.results.solution.Solution.animate` and ``flexbeam animate``),
 with the command line's parsers :func:`parse_window`, :func:`parse_size` and :func:`parse_scale`.  The work is
 done in the submodules, whose public names are importable from here too:
 
-- :mod:`~flexbeam.animation.geometry` -- what a frame shows and when: the beam's shape, the deflection's
+- :mod:`~flexbeam.views.animation.geometry` -- what a frame shows and when: the beam's shape, the deflection's
   reference line and magnification, the frame times;
-- :mod:`~flexbeam.animation.history` -- reading a result (a Solution, a dataset or a ``result.nc``);
-- :mod:`~flexbeam.animation.scene` -- the numbers each frame draws;
-- :mod:`~flexbeam.animation.renderer` -- drawing them with Matplotlib;
-- :mod:`~flexbeam.animation.writers` -- writing the frames to a GIF or an MP4.
+- :mod:`~flexbeam.views.animation.history` -- reading a result (a Solution, a dataset or a ``result.nc``);
+- :mod:`~flexbeam.views.animation.scene` -- the numbers each frame draws;
+- :mod:`~flexbeam.views.animation.renderer` -- drawing them with Matplotlib;
+- :mod:`~flexbeam.views.animation.writers` -- writing the frames to a GIF or an MP4.
 """
 
 from __future__ import annotations
@@ -36,8 +36,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._namespace import public_dir
-from ..errors import ParameterError
+from ..._namespace import public_dir
+from ...errors import ParameterError
 from .geometry import REFERENCES, auto_scale, beam_shape, coupling_matrices, frame_times
 from .geometry import TARGET_DEFLECTION as TARGET_DEFLECTION
 from .history import History
@@ -47,8 +47,8 @@ from .scene import Scene
 from .writers import FrameProgress, GifSink, Mp4Sink, VideoFallbackWarning, write_animation
 
 if TYPE_CHECKING:
-    from ..parameters.case import Case
-    from ..solution import Solution
+    from ...parameters.case import Case
+    from ...results.solution import Solution
 
 #: suffixes :func:`animate` writes
 SUFFIXES = (".gif", ".mp4")
@@ -115,15 +115,16 @@ def animate(
     Parameters
     ----------
     result
-        A :class:`~flexbeam.solution.Solution`, its :meth:`~flexbeam.solution.Solution.to_xarray` dataset, or
-        the path of a saved ``result.nc`` (any method but ``fem``, whose result has no modal coordinates).
+        A :class:`~flexbeam.results.solution.Solution`, its
+        :meth:`~flexbeam.results.solution.Solution.to_xarray` dataset, or the path of a saved ``result.nc``
+        (any method but ``fem``, whose result has no modal coordinates).
     out
         Output file; its suffix picks the format: ``.gif`` (Pillow) or ``.mp4`` (H.264 by the ffmpeg of
         ``imageio-ffmpeg``; without it a ``.gif`` of the same name is written and a
-        :class:`~flexbeam.animation.writers.VideoFallbackWarning` issued).  Written atomically.
+        :class:`~flexbeam.views.animation.writers.VideoFallbackWarning` issued).  Written atomically.
     scale
         Deflection magnification, or ``"auto"``: the largest deflection over the frames is drawn as 11-12 % of
-        the beam length (:func:`~flexbeam.animation.geometry.auto_scale`).  The deflection is the centre line's
+        the beam length (:func:`~flexbeam.views.animation.geometry.auto_scale`).  The deflection is the centre line's
         displacement from the rigid reference line; only it is magnified, the rigid motion is drawn at its true
         size.
     window
@@ -133,11 +134,11 @@ def animate(
     size
         (width, height) of a frame [px] (even for MP4).
     contact_share
-        Fraction of the frames spent in the contacts (:func:`~flexbeam.animation.geometry.frame_times`),
+        Fraction of the frames spent in the contacts (:func:`~flexbeam.views.animation.geometry.frame_times`),
         0 <= share < 1; 0 gives uniform frames.
     reference
         The rigid reference line the deflection is measured from
-        (:func:`~flexbeam.animation.geometry.reference_angle`): ``"contact"`` (default), the line from O through
+        (:func:`~flexbeam.views.animation.geometry.reference_angle`): ``"contact"`` (default), the line from O through
         the contact point's centre line, so that the magnified beam touches the obstacle where the true one does;
         ``"hub"``, the hub's radial line at angle phi (the contact point then appears displaced from the obstacle
         by the magnified deflection there).  The hub is drawn turned by the same magnification relative to the

@@ -1,8 +1,8 @@
 """What each frame of an animation draws, as numbers: :class:`Scene` holds, per frame, the beam's band with its
 deflection magnified about the rigid reference line, the contact point, the reference line, the drawn hub angle,
 the obstacle's displacement and the contact force -- and, for a case with several contact pairs, each pair's
-contact point and force -- built from a :class:`~flexbeam.animation.history.History` by
-the geometry of :mod:`flexbeam.animation.geometry`.
+contact point and force -- built from a :class:`~flexbeam.views.animation.history.History` by
+the geometry of :mod:`flexbeam.views.animation.geometry`.
 """
 
 from __future__ import annotations
@@ -13,14 +13,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..contact.setup import OBSTACLE_SPHERE
-from ..errors import ModelError, ParameterError
+from ...contact.setup import OBSTACLE_SPHERE
+from ...errors import ModelError, ParameterError
 from .geometry import auto_scale, beam_shape, frame_times, reference_angle
 from .history import History
 
 if TYPE_CHECKING:
-    from ..contact.setup import ObstacleGeometry
-    from ..model.system import BeamSystem
+    from ...contact.setup import ObstacleGeometry
+    from ...model.system import BeamSystem
 
 #: material points drawn along the beam
 BEAM_POINTS = 121
@@ -75,18 +75,18 @@ class Scene:
     ) -> Scene:
         """The scene of ``frames`` frames of ``history`` over ``window`` (default: all of it).
 
-        Frame times by :func:`~flexbeam.animation.geometry.frame_times`; hub angle, modal coordinates, support
+        Frame times by :func:`~flexbeam.views.animation.geometry.frame_times`; hub angle, modal coordinates, support
         displacement and force interpolated linearly between the samples; the centre line by
-        :func:`~flexbeam.animation.geometry.beam_shape` at :data:`BEAM_POINTS` points and the contact point;
-        its deviation from the rigid line at :func:`~flexbeam.animation.geometry.reference_angle` magnified by
-        ``scale`` (``"auto"``: :func:`~flexbeam.animation.geometry.auto_scale` of its largest norm over the
+        :func:`~flexbeam.views.animation.geometry.beam_shape` at :data:`BEAM_POINTS` points and the contact point;
+        its deviation from the rigid line at :func:`~flexbeam.views.animation.geometry.reference_angle` magnified by
+        ``scale`` (``"auto"``: :func:`~flexbeam.views.animation.geometry.auto_scale` of its largest norm over the
         frames); the band's edges offset by the contact offset c along the magnified line's normal.  Each pair's
         contact point is offset by its own c from the magnified centre line at its material coordinate: fixed
         pairs' coordinates are points of the drawn line; an anywhere pair's moves (the result's
         ``pair_contact_position``), is interpolated linearly between them and lies on the side facing its
         obstacle.
         """
-        from ..model.system import BeamSystem
+        from ...model.system import BeamSystem
 
         t = history.time
         if t.size < 2:

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from .solution import ContactEvent
+    from ..results.records import ContactEvent
 
 
 class ContactMode(IntEnum):
@@ -74,7 +74,7 @@ class Phase:
     @cached_property
     def buffer(self) -> np.ndarray:
         """The kernels' contacts buffer of this phase (:func:`flexbeam.kernels.pack_contacts`)."""
-        from .kernels import pack_contacts
+        from ..kernels import pack_contacts
 
         return pack_contacts([int(m) for m in self.modes], self.parameters, *self.baumgarte)
 

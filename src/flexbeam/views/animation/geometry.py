@@ -14,11 +14,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 
 if TYPE_CHECKING:
-    from ..model.beam import ModalBeam
-    from ..model.system import BeamSystem
+    from ...model.beam import ModalBeam
+    from ...model.system import BeamSystem
 
 #: auto scale: the largest magnified deflection over the frames is this fraction of the beam length, less at
 #: most 1/11 of it (the factor is rounded down to two significant digits): 10.9-12 % of L

@@ -14,11 +14,11 @@ from functools import cached_property
 
 import numpy as np
 
-from . import numerics as nm
-from .integrate.loop import RunResult, Segment
-from .kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
-from .memory import check_samples
-from .model.system import SUPPORT_COLUMNS, BeamSystem
+from .. import numerics as nm
+from ..integrate.loop import RunResult, Segment
+from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
+from ..model.system import SUPPORT_COLUMNS, BeamSystem
+from .limits import check_samples
 
 #: force evaluations per step when searching a contact's force for local maxima
 PEAK_POINTS_PER_STEP = 16
@@ -221,7 +221,7 @@ class RunSource:
     ) -> float:
         """Largest sign * column over the brackets [lo_k, hi_k] of one segment: each zoomed on a grid of ``points``
         until below PEAK_XTOL, all brackets in one evaluation per level."""
-        from .solution import PEAK_XTOL
+        from .peaks import PEAK_XTOL
 
         lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
         best = -math.inf

@@ -1,5 +1,5 @@
 """Writing an animation to a file: :func:`write_animation` renders every frame of a
-:class:`~flexbeam.animation.scene.Scene` and encodes them atomically, to a GIF by Pillow (:class:`GifSink`) or an
+:class:`~flexbeam.views.animation.scene.Scene` and encodes them atomically, to a GIF by Pillow (:class:`GifSink`) or an
 H.264 MP4 by the ffmpeg of ``imageio-ffmpeg`` (:class:`Mp4Sink`); :class:`FrameProgress` shows the rendered frames
 on a terminal; :class:`VideoFallbackWarning` says a GIF was written because an MP4 could not be.
 """
@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from PIL import Image
 
-from ..progress import StderrProgress
+from ...progress import StderrProgress
 from .renderer import FrameRenderer
 
 if TYPE_CHECKING:
@@ -61,7 +61,7 @@ def write_animation(
     ffmpeg
         The ``imageio_ffmpeg`` module, for ``kind="mp4"``.
     """
-    from ..solution import atomic_path
+    from ...results.files import atomic_path
 
     renderer = FrameRenderer(scene, width, height, fps)
     n = scene.times.size

@@ -1,5 +1,6 @@
 """Drawing the frames of an animation: :class:`FrameRenderer` draws a
-:class:`~flexbeam.animation.scene.Scene` frame by frame on a Matplotlib Agg canvas (object API, no pyplot state) --
+:class:`~flexbeam.views.animation.scene.Scene` frame by frame on a Matplotlib Agg canvas (object API, no pyplot
+state) --
 the beam, the hub, the obstacles, the clock with the playback speed (:func:`speed_label`) and the contact-force
 trace with a cursor (one trace per contact pair in its own colour, :func:`pair_colour`, when there are several).
 """
@@ -14,7 +15,7 @@ import numpy as np
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
 
-    from ..contact.setup import ObstacleGeometry
+    from ...contact.setup import ObstacleGeometry
     from .scene import Scene
 
 
@@ -76,7 +77,7 @@ def speed_label(density: float, fps: float) -> str:
 
 
 class FrameRenderer:
-    """Draws the frames of a :class:`~flexbeam.animation.scene.Scene` on a Matplotlib Agg canvas (object API, no
+    """Draws the frames of a :class:`~flexbeam.views.animation.scene.Scene` on a Matplotlib Agg canvas (object API, no
     pyplot).
 
     The static part (axes, ticks, labels, force traces, fixed obstacles) is drawn once; each frame restores it and

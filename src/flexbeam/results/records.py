@@ -1,0 +1,70 @@
+"""The records of a run: the output variables' names and units, and one contact's record.
+
+:class:`ContactEvent` is what the impact methods (and the finite-element reference) log for every located contact;
+:data:`VARIABLES` names the arrays a :class:`~flexbeam.results.solution.Solution` holds, with their units.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+#: variable name -> (units, long name)
+VARIABLES: dict[str, tuple[str, str]] = {
+    "theta": ("rad", "Hub angle"),
+    "theta_rate": ("rad/s", "Hub angular velocity"),
+    "q": ("1", "Modal coordinate"),
+    "q_rate": ("1/s", "Modal velocity"),
+    "contact_force": ("N", "Contact force"),
+    "gap": ("m", "Gap at the contact point"),
+    "normal_velocity": ("m/s", "Normal velocity of the contact point"),
+    "measuring_velocity": ("m/s", "Normal velocity of the measuring points"),
+    "kinetic_energy": ("J", "Kinetic energy"),
+    "elastic_energy": ("J", "Elastic energy"),
+    "gravitational_energy": ("J", "Gravitational energy"),
+    "contact_energy": ("J", "Contact potential energy"),
+    "dissipated_energy": ("J", "Energy dissipated by contact (and the support's dashpot)"),
+    "drive_work": ("J", "Work of the joint torque"),
+    "total_energy": ("J", "Total energy including dissipated and drive work"),
+    "joint_torque": ("N m", "Joint torque"),
+    "tip_deflection": ("m", "Tip deflection in the rotating frame"),
+    "support_displacement": ("m", "Displacement s of the compliant obstacle along its support axis"),
+    "sensor_force": ("N", "Force read under the compliant obstacle support, -(k_s s + c_s s')"),
+    "pair_gap": ("m", "Gap of each contact pair"),
+    "pair_normal_velocity": ("m/s", "Normal velocity of each contact pair's point"),
+    "pair_contact_force": ("N", "Contact force of each contact pair"),
+    "pair_contact_position": ("m", "Material coordinate x of each contact pair's point (moves for contact anywhere)"),
+}
+#: variables (time x pair) present only when a case has several contact pairs or a contact anywhere
+PAIR_VARIABLES = ("pair_gap", "pair_normal_velocity", "pair_contact_force", "pair_contact_position")
+
+
+@dataclass
+class ContactEvent:
+    """One contact (or, for IMM, one instantaneous impact).
+
+    Times in s; velocities are P's normal velocity delta' [m/s] (negative = approaching) just before the
+    contact and at its end (IMM: right after the jump).  ``impulse`` [N s] is the whole contact's: the jump at
+    onset (IMM, CCM's e = 0 step; also in ``jump_impulse``) plus the integral of the contact force until
+    ``end`` (CCFM's force, CCM's multiplier, a resting contact's reaction).  ``energy_before``/``energy_after``
+    [J] are the mechanical energy T + V_e + V_g just before the onset (before its jump) and at the end.
+    ``pair``: the contact pair (0: ``[contact]`` against ``[obstacle]``, k: ``obstacles[k - 1]``);
+    ``time_scale``: the contact's expected duration at onset (a rigid-body Hertz impact; CCFM) [s].
+    """
+
+    index: int
+    onset: float
+    end: float = float("nan")
+    velocity_before: float = float("nan")
+    velocity_after: float = float("nan")
+    impulse: float = float("nan")
+    peak_force: float = float("nan")
+    peak_time: float = float("nan")
+    energy_before: float = float("nan")
+    energy_after: float = float("nan")
+    jump_impulse: float = float("nan")
+    pair: int = 0
+    time_scale: float = float("nan")
+
+    @property
+    def duration(self) -> float:
+        return self.end - self.onset

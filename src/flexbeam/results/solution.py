@@ -1,0 +1,285 @@
+"""The result of a simulation: arrays, contact-event log, status, statistics, provenance.
+
+:class:`Solution` is what every impact method returns.  Its :meth:`Solution.metrics`
+are the numbers the CLI's ``--json`` prints (the names are a contract), and
+:meth:`Solution.to_xarray` gives an :class:`xarray.Dataset` with ``units`` and
+``long_name`` on every variable.  Its views -- :meth:`Solution.plot`, :meth:`Solution.animate` and the notebook
+display -- are those of :mod:`flexbeam.views`, reached through one accessor that the views register
+(:mod:`flexbeam.views.accessor`, as xarray's ``DataArray.plot``): this layer does not import them.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from functools import cached_property
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, ClassVar
+
+import numpy as np
+
+from . import export, summary
+from .counts import ContactCounts
+from .peaks import PEAK_XTOL, golden_max, interior_maxima, zoom_max
+from .records import ContactEvent
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from .arrays import RunSource
+
+
+class Solution:
+    """Arrays over the output samples plus the contact log and run information.
+
+    Attributes
+    ----------
+    time
+        Sample times [s] (event instants included; a velocity jump gives two samples at the same time).
+    phase
+        Phase name of each sample ("free", "contact", "constrained", "resting").
+    arrays
+        Name -> array, see :data:`VARIABLES`.
+    contacts
+        Contact-event log.
+    status, message
+        "success", "failed", "max-contacts", ... and the reason.
+    stats
+        steps, nfev, wall_time [s] (integration alone).
+    provenance
+        Version, case (TOML), method, tolerances, derived parameters.
+
+    The arrays are given (the finite-element reference) or evaluated on first use from the run's dense output
+    (``source``, a :class:`~flexbeam.results.arrays.RunSource`): the metrics do not need them.  With given arrays,
+    ``force_at(t, pair)`` -- a contact pair's force F_k(t) [N] on a dense output, 0 outside its contact phases --
+    refines each contact's force peaks between the samples (the samples' maximum without it); with a ``source``
+    its own :meth:`~flexbeam.results.arrays.RunSource.force_at` is used.
+    """
+
+    def __init__(
+        self,
+        time: np.ndarray | None = None,
+        phase: np.ndarray | None = None,
+        arrays: dict[str, np.ndarray] | None = None,
+        contacts: list[ContactEvent] | None = None,
+        status: str = "success",
+        message: str = "",
+        stats: dict[str, float] | None = None,
+        provenance: dict[str, Any] | None = None,
+        measuring_points: np.ndarray | None = None,
+        force_at: Callable[[float, int], float] | None = None,
+        source: RunSource | None = None,
+    ) -> None:
+        if source is None and (time is None or phase is None or arrays is None):
+            raise ValueError("Solution: give time, phase and arrays, or a source")
+        self._samples = None if source is not None else (np.asarray(time), np.asarray(phase), arrays)
+        self._contacts = list(contacts or [])
+        self._completed: set[int] = set()
+        self.status, self.message = status, message
+        self.stats = dict(stats or {})
+        self._provenance = dict(provenance or {})
+        self.measuring_points = np.empty(0) if measuring_points is None else np.asarray(measuring_points, float)
+        self._force_at = force_at if source is None else source.force_at
+        self.source = source
+        self._peaks: dict[int, list[tuple[float, float]]] = {}
+
+    # ----------------------------------------------------------------- samples
+    def _loaded(self) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+        if self._samples is None:
+            assert self.source is not None
+            self._samples = self.source.samples
+        return self._samples
+
+    @property
+    def time(self) -> np.ndarray:
+        return self._loaded()[0]
+
+    @property
+    def phase(self) -> np.ndarray:
+        return self._loaded()[1]
+
+    @property
+    def arrays(self) -> dict[str, np.ndarray]:
+        return self._loaded()[2]
+
+    @property
+    def provenance(self) -> dict[str, Any]:
+        """Version, case (TOML), method, tolerances, derived parameters (a callable entry is evaluated when the
+        provenance is first read: the case's TOML text is written only for an export)."""
+        for key, value in self._provenance.items():
+            if callable(value):
+                self._provenance[key] = value()
+        return self._provenance
+
+    @property
+    def contacts(self) -> list[ContactEvent]:
+        """The contact log, each record completed (impulse, energies, peak) on first use."""
+        for i in range(len(self._contacts)):
+            self.contact(i)
+        return self._contacts
+
+    def contact(self, i: int) -> ContactEvent:
+        """Contact record ``i``; a run's impulse, energies before/after and peak are found on its dense output
+        the first time it is asked for (a jump's impulse and energies are logged at the jump)."""
+        ev = self._contacts[i]
+        if i in self._completed or self.source is None:
+            return ev
+        self._completed.add(i)
+        src = self.source
+        end = ev.end if math.isfinite(ev.end) else src.run.t_final
+        jumped = not math.isnan(ev.jump_impulse)
+        if jumped:  # the jump logged kinetic energies: add the potential, which a jump leaves unchanged
+            potential = src.mechanical_energy(ev.onset, after=True) - ev.energy_after
+            ev.energy_before += potential
+            ev.energy_after += potential
+        if end > ev.onset:
+            ev.impulse = (ev.jump_impulse if jumped else 0.0) + src.impulse(ev.onset, end, ev.pair)
+            if not jumped:
+                ev.energy_before = src.mechanical_energy(ev.onset, after=True)
+            ev.energy_after = src.mechanical_energy(end)
+        peaks = self.force_peaks(i, threshold=0.0)
+        if peaks:
+            ev.peak_time, ev.peak_force = max(peaks, key=lambda p: p[1])
+        return ev
+
+    @cached_property
+    def _in_contact(self) -> np.ndarray:
+        """Samples of contact, constrained or resting phases (bool per sample)."""
+        return np.isin(self.phase, ("contact", "constrained", "resting"))
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.arrays[name]
+
+    @property
+    def method(self) -> str:
+        return str(self._provenance.get("method", ""))
+
+    @property
+    def records(self) -> list[ContactEvent]:
+        """The contact records as logged (:attr:`contacts` completes them)."""
+        return self._contacts
+
+    @property
+    def pair_labels(self) -> list[str]:
+        """The obstacle of each contact pair (pair 0: ``"obstacle"``, the case's ``[obstacle]``)."""
+        return list(self._provenance.get("contact_pairs") or ["obstacle"])
+
+    @property
+    def compliant_support(self) -> bool:
+        """Does the obstacle stand on a compliant support (a sensor force)?"""
+        return bool(self._provenance.get("compliant_support")) or (
+            self._samples is not None and "sensor_force" in self.arrays
+        )
+
+    # ----------------------------------------------------------------- force peaks
+    def _refine_max(self, t_guess: float, h: float, lo: float, hi: float, pair: int = 0) -> tuple[float, float]:
+        if self.source is not None:
+            a, b = max(lo, t_guess - h), min(hi, t_guess + h)
+            force = lambda t: self.source.force_many(t, pair)  # noqa: E731
+            if b <= a:
+                return t_guess, float(force(np.array([t_guess]))[0])
+            return zoom_max(force, a, b, xtol=PEAK_XTOL)
+        if self._force_at is None:
+            i = int(np.argmin(np.abs(self.time - t_guess)))
+            return float(self.time[i]), float(self.arrays["contact_force"][i])
+        force = lambda t: self._force_at(t, pair)  # noqa: E731
+        a, b = max(lo, t_guess - h), min(hi, t_guess + h)
+        if b <= a:
+            return t_guess, float(force(t_guess))
+        t_max, f_max = golden_max(force, a, b, xtol=PEAK_XTOL)
+        f_guess = float(force(t_guess))
+        if f_max >= f_guess:
+            return t_max, f_max
+        return t_guess, f_guess
+
+    def _force_samples(self, ev: ContactEvent) -> tuple[np.ndarray, np.ndarray]:
+        """(times, force) of one contact: on the dense output (a run) or at the samples."""
+        end = ev.end if math.isfinite(ev.end) else math.inf
+        if self.source is not None:
+            t1 = end if math.isfinite(end) else self.source.run.t_final
+            return self.source.force_profile(ev.onset, t1, ev.pair)
+        t = self.time
+        sel = np.nonzero((t >= ev.onset) & (t <= end) & self._in_contact)[0]
+        if "pair_contact_force" in self.arrays:
+            return t[sel], self.arrays["pair_contact_force"][sel, ev.pair]
+        return t[sel], self.arrays["contact_force"][sel]
+
+    def force_peaks(self, contact: int = 0, threshold: float = 0.05) -> list[tuple[float, float]]:
+        """Local maxima (time [s], force [N]) of one contact's force above ``threshold`` x peak."""
+        if contact >= len(self._contacts):
+            return []
+        if contact not in self._peaks:
+            self._peaks[contact] = self._all_peaks(contact)
+        peaks = self._peaks[contact]
+        if not peaks:
+            return []
+        top = max(p[1] for p in peaks)
+        return [p for p in peaks if p[1] > threshold * top]
+
+    def _all_peaks(self, contact: int) -> list[tuple[float, float]]:
+        ev = self._contacts[contact]
+        tt, f = self._force_samples(ev)
+        if tt.size < 3:
+            return []
+        end = ev.end if math.isfinite(ev.end) else float(tt[-1])
+        h = float(np.median(np.diff(tt))) if tt.size > 1 else 0.0
+        idx = interior_maxima(f, start=True)
+        return [self._refine_max(float(tt[i]), h, ev.onset, end, ev.pair) for i in idx]
+
+    # ----------------------------------------------------------------- metrics (flexbeam.results.summary)
+    def energy_drift(self) -> tuple[float, float]:
+        """(end, max) relative change of the total energy (:func:`~flexbeam.results.summary.energy_drift`)."""
+        return summary.energy_drift(self)
+
+    def sensor_pulse(self, threshold: float = 0.05) -> tuple[list[tuple[float, float]], float]:
+        """Peaks and duration of the first sensor-force pulse (:func:`~flexbeam.results.summary.sensor_pulse`)."""
+        return summary.sensor_pulse(self, threshold)
+
+    def contact_counts(self) -> ContactCounts:
+        """The records sorted into contacts and micro-impacts (:func:`~flexbeam.results.summary.contact_counts`)."""
+        return summary.contact_counts(self)
+
+    def events(self, counts: ContactCounts | None = None) -> list[dict[str, Any]]:
+        """One dict per contact record (:func:`~flexbeam.results.summary.events`)."""
+        return summary.events(self, counts)
+
+    def metrics(self) -> dict[str, Any]:
+        """The run's summary numbers, the ``--json`` contract (:func:`~flexbeam.results.summary.run_metrics`)."""
+        return summary.run_metrics(self)
+
+    # ----------------------------------------------------------------- export (flexbeam.results.export)
+    def to_xarray(self) -> xr.Dataset:
+        """:class:`xarray.Dataset` with dims time, mode, point, contact (:func:`~flexbeam.results.export.to_xarray`)."""
+        return export.to_xarray(self)
+
+    def to_netcdf(self, path: str | Path, time_chunk: int = 4096) -> Path:
+        """Write :meth:`to_xarray` to NetCDF-4 atomically (:func:`~flexbeam.results.export.to_netcdf`)."""
+        return export.to_netcdf(self, path, time_chunk)
+
+    # ----------------------------------------------------------------- views (flexbeam.views, registered)
+    #: the views' accessor class, registered by :mod:`flexbeam.views.accessor` when flexbeam is imported
+    views: ClassVar[Callable[[Solution], Any] | None] = None
+
+    def _views(self) -> Any:
+        if Solution.views is None:
+            raise RuntimeError("Solution: the views are registered by `import flexbeam` (flexbeam.views.accessor)")
+        return Solution.views(self)
+
+    @property
+    def plot(self) -> Any:
+        """Figures of this run: ``sol.plot("contact_force")``, ``sol.plot.normal_velocity()``, ...
+        (:class:`flexbeam.views.accessor.SolutionViews`)."""
+        return self._views()
+
+    def animate(self, path: str | Path, **options: Any) -> Path:
+        """Render an animation of this run to ``path`` (.gif or .mp4): the deformed beam with magnified
+        deflection, the hub, the obstacle and the contact force, in slow motion through the contacts.
+
+        ``options`` as for :func:`flexbeam.views.animation.animate` (``scale``, ``window``, ``frames``, ``fps``,
+        ``size``, ...); returns the path written.
+        """
+        return self._views().animate(path, **options)
+
+    def _repr_html_(self) -> str:
+        """Notebook display: status, metrics and a small plot (:func:`flexbeam.views.display.solution_html`)."""
+        return self._views().html()

@@ -1,0 +1,206 @@
+"""The summary numbers of a run (:meth:`Solution.metrics <flexbeam.results.solution.Solution.metrics>`, the
+``--json`` contract of ``flexbeam run``): energy balance, the first contact's force peaks, impulse and velocities,
+the contact counts, the sensor pulse, one record per contact.  Names, units and kinds are those of the registry
+:data:`flexbeam.results.metrics.METRICS`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .counts import ContactCounts, classify_contacts
+from .metrics import METRICS
+from .peaks import interior_maxima
+
+if TYPE_CHECKING:
+    from .solution import Solution
+
+
+def energy_drift(sol: Solution) -> tuple[float, float]:
+    """(end, max) relative change of the total energy.
+
+    Relative to ``max(|E(0)|, max_t T(t))`` so that a zero gravitational reference does not divide by
+    zero.  With a run's dense output the energies are those at every step boundary, else at the samples.
+    """
+    if sol.source is not None:
+        _, E, T = sol.source.checkpoints
+    else:
+        E, T = sol.arrays["total_energy"], sol.arrays["kinetic_energy"]
+    if E.size == 0:
+        return math.nan, math.nan
+    scale = max(abs(E[0]), float(np.max(T)), 1e-300)
+    return float((E[-1] - E[0]) / scale), float(np.max(np.abs(E - E[0])) / scale)
+
+
+def sensor_pulse(sol: Solution, threshold: float = 0.05) -> tuple[list[tuple[float, float]], float]:
+    """Peaks (time [s], force [N]) and duration [s] of the first sensor-force pulse.
+
+    Compliant support only.  Like the experiment, which "determined the beginning and ending of the impact
+    by the sign of the impact force" (Duan et al. 2013, Sec. 4), the pulse runs from the first contact's
+    onset until the sensor force -(k_s s + c_s s') first returns to zero (linear interpolation between
+    samples); its peaks are the sampled local maxima above ``threshold`` x its maximum.
+    """
+    if "sensor_force" not in sol.arrays or not sol.records:
+        return [], math.nan
+    onset = sol.records[0].onset
+    t, f = sol.time, sol.arrays["sensor_force"]
+    i0 = int(np.searchsorted(t, onset))
+    pos = np.nonzero(f[i0:] > 0.0)[0]
+    if pos.size == 0:
+        return [], math.nan
+    first = i0 + int(pos[0])
+    back = np.nonzero(f[first:] <= 0.0)[0]
+    if back.size:
+        k = first + int(back[0])
+        end = float(t[k - 1] + (t[k] - t[k - 1]) * f[k - 1] / (f[k - 1] - f[k]))
+    else:
+        k, end = t.size, math.nan
+    ff, tt = f[i0:k], t[i0:k]
+    peaks = [(float(tt[i]), float(ff[i])) for i in interior_maxima(ff)]
+    if not peaks:
+        return [], end - onset
+    top = max(p[1] for p in peaks)
+    return [p for p in peaks if p[1] > threshold * top], end - onset
+
+
+def contact_metrics(sol: Solution, i: int | None) -> dict[str, Any]:
+    """The per-contact metrics of contact ``i`` (impact and post-impact velocity, duration, impulse, energies,
+    peak force and its time, local force maxima, second peak); ``None``: the same keys, NaN and empty lists
+    (a pair that never touched)."""
+    out: dict[str, Any] = {
+        "impact_velocity": math.nan,
+        "post_impact_velocity": math.nan,
+        "contact_duration": math.nan,
+        "impulse": math.nan,
+        "energy_before": math.nan,
+        "energy_after": math.nan,
+        "peak_force": math.nan,
+        "peak_time": math.nan,
+        "force_peaks": [],
+        "force_peak_times": [],
+        "second_peak_force": math.nan,
+    }
+    if i is None:
+        return out
+    ev = sol.contact(i)
+    out.update(
+        impact_velocity=ev.velocity_before,
+        post_impact_velocity=ev.velocity_after,
+        contact_duration=ev.duration,
+        impulse=ev.impulse,
+        energy_before=ev.energy_before,
+        energy_after=ev.energy_after,
+    )
+    peaks = sol.force_peaks(i)
+    if peaks:
+        tp, fp = max(peaks, key=lambda p: p[1])
+        others = [p[1] for p in peaks if p[0] != tp]
+        out.update(
+            peak_force=fp,
+            peak_time=tp - ev.onset,
+            force_peaks=[p[1] for p in peaks],
+            force_peak_times=[p[0] - ev.onset for p in peaks],
+            second_peak_force=max(others) if others else math.nan,
+        )
+    return out
+
+
+def contact_counts(sol: Solution) -> ContactCounts:
+    """The contact records sorted into contacts and micro-impacts, the micro-impacts grouped into chatter
+    episodes: :func:`flexbeam.results.counts.classify_contacts` on every record's impulse and approach speed
+    (docs/methods.md, *What one contact is*)."""
+    c = sol.contacts
+    return classify_contacts(
+        [ev.pair for ev in c], [ev.impulse for ev in c], [-ev.velocity_before for ev in c], len(sol.pair_labels)
+    )
+
+
+def events(sol: Solution, counts: ContactCounts | None = None) -> list[dict[str, Any]]:
+    """One dict per contact record, in the order of their onsets (the ``events`` of :func:`run_metrics`).
+
+    ``index`` (the record's place in :attr:`contacts`), ``pair``, ``obstacle``, ``onset``, ``end`` [s],
+    ``duration`` [s], ``peak_force`` [N] and ``peak_time`` [s after the onset] (NaN without a force
+    history: an IMM impact), ``velocity_before``, ``velocity_after`` [m/s] (P's normal velocity, negative
+    approaching), ``impulse`` [N s], ``kind`` (``"contact"`` or ``"micro-impact"``) and ``chatter_episode``
+    (the micro-impact's episode, None for a contact); ``counts``: :func:`contact_counts`, if already known.
+    """
+    counts = contact_counts(sol) if counts is None else counts
+    labels = sol.pair_labels
+    return [
+        {
+            "index": i,
+            "pair": ev.pair,
+            "obstacle": labels[ev.pair],
+            "onset": ev.onset,
+            "end": ev.end,
+            "duration": ev.duration,
+            "peak_force": ev.peak_force,
+            "peak_time": ev.peak_time - ev.onset,
+            "velocity_before": ev.velocity_before,
+            "velocity_after": ev.velocity_after,
+            "impulse": ev.impulse,
+            "kind": counts.kind(i),
+            "chatter_episode": counts.episode[i],
+        }
+        for i, ev in enumerate(sol.contacts)
+    ]
+
+
+def run_metrics(sol: Solution) -> dict[str, Any]:
+    """The run's summary numbers (the ``--json`` contract of ``flexbeam run``), in the order, units and
+    meaning of the registry :data:`flexbeam.results.metrics.METRICS` (NaN or an empty list when not defined).
+
+    ``peak_force`` [N], ``peak_time`` [s after the first onset], ``contact_duration`` [s], ``force_peaks``
+    (list of local maxima [N] above 5 % of the peak) with ``force_peak_times`` [s after onset],
+    ``contacts`` (the records that are not micro-impacts, :func:`contact_counts`) with ``contact_records``,
+    ``micro_impacts`` and ``chatter_episodes``, ``post_impact_velocity`` (P's normal velocity at the end of
+    the first contact [m/s], positive away from the obstacle), ``energy_drift``, ``wall_time`` [s],
+    ``steps``; the per-contact ones are those of the first contact record of pair 0 (``[contact]`` against
+    ``[obstacle]``); ``pairs`` lists, for every pair, its counts and its first record's metrics (the same
+    keys for every pair, NaN and empty lists for a pair that never touched); ``events`` lists every record
+    (:func:`events`); with a compliant obstacle support also ``sensor_peak_force``,
+    ``sensor_second_peak_force`` [N] and ``sensor_duration`` [s] of the first sensor-force pulse
+    (:func:`sensor_pulse`).
+    """
+    drift, drift_max = energy_drift(sol)
+    out: dict[str, Any] = {
+        name: ([] if m.kind in ("numbers", "records") else math.nan)
+        for name, m in METRICS.items()
+        if m.scope != "sensor"
+    }
+    counts = contact_counts(sol)
+    out.update(
+        method=sol.method,
+        status=sol.status,
+        message=sol.message,
+        **counts.of_pair(None),
+        energy_drift=drift,
+        energy_drift_max=drift_max,
+        wall_time=sol.stats.get("wall_time", math.nan),
+        steps=int(sol.stats.get("steps", 0)),
+        nfev=int(sol.stats.get("nfev", 0)),
+    )
+    labels = sol.pair_labels
+    firsts = [next((i for i, ev in enumerate(sol.records) if ev.pair == k), None) for k in range(len(labels))]
+    if firsts[0] is not None:
+        out.update(contact_metrics(sol, firsts[0]))
+    out["pairs"] = [
+        {"pair": k, "obstacle": label, **counts.of_pair(k), **contact_metrics(sol, i)}
+        for k, (label, i) in enumerate(zip(labels, firsts))
+    ]
+    out["events"] = events(sol, counts)
+    if sol.compliant_support:
+        peaks, duration = sensor_pulse(sol)
+        ranked = sorted((p[1] for p in peaks), reverse=True)
+        out["sensor_peak_force"] = ranked[0] if ranked else math.nan
+        out["sensor_second_peak_force"] = ranked[1] if len(ranked) > 1 else math.nan
+        out["sensor_duration"] = duration
+    if sol.source is not None:
+        out["tip_deflection_min"], out["tip_deflection_max"] = sol.source.extremes("tip_deflection")
+    elif "tip_deflection" in sol.arrays and sol.arrays["tip_deflection"].size:
+        out["tip_deflection_min"] = float(np.min(sol.arrays["tip_deflection"]))
+        out["tip_deflection_max"] = float(np.max(sol.arrays["tip_deflection"]))
+    return out

@@ -1,0 +1,3 @@
+"""flexbeam's version (one place: the package, the provenance of every result and the sweeps read it)."""
+
+__version__ = "0.1.0"
