@@ -7,18 +7,17 @@ an impact starts), and add it to :data:`IMPACT_METHODS`.  ``"fem"`` is the indep
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from .errors import ParameterError, closest
+from .methods.base import ImpactMethod
+from .methods.ccfm import CCFM
+from .methods.ccm import CCM
+from .methods.imm import IMM
 
-if TYPE_CHECKING:
-    from .methods.base import ImpactMethod
-
-#: method name -> (module, class, one-line description); "fem" is dispatched separately
-IMPACT_METHODS: dict[str, tuple[str, str, str]] = {
-    "ccfm": ("flexbeam.methods.ccfm", "CCFM", "continuous contact force (a law's force while the gap is closed)"),
-    "ccm": ("flexbeam.methods.ccm", "CCM", "contact constraint (e = 0 jump, then the unilateral constraint)"),
-    "imm": ("flexbeam.methods.imm", "IMM", "impulse-momentum with a coefficient of restitution"),
+#: method name -> (class, one-line description); "fem" is dispatched separately
+IMPACT_METHODS: dict[str, tuple[type[ImpactMethod], str]] = {
+    "ccfm": (CCFM, "continuous contact force (a law's force while the gap is closed)"),
+    "ccm": (CCM, "contact constraint (e = 0 jump, then the unilateral constraint)"),
+    "imm": (IMM, "impulse-momentum with a coefficient of restitution"),
 }
 
 #: every name ``simulate`` accepts
@@ -31,10 +30,7 @@ def impact_method(name: str) -> type[ImpactMethod]:
         raise ParameterError(
             f"method: unknown impact method '{name}'; allowed: {', '.join(METHOD_NAMES)}{closest(name, METHOD_NAMES)}"
         )
-    import importlib
-
-    module, cls, _ = IMPACT_METHODS[name]
-    return getattr(importlib.import_module(module), cls)
+    return IMPACT_METHODS[name][0]
 
 
 def check_method(name: str) -> str:
