@@ -40,7 +40,7 @@ if TYPE_CHECKING:
     from ..model.beam import ModalBeam, PointData, StationTable
     from ..parameters.case import Drive
 
-LAYOUT_VERSION = 2
+LAYOUT_VERSION = 3
 DRIVES = {"free": 0, "torque": 1, "prescribed": 2}
 PROFILES = {"constant-rate": 0, "kane-spinup": 1}
 
@@ -69,27 +69,27 @@ def pack_model(
     and contact pairs (point index, obstacle index, anywhere); ``nmeasure`` measuring points follow P and the tip
     (default: every point after them); ``stations``: the shape tables of contact anywhere."""
     n = beam.n
+    joint = [
+        DRIVES[drive.kind],
+        PROFILES[drive.profile],
+        drive.torque if drive.kind == "torque" else 0.0,
+        drive.spin_rate,
+        drive.spin_up_time,
+        theta0,
+    ]
     head = [
         LAYOUT_VERSION,
         n,
-        int(drive.kind == "prescribed"),
-        DRIVES[drive.kind],
-        PROFILES[drive.profile],
+        0,
+        len(joint),
+        0,
         len(points),
         len(obstacles),
         len(pairs),
         len(points) - 2 if nmeasure is None else nmeasure,
         *[o.kind for o in obstacles],
     ]
-    scalars = [
-        beam.Jc,
-        beam.m1,
-        gravity,
-        drive.torque if drive.kind == "torque" else 0.0,
-        drive.spin_rate,
-        drive.spin_up_time,
-        theta0,
-    ]
+    scalars = [beam.Jc, beam.m1, gravity, *joint]
     parts: list[np.ndarray] = [np.asarray(head, float), np.asarray(scalars, float)]
     for arr in (beam.Mc, beam.Mqq, beam.mtq, beam.Kff, beam.sf, beam.G, beam.d):
         parts.append(np.asarray(arr, float).ravel())
