@@ -35,7 +35,7 @@ from scipy.linalg import eigh
 from ..contact.laws import ContactLaw
 from ..contact.setup import ContactSetup
 from ..errors import ParameterError
-from ..model.drive import JointDrive
+from ..model.joints.drive import JointDrive
 from ..parameters.case import Case
 from .assembly import assemble, energies, node_states, normal_velocities
 from .banded import BAND, band_to_dense, fix_first_dof

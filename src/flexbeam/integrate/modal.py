@@ -56,17 +56,8 @@ class ModalBasis:
 
     @classmethod
     def of(cls, system: BeamSystem) -> ModalBasis:
-        b = system.beam
-        n, nz = b.n, system.nz
-        if system.prescribed:
-            M0, K0 = b.Mqq.copy(), b.Kff.copy()
-        else:
-            M0 = np.zeros((n + 1, n + 1))
-            M0[0, 0] = b.Jc
-            M0[0, 1:] = M0[1:, 0] = b.mtq
-            M0[1:, 1:] = b.Mqq
-            K0 = np.zeros((n + 1, n + 1))
-            K0[1:, 1:] = b.Kff
+        nz = system.nz
+        M0, K0, varying = system.joint.linear_model(system.beam)
         offdiag = lambda A: A - np.diag(np.diag(A))  # noqa: E731
         diagonal = not offdiag(M0).any() and not offdiag(K0).any()
         if diagonal:
@@ -80,8 +71,8 @@ class ModalBasis:
         omega = np.sqrt(np.maximum(w2, 0.0))
         if nz:
             M0inv = nm.inv(M0)
-            row0 = M0inv[0] if not system.prescribed else np.zeros(nz)
-            inv00 = float(M0inv[0, 0]) if not system.prescribed else 0.0
+            row0 = M0inv[varying] if varying is not None else np.zeros(nz)
+            inv00 = float(M0inv[varying, varying]) if varying is not None else 0.0
         else:
             row0, inv00 = np.zeros(0), 0.0
         toM = nm.matmul(np.ascontiguousarray(Psi.T), M0)
