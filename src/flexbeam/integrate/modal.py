@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -116,19 +117,25 @@ class ModalDense:
         """The step boundaries."""
         return np.append(self.records[:, 0], self.records[-1, 0] + self.records[-1, 1])
 
+    @cached_property
+    def ends(self) -> np.ndarray:
+        """Each step's end time t0 + h (as the kernels compute it)."""
+        return self.records[:, 0] + self.records[:, 1]
+
     def __call__(self, times: np.ndarray) -> np.ndarray:
+        """States at ``times``: each in the first step that ends at or after it (the kernels' own choice), found by
+        bisection, so an evaluation costs the steps it touches, not the phase's length."""
         times = np.ascontiguousarray(times, float)
         order = np.argsort(times, kind="stable")
         Y = np.empty((times.size, self.stepper.system.size))
         Ys = np.empty_like(Y)
-        core.dense(
-            self.stepper.kernel,
-            self.stepper.basis_buffer,
-            self.records,
-            self.records.shape[0],
-            np.ascontiguousarray(times[order]),
-            Ys,
-        )
+        if times.size:
+            ts = np.ascontiguousarray(times[order])
+            nrec = self.records.shape[0]
+            i0 = min(int(np.searchsorted(self.ends, ts[0], side="left")), nrec - 1)
+            i1 = min(int(np.searchsorted(self.ends, ts[-1], side="left")) + 1, nrec)
+            recs = self.records[i0:i1]
+            core.dense(self.stepper.kernel, self.stepper.basis_buffer, recs, recs.shape[0], ts, Ys)
         Y[order] = Ys
         return Y
 

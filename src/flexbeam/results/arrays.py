@@ -51,6 +51,23 @@ class RunSource:
     def segments(self) -> list[Segment]:
         return self.run.segments
 
+    @cached_property
+    def _starts(self) -> np.ndarray:
+        """Each segment's start time (non-decreasing: the segments follow each other)."""
+        return np.array([s.t0 for s in self.segments], float)
+
+    @cached_property
+    def _ends(self) -> np.ndarray:
+        """Each segment's end time (non-decreasing)."""
+        return np.array([s.t1 for s in self.segments], float)
+
+    def _around(self, t0: float, t1: float) -> range:
+        """The indices of the segments that may touch [t0, t1] (end >= t0 and start <= t1), by bisection: a query
+        costs the segments it touches, not the run's length."""
+        lo = int(np.searchsorted(self._ends, t0, side="left"))
+        hi = int(np.searchsorted(self._starts, t1, side="right"))
+        return range(lo, max(lo, hi))
+
     def evaluate(self, seg: Segment, times: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
         """(columns, measuring velocities, states) of segment ``seg`` at ``times``."""
         cols, mv, _, Y = self.evaluate_pairs(seg, times)
@@ -109,11 +126,17 @@ class RunSource:
 
     # ---------------------------------------------------------------- contact force on the dense output
     def _contact_segments(self, t0: float, t1: float, pair: int = 0) -> list[Segment]:
-        return [s for s in self.segments if s.phase.modes[pair] != 0 and s.t1 >= t0 and s.t0 <= t1 and s.t1 > s.t0]
+        segs = self.segments
+        return [
+            s
+            for s in (segs[i] for i in self._around(t0, t1))
+            if s.phase.modes[pair] != 0 and s.t1 >= t0 and s.t0 <= t1 and s.t1 > s.t0
+        ]
 
     def force_at(self, t: float, pair: int = 0) -> float:
         """A pair's contact force at time t on the dense output (0 outside its contact phases)."""
-        for seg in self.segments:
+        for i in self._around(t, t):
+            seg = self.segments[i]
             if seg.phase.modes[pair] != 0 and seg.t0 <= t <= seg.t1 and seg.t1 > seg.t0:
                 return float(self.pair_force(seg, np.array([t]), pair)[0])
         return 0.0
@@ -124,7 +147,10 @@ class RunSource:
         times = np.asarray(times, float)
         out = np.zeros(times.size)
         done = np.zeros(times.size, bool)
-        for seg in self.segments:
+        if not times.size:
+            return out
+        for i in self._around(float(np.min(times)), float(np.max(times))):
+            seg = self.segments[i]
             if seg.phase.modes[pair] == 0 or seg.t1 <= seg.t0:
                 continue
             sel = ~done & (times >= seg.t0) & (times <= seg.t1)
@@ -145,6 +171,28 @@ class RunSource:
             if t.size:
                 ts.append(t)
                 fs.append(self.pair_force(seg, t, pair))
+        if not ts:
+            return np.empty(0), np.empty(0)
+        t, f = np.concatenate(ts), np.concatenate(fs)
+        order = np.argsort(t, kind="stable")
+        return t[order], f[order]
+
+    def nodal_profile(self, t0: float, t1: float, pair: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """(times, force) of a pair at the force's own nodes in [t0, t1]: the compiled integrator's collocated
+        contact forces (or multipliers) at every step's Gauss nodes, which it has already computed; a phase of
+        the reference integrator is sampled as in :meth:`force_profile`.  Candidates for the force's maxima at
+        no cost of evaluation."""
+        ts, fs = [], []
+        for seg in self._contact_segments(t0, t1, pair):
+            if hasattr(seg.dense, "nodal_forces"):
+                t, f = seg.dense.nodal_forces(pair)
+                keep = (t >= t0) & (t <= t1)
+                t, f = t[keep], f[keep]
+            else:
+                t, f = self.force_profile(max(t0, seg.t0), min(t1, seg.t1), pair)
+            if t.size:
+                ts.append(t)
+                fs.append(f)
         if not ts:
             return np.empty(0), np.empty(0)
         t, f = np.concatenate(ts), np.concatenate(fs)
@@ -175,7 +223,7 @@ class RunSource:
     def mechanical_energy(self, t: float, after: bool = False) -> float:
         """T + V_e + V_g at time t (no contact potential, no bookkeeping): in the last segment containing t
         (``after``: after a jump there) or the first."""
-        segs = [s for s in self.segments if s.t0 <= t <= s.t1]
+        segs = [s for s in (self.segments[i] for i in self._around(t, t)) if s.t0 <= t <= s.t1]
         if not segs:
             return math.nan
         seg = segs[-1] if after else segs[0]
