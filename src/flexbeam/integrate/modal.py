@@ -36,6 +36,9 @@ _INFO_T0, _INFO_REJECT = 5, 6
 _REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
 _INFO_SIZE = _INFO_REJECT + len(_REJECT_CAUSES)
 _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4}
+#: floats at the end of a step record that summarise the step (FB_RECORD_SUMMARY in kernels/src/phase.h): the total
+#: and kinetic energy at its end, the tip deflection at its FB_P Gauss nodes
+SUMMARY = 6
 
 
 @dataclass(frozen=True)
@@ -151,6 +154,18 @@ class ModalDense:
         multiplier)."""
         c, w = gauss_nodes()
         return nm.fsum(self.records[:, 1] * nm.matmul(np.ascontiguousarray(self._forces(pair)), w))
+
+    def step_energies(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(each step's end time, the total energy T + V_e + V_g + U_c + E_d - W there, the kinetic energy there), as
+        the integrator booked them for its energy balance (the last floats of a record, ``FB_RECORD_SUMMARY``)."""
+        tail = self.records[:, -SUMMARY:]
+        return self.ends, tail[:, 0], tail[:, 1]
+
+    def tip_nodes(self) -> tuple[np.ndarray, np.ndarray]:
+        """(times, values) of the tip deflection at every step's Gauss nodes, as the integrator evaluated it."""
+        c, _ = gauss_nodes()
+        t = self.records[:, 0:1] + self.records[:, 1:2] * c[None, :]
+        return t.ravel(), self.records[:, -SUMMARY + 2 :].ravel()
 
     def nodal_forces(self, pair: int = 0) -> tuple[np.ndarray, np.ndarray]:
         """(times, values) of a pair's contact force (or multiplier) at every step's Gauss nodes."""

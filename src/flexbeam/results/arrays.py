@@ -243,6 +243,9 @@ class RunSource:
             b = seg.breaks()
             if b.size < 2:
                 continue
+            if column == "tip_deflection" and hasattr(seg.dense, "tip_nodes"):
+                grids.append((seg, *self._tip_grid(seg)))
+                continue
             frac = np.linspace(0.0, 1.0, points_per_step + 1)[:-1]
             t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
             grids.append((seg, t, self.evaluate(seg, t)[0][column]))
@@ -263,6 +266,16 @@ class RunSource:
                     best = max(best, self._zoom_all(seg, column, sign, lo, hi))
             out.append(sign * best)
         return out[0], out[1]
+
+    def _tip_grid(self, seg: Segment) -> tuple[np.ndarray, np.ndarray]:
+        """(times, tip deflection) of a compiled phase at its ends and at every step's collocation nodes, where the
+        integrator evaluated it while it ran: only the two ends are evaluated here."""
+        t_nodes, v_nodes = seg.dense.tip_nodes()
+        ends = np.array([seg.t0, seg.t1])
+        v_ends = self.evaluate(seg, ends)[0]["tip_deflection"]
+        t = np.concatenate(([seg.t0], t_nodes, [seg.t1]))
+        v = np.concatenate(([v_ends[0]], v_nodes, [v_ends[1]]))
+        return t, v
 
     def _zoom_all(
         self, seg: Segment, column: str, sign: float, lo: np.ndarray, hi: np.ndarray, points: int = 33
@@ -291,6 +304,13 @@ class RunSource:
         """(times, total energy, kinetic energy) at every step boundary of the run."""
         ts, Es, Ts = [], [], []
         for seg in self.segments:
+            if hasattr(seg.dense, "step_energies"):  # the compiled integrator books them at every step's end
+                t_end, E_end, T_end = seg.dense.step_energies()
+                cols = self.evaluate(seg, np.array([seg.t0]))[0]
+                ts.append(np.concatenate(([seg.t0], t_end)))
+                Es.append(np.concatenate((total_energy(cols), E_end)))
+                Ts.append(np.concatenate((cols["kinetic_energy"], T_end)))
+                continue
             t = seg.breaks()
             cols = self.evaluate(seg, t)[0]
             ts.append(t)

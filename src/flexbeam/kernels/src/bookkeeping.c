@@ -68,6 +68,25 @@ double fb_hub_angle(const fb_phase *ph, const double *eta) {
 /* T + V_e + V_g (+ the pairs' contact potentials under a law, + the support's energy) at an evaluated node, and
  * *scale = T + V_e (+ the support's), the energy the step's state error is measured against. */
 double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale) {
+    double T;
+    return fb_node_energy_parts(ph, nd, scale, &T);
+}
+
+/* The tip's deflection from the hub's radial line at an evaluated node (the output column tip_deflection). */
+double fb_node_tip(const fb_phase *ph, const fb_node *nd) {
+    const fb_model *m = ph->m;
+    int off = m->nrigid - m->ngiven;
+    const double *q = nd->z + off, *qd = nd->zd + off;
+    fb_kin tip = {.want_acc = 0};
+    fb_point_kinematics(m, &m->points[1], &nd->frame, q, qd, &tip, NULL);
+    double phi, phid, s, c;
+    fb_joint(m)->hub(m, &nd->frame, q, qd, &phi, &phid);
+    fb_sincos(phi, &s, &c);
+    return -s * tip.r[0] + c * tip.r[1];
+}
+
+/* fb_node_energy, and the kinetic energy T (+ the support's) in *kinetic. */
+double fb_node_energy_parts(const fb_phase *ph, const fb_node *nd, double *scale, double *kinetic) {
     const fb_model *m = ph->m;
     const double *q = nd->z + (m->nrigid - m->ngiven), *qd = nd->zd + (m->nrigid - m->ngiven);
     double T, Ve, Vg;
@@ -79,6 +98,7 @@ double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale) {
         Ve += 0.5 * o->ks * s * s;
     }
     *scale = T + Ve;
+    *kinetic = T;
     double E = T + Ve + Vg;
     for (int k = 0; k < ph->c.npairs; k++)
         if (ph->c.mode[k] == FB_MODE_FORCE) E += fb_law_potential(ph->c.p[k], -nd->gap[k].delta);
