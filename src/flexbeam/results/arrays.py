@@ -263,7 +263,7 @@ class RunSource:
                 idx = np.nonzero(peak & (reach >= top))[0]
                 if idx.size:
                     lo, hi = t[np.maximum(idx - 1, 0)], t[np.minimum(idx + 1, t.size - 1)]
-                    best = max(best, self._zoom_all(seg, column, sign, lo, hi))
+                    best = max(best, self._zoom_all(seg, column, sign, lo, hi, floor=best))
             out.append(sign * best)
         return out[0], out[1]
 
@@ -278,25 +278,39 @@ class RunSource:
         return t, v
 
     def _zoom_all(
-        self, seg: Segment, column: str, sign: float, lo: np.ndarray, hi: np.ndarray, points: int = 33
+        self,
+        seg: Segment,
+        column: str,
+        sign: float,
+        lo: np.ndarray,
+        hi: np.ndarray,
+        points: int = 33,
+        floor: float = -math.inf,
     ) -> float:
-        """Largest sign * column over the brackets [lo_k, hi_k] of one segment: each zoomed on a grid of ``points``
-        until below PEAK_XTOL, all brackets in one evaluation per level."""
+        """Largest sign * column over the brackets [lo_k, hi_k] of one segment (or ``floor``, a value already
+        reached): each zoomed on a grid of ``points`` until below PEAK_XTOL, all brackets in one evaluation per
+        level.  A bracket is dropped once it cannot beat the best value seen: a smooth peak stands above its
+        largest grid value by less than that value stands above the lower of the grid's two neighbours of it."""
         from .peaks import PEAK_XTOL
 
         lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
-        best = -math.inf
+        best = floor
         frac = np.linspace(0.0, 1.0, points)
-        while True:
+        while lo.size:
             t = lo[:, None] + (hi - lo)[:, None] * frac[None, :]
             v = sign * self.evaluate(seg, t.ravel())[0][column].reshape(t.shape)
+            rows = np.arange(t.shape[0])
             i = np.argmax(v, axis=1)
-            best = max(best, float(np.max(v)))
+            top = v[rows, i]
+            best = max(best, float(np.max(top)))
             if np.all(hi - lo <= PEAK_XTOL):
                 return best
+            low = np.minimum(v[rows, np.maximum(i - 1, 0)], v[rows, np.minimum(i + 1, points - 1)])
+            keep = top + (top - low) >= best
             dt = (hi - lo) / (points - 1)
-            centre = t[np.arange(t.shape[0]), i]
-            lo, hi = np.maximum(lo, centre - dt), np.minimum(hi, centre + dt)
+            centre = t[rows, i]
+            lo, hi = np.maximum(lo, centre - dt)[keep], np.minimum(hi, centre + dt)[keep]
+        return best
 
     # ---------------------------------------------------------------- energy balance
     @cached_property
