@@ -142,6 +142,29 @@ class ModalDense:
         Y[order] = Ys
         return Y
 
+    def column_max(
+        self, y0: np.ndarray, y1: np.ndarray, t0: float, t1: float, contacts: np.ndarray, column: int, sign: float,
+        lo: np.ndarray, hi: np.ndarray, xtol: float, reach: np.ndarray | None = None, floor: float = -math.inf,
+    ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+        """Per bracket [lo_k, hi_k] of the phase [t0, t1] (exact states y0, y1 at its ends) the time and value of
+        the largest ``sign`` x output column ``column`` (>= 0: :data:`~flexbeam.kernels.OUTPUT_COLUMNS`; < 0: the
+        contact force of pair -1 - column) under the contacts buffer ``contacts``: Brent's method on the step's
+        exact dense output, compiled (``kernels/src/extremes.c``; Brent 1973, ch. 5), to the absolute ``xtol``.
+        ``reach``: a bound on each bracket's maximum; a bracket whose bound is below the best value found so far
+        (or ``floor``) is skipped (time NaN, value -inf); give the brackets in decreasing order of their bounds."""
+        lo = np.ascontiguousarray(lo, float)
+        hi = np.ascontiguousarray(hi, float)
+        reach = np.full(lo.size, math.inf) if reach is None else np.ascontiguousarray(reach, float)
+        t_out, v_out = np.empty(lo.size), np.empty(lo.size)
+        if lo.size:
+            st = self.stepper
+            core.column_max(
+                st.kernel, st.basis_buffer, self.records, self.records.shape[0], contacts, float(t0), float(t1),
+                np.ascontiguousarray(y0, float), np.ascontiguousarray(y1, float), int(column), float(sign), lo, hi,
+                reach, float(floor), float(xtol), t_out, v_out,
+            )  # fmt: skip
+        return t_out, v_out
+
     def _forces(self, pair: int) -> np.ndarray:
         """A pair's nodal contact forces (steps x 4) of the records [t0, h, Ed0, W0, eta0, v0, f, F (pairs x 4),
         ...]."""

@@ -262,8 +262,9 @@ class RunSource:
                 reach = sv + (sv - np.minimum(left, right))  # bound on the peak between the neighbours
                 idx = np.nonzero(peak & (reach >= top))[0]
                 if idx.size:
+                    idx = idx[np.argsort(-reach[idx], kind="stable")]  # the most promising first
                     lo, hi = t[np.maximum(idx - 1, 0)], t[np.minimum(idx + 1, t.size - 1)]
-                    best = max(best, self._zoom_all(seg, column, sign, lo, hi, floor=best))
+                    best = max(best, self._zoom_all(seg, column, sign, lo, hi, floor=best, reach=reach[idx]))
             out.append(sign * best)
         return out[0], out[1]
 
@@ -286,13 +287,19 @@ class RunSource:
         hi: np.ndarray,
         points: int = 33,
         floor: float = -math.inf,
+        reach: np.ndarray | None = None,
     ) -> float:
         """Largest sign * column over the brackets [lo_k, hi_k] of one segment (or ``floor``, a value already
-        reached): each zoomed on a grid of ``points`` until below PEAK_XTOL, all brackets in one evaluation per
-        level.  A bracket is dropped once it cannot beat the best value seen: a smooth peak stands above its
-        largest grid value by less than that value stands above the lower of the grid's two neighbours of it."""
+        reached).  A compiled phase: :meth:`refine_max` (brackets whose bound ``reach`` is below the best value
+        yet are skipped).  Otherwise each is zoomed on a grid of ``points`` until below PEAK_XTOL, all brackets in
+        one evaluation per level, and a bracket is dropped once it cannot beat the best value seen: a smooth peak
+        stands above its largest grid value by less than that value stands above the lower of the grid's two
+        neighbours of it."""
         from .peaks import PEAK_XTOL
 
+        found = self.refine_max(seg, OUTPUT_COLUMNS.index(column), sign, lo, hi, reach, floor)
+        if found is not None:
+            return max(floor, float(np.max(found[1]))) if found[1].size else floor
         lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
         best = floor
         frac = np.linspace(0.0, 1.0, points)
@@ -311,6 +318,38 @@ class RunSource:
             centre = t[rows, i]
             lo, hi = np.maximum(lo, centre - dt)[keep], np.minimum(hi, centre + dt)[keep]
         return best
+
+    def refine_max(
+        self,
+        seg: Segment,
+        column: int,
+        sign: float,
+        lo: np.ndarray,
+        hi: np.ndarray,
+        reach: np.ndarray | None = None,
+        floor: float = -math.inf,
+    ) -> tuple[np.ndarray, np.ndarray] | None:
+        """(times, values) of the largest ``sign`` x output in each bracket [lo_k, hi_k] of a compiled phase
+        (``column`` >= 0: an output column's index; < 0: the contact force of pair -1 - column), located to
+        PEAK_XTOL by Brent's method in the kernels in one call; None for a phase without compiled dense output
+        (the reference integrator's), which the callers zoom on instead.  ``reach``, ``floor``: brackets whose
+        bound is below the best value yet are skipped (value -inf; :meth:`ModalDense.column_max`)."""
+        from .peaks import PEAK_XTOL
+
+        if not hasattr(seg.dense, "column_max"):
+            return None
+        return seg.dense.column_max(
+            seg.y0, seg.y1, seg.t0, seg.t1, seg.phase.buffer, column, sign, lo, hi, PEAK_XTOL, reach, floor
+        )
+
+    def pair_max(self, pair: int, a: float, b: float) -> tuple[float, float] | None:
+        """(time, force) of the largest contact force of ``pair`` in [a, b] when one compiled contact phase holds
+        the whole bracket (:meth:`refine_max`), else None."""
+        segs = self._contact_segments(a, b, pair)
+        if len(segs) != 1 or not (segs[0].t0 <= a and b <= segs[0].t1):
+            return None
+        found = self.refine_max(segs[0], -1 - pair, 1.0, np.array([a]), np.array([b]))
+        return None if found is None else (float(found[0][0]), float(found[1][0]))
 
     # ---------------------------------------------------------------- energy balance
     @cached_property

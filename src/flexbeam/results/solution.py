@@ -210,7 +210,8 @@ class Solution:
             force = lambda t: self.source.force_many(t, pair)  # noqa: E731
             if b <= a:
                 return t_guess, float(force(np.array([t_guess]))[0])
-            return zoom_max(force, a, b, xtol=PEAK_XTOL)
+            found = self.source.pair_max(pair, a, b)
+            return found if found is not None else zoom_max(force, a, b, xtol=PEAK_XTOL)
         if self._force_at is None:
             i = int(np.argmin(np.abs(self.time - t_guess)))
             return float(self.time[i]), float(self.arrays["contact_force"][i])

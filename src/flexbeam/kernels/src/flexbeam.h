@@ -141,6 +141,7 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
                 double *mv, double *pcols);
 
 #define FB_NCOLS 15 /* columns of fb_outputs, in the order of flexbeam.kernels.OUTPUT_COLUMNS */
+#define FB_COL_TIP 12 /* the column tip_deflection */
 #define FB_PAIR_COLS 4 /* per pair: gap, its rate, the contact force, the contact point's x (kernels.PAIR_COLUMNS) */
 
 /* ------------------------------------------------------------------ modal basis (propagation.c) */

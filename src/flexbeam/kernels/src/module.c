@@ -295,6 +295,47 @@ fail:
     return NULL;
 }
 
+/* column_max(model, basis, records, nrec, contacts, t0, t1, y0, y1, column, sign, lo, hi, reach, floor, xtol,
+ * t_out, v_out): per bracket [lo, hi] the largest sign * output (column >= 0; the contact force of pair
+ * -1 - column) on a phase's dense output, by Brent's method (extremes.c); brackets whose bound reach is below the
+ * best value yet are skipped */
+static PyObject *py_column_max(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *orec, *oc, *oy0, *oy1, *olo, *ohi, *ore, *oto, *ovo;
+    int nrec, column;
+    double t0, t1, sign, floor, xtol;
+    if (!PyArg_ParseTuple(args, "OOOiOddOOidOOOddOO", &om, &ob, &orec, &nrec, &oc, &t0, &t1, &oy0, &oy1, &column,
+                          &sign, &olo, &ohi, &ore, &floor, &xtol, &oto, &ovo))
+        return NULL;
+    buf_t b[11];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    fb_contacts c;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(orec, &b[2], 0, "records") ||
+        get_buf(oc, &b[3], 0, "contacts") || get_buf(oy0, &b[4], 0, "y0") || get_buf(oy1, &b[5], 0, "y1") ||
+        get_buf(olo, &b[6], 0, "lo") || get_buf(ohi, &b[7], 0, "hi") || get_buf(oto, &b[8], 1, "t_out") ||
+        get_buf(ovo, &b[9], 1, "v_out") || get_buf(ore, &b[10], 0, "reach") || model_from(&b[0], &m) ||
+        basis_from(&b[1], &bs) ||
+        contacts_from(&b[3], &m, &c))
+        goto fail;
+    size_t count = LEN(b[6]), size = (size_t)fb_state_size(&m);
+    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs.N, m.npairs) || LEN(b[4]) != size ||
+        LEN(b[5]) != size || LEN(b[7]) != count || LEN(b[8]) != count || LEN(b[9]) != count || LEN(b[10]) != count ||
+        column >= FB_NCOLS || column < -m.npairs) {
+        PyErr_SetString(PyExc_ValueError, "column_max: bad column or array sizes");
+        goto fail;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    fb_column_max(&m, &bs, PTR(b[2]), nrec, &c, t0, t1, PTR(b[4]), PTR(b[5]), column, sign, PTR(b[6]), PTR(b[7]),
+                  PTR(b[10]), floor, (int)count, xtol, PTR(b[8]), PTR(b[9]));
+    Py_END_ALLOW_THREADS
+    release(b, 11);
+    Py_RETURN_NONE;
+fail:
+    release(b, 11);
+    return NULL;
+}
+
 /* moments(theta) -> (Cm_0..Cm_3, Sm_0..Sm_3) of propagation.c (for the tests) */
 static PyObject *py_moments(PyObject *self, PyObject *args) {
     double th, Cm[FB_P], Sm[FB_P];
@@ -525,6 +566,9 @@ static PyMethodDef methods[] = {
     {"law_force", py_law_force, METH_VARARGS, "law_force(p, d, dd) -> (F, Fk, dF/dd, dF/ddd)"},
     {"advance", py_advance, METH_VARARGS, "advance(model, basis, ctrl, state, t_end, records, info) -> (code, nrec)"},
     {"dense", py_dense, METH_VARARGS, "dense(model, basis, records, nrec, times, Y)"},
+    {"column_max", py_column_max, METH_VARARGS,
+     "column_max(model, basis, records, nrec, contacts, t0, t1, y0, y1, column, sign, lo, hi, reach, floor, xtol, "
+     "t_out, v_out)"},
     {"moments", py_moments, METH_VARARGS, "moments(theta) -> (Cm, Sm)"},
     {"weights", py_weights, METH_VARARGS, "weights(w, h, s) -> (C, SW, WS, RE, RV)"},
     {"nodes", py_nodes, METH_NOARGS, "nodes() -> the collocation's Gauss nodes on (0, 1)"},

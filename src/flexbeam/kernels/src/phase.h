@@ -21,6 +21,10 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
                double *records, int capacity, int *nrec, double *info);
 int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, int nrec, const double *times,
                   int count, double *Y);
+void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, int nrec, const fb_contacts *c,
+                   double t0, double t1, const double *y0, const double *y1, int column, double sign,
+                   const double *lo, const double *hi, const double *reach, double floor, int count, double xtol,
+                   double *t_out, double *v_out);
 
 void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P], const double Fk[][FB_P], int j,
                    double *ed, double *wd);

@@ -1,0 +1,125 @@
+"""What the outputs cost after the integration: ``simulate``, ``contacts`` and ``metrics`` of the seed case.
+
+Run: ``python benchmarks/outputs.py`` (a Markdown table on stdout; ``--json`` for one JSON object;
+``--lengths 0.1 2 10`` the simulated lengths [s]; ``--repeats`` runs per length, fewer once a row has
+spent ``--budget`` seconds).
+
+For each length of ``seed-experiment`` (CCFM, its preset's model, ``solver.memory_limit`` raised so that
+long runs are allowed), every run is timed in the same process, in this order, on a fresh Solution:
+
+* ``integration``: the Solution's own ``stats["wall_time"]``, the phases' integration alone -- the
+  baseline every other column is a ratio to;
+* ``simulate``: the whole ``simulate()`` call (set-up, start checks, integration, the contact log);
+* ``contacts``: the first ``Solution.contacts`` (each record's peak force and impulse on the dense
+  output);
+* ``metrics``: the first ``Solution.metrics()`` after that (energy balance, tip extremes, force peaks,
+  counts).
+
+The medians are reported with their ratios to the median integration of the same row, with the
+machine and its load average (issue 25's targets: simulate + metrics <= 1.2x the integration at
+0.1 s; contacts of 10 s <= 50 ms; metrics of 10 s <= 0.1 s).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import platform
+import statistics
+import time
+from typing import Any
+
+import numpy as np
+
+import flexbeam as fb
+from flexbeam.simulation import simulate
+
+CASE = "seed-experiment"
+
+
+def environment() -> dict[str, Any]:
+    """The machine and library versions the numbers belong to."""
+    cpu = platform.processor() or ""
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), cpu)
+    except OSError:
+        pass
+    return {
+        "machine": f"{platform.machine()} {cpu}".strip(),
+        "cores": len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count(),
+        "python": platform.python_version(),
+        "flexbeam": fb.__version__,
+        "numpy": np.__version__,
+        "load_average": os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan,
+    }
+
+
+def one_run(t_end: float) -> dict[str, float]:
+    """Times [s] of one run of the seed case over ``t_end``."""
+    case = fb.load_case(CASE, {"solver.t_end": t_end, "solver.memory_limit": 2e10})
+    t0 = time.perf_counter()
+    sol = simulate(case, "ccfm")
+    t1 = time.perf_counter()
+    contacts = sol.contacts
+    t2 = time.perf_counter()
+    sol.metrics()
+    t3 = time.perf_counter()
+    return {
+        "integration": float(sol.stats["wall_time"]),
+        "simulate": t1 - t0,
+        "contacts": t2 - t1,
+        "metrics": t3 - t2,
+        "n_contacts": len(contacts),
+        "steps": int(sol.stats["steps"]),
+    }
+
+
+def row(t_end: float, repeats: int, budget: float) -> dict[str, Any]:
+    """Medians over up to ``repeats`` runs (after one warm-up run at 2 ms)."""
+    one_run(min(t_end, 0.002))
+    runs, start = [], time.perf_counter()
+    for _ in range(repeats):
+        runs.append(one_run(t_end))
+        if time.perf_counter() - start > budget:
+            break
+    med = {k: statistics.median(r[k] for r in runs) for k in runs[0]}
+    base = med["integration"]
+    med.update(
+        t_end=t_end,
+        runs=len(runs),
+        simulate_ratio=med["simulate"] / base,
+        after_ratio=(med["simulate"] + med["contacts"] + med["metrics"]) / base,
+    )
+    return med
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--lengths", type=float, nargs="+", default=[0.1, 2.0, 10.0], help="simulated lengths [s]")
+    ap.add_argument("--repeats", type=int, default=11, help="runs per length (at most)")
+    ap.add_argument("--budget", type=float, default=20.0, help="seconds per length before fewer repeats")
+    ap.add_argument("--json", action="store_true", help="one JSON object instead of Markdown")
+    args = ap.parse_args()
+    env = environment()
+    rows = [row(t, args.repeats, args.budget) for t in args.lengths]
+    if args.json:
+        print(json.dumps({"environment": env, "rows": rows}, indent=1))
+        return
+    print(f"machine: {env['machine']}, {env['cores']} cores, load {env['load_average']:.2f}; python {env['python']}, "
+          f"flexbeam {env['flexbeam']}, numpy {env['numpy']}\n")  # fmt: skip
+    print("| t_end [s] | runs | contacts | steps | integration [ms] | simulate [ms] (x) | contacts [ms] | "
+          "metrics [ms] | all after / integration |")  # fmt: skip
+    print("|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(
+            f"| {r['t_end']:g} | {r['runs']} | {r['n_contacts']:.0f} | {r['steps']:.0f} | "
+            f"{1e3 * r['integration']:.1f} | {1e3 * r['simulate']:.1f} ({r['simulate_ratio']:.2f}) | "
+            f"{1e3 * r['contacts']:.1f} | {1e3 * r['metrics']:.1f} | {r['after_ratio']:.2f} |"
+        )
+
+
+if __name__ == "__main__":
+    main()

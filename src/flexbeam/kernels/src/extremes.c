@@ -1,0 +1,193 @@
+/* The largest value of one output on a phase's dense output within given brackets, each located by Brent's
+ * method for a minimum without derivatives (golden-section steps safeguarding successive parabolic interpolation;
+ * R. P. Brent, Algorithms for Minimization without Derivatives, 1973, ch. 5), applied to -sign * output.
+ *
+ * It serves the contact records' peak forces and the tip's extremes (flexbeam.results): one call per phase, every
+ * evaluation a single point of the step's exact dense output (fb_dense_eval) and of the outputs (fb_outputs), so
+ * a peak costs some 50-70 evaluations of a microsecond or two, not a Python round trip each. */
+#include <math.h>
+#include <string.h>
+
+#include "detmath.h"
+#include "joint.h"
+#include "phase.h"
+
+typedef struct {
+    const fb_model *m;
+    const fb_basis *b;
+    const double *records;
+    int nrec, R;
+    const fb_contacts *c;
+    double t0, t1;
+    const double *y0, *y1;
+    int column; /* >= 0: an output column (FB_NCOLS); < 0: the contact force of pair -1 - column */
+    double sign;
+} probe_t;
+
+/* The first step that ends at or after t (the dense output's own choice), by bisection on the step ends. */
+static int step_of(const probe_t *p, double t) {
+    int lo = 0, hi = p->nrec - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        const double *rec = p->records + (size_t)mid * p->R;
+        if (rec[0] + rec[1] < t)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* sign * output at t; the phase's ends give its exact start and end states (as the Python segments do). */
+static double probe_value(const probe_t *p, double t) {
+    double y[2 * FB_MAXN + 4], cols[FB_NCOLS], mv[FB_MAX_POINTS], pc[FB_MAX_PAIRS * FB_PAIR_COLS];
+    int size = fb_state_size(p->m);
+    if (t <= p->t0)
+        memcpy(y, p->y0, sizeof(double) * size);
+    else if (t >= p->t1)
+        memcpy(y, p->y1, sizeof(double) * size);
+    else
+        fb_dense_eval(p->m, p->b, p->records + (size_t)step_of(p, t) * p->R, 1, &t, 1, y);
+    if (p->column == FB_COL_TIP) { /* the tip alone: fb_outputs' arithmetic for that column */
+        fb_frame fr;
+        const double *q, *qd;
+        double phi, phid, sphi, cphi;
+        fb_state_split(p->m, t, y, &fr, &q, &qd);
+        fb_joint(p->m)->hub(p->m, &fr, q, qd, &phi, &phid);
+        fb_sincos(phi, &sphi, &cphi);
+        fb_kin tip = {.want_acc = 0};
+        fb_point_kinematics(p->m, &p->m->points[1], &fr, q, qd, &tip, NULL);
+        return p->sign * (-sphi * tip.r[0] + cphi * tip.r[1]);
+    }
+    fb_outputs(p->m, &t, y, 1, p->c, cols, mv, pc);
+    double v = p->column >= 0 ? cols[p->column] : pc[(-1 - p->column) * FB_PAIR_COLS + 2];
+    return p->sign * v;
+}
+
+/* Brent's minimisation of f = -probe_value on [a, b] to an absolute tolerance xtol; returns the abscissa of the
+ * smallest f evaluated and its value in *best (as a maximum of probe_value). */
+static double brent_max(const probe_t *p, double a, double b, double xtol, double *best) {
+    const double golden = 0.3819660112501051; /* (3 - sqrt(5)) / 2 */
+    double x = a + golden * (b - a), w = x, v = x;
+    double fx = -probe_value(p, x), fw = fx, fv = fx;
+    double d = 0.0, e = 0.0;
+    for (int iter = 0; iter < 200; iter++) {
+        double mid = 0.5 * (a + b), tol1 = 0.5 * xtol + 1e-16 * fabs(x), tol2 = 2.0 * tol1;
+        if (fabs(x - mid) <= tol2 - 0.5 * (b - a)) break;
+        int parabolic = 0;
+        if (fabs(e) > tol1) { /* try a parabola through x, w, v */
+            double r = (x - w) * (fx - fv), q = (x - v) * (fx - fw), pp = (x - v) * q - (x - w) * r;
+            q = 2.0 * (q - r);
+            if (q > 0.0) pp = -pp;
+            q = fabs(q);
+            double etemp = e;
+            e = d;
+            if (fabs(pp) < fabs(0.5 * q * etemp) && pp > q * (a - x) && pp < q * (b - x)) {
+                d = pp / q;
+                double u = x + d;
+                if (u - a < tol2 || b - u < tol2) d = mid >= x ? tol1 : -tol1;
+                parabolic = 1;
+            }
+        }
+        if (!parabolic) { /* a golden-section step into the larger part */
+            e = (x >= mid ? a : b) - x;
+            d = golden * e;
+        }
+        double u = fabs(d) >= tol1 ? x + d : x + (d > 0.0 ? tol1 : -tol1);
+        double fu = -probe_value(p, u);
+        if (fu <= fx) {
+            if (u >= x)
+                a = x;
+            else
+                b = x;
+            v = w, fv = fw, w = x, fw = fx, x = u, fx = fu;
+        } else {
+            if (u < x)
+                a = u;
+            else
+                b = u;
+            if (fu <= fw || w == x) {
+                v = w, fv = fw, w = u, fw = fu;
+            } else if (fu <= fv || v == x || v == w) {
+                v = u, fv = fu;
+            }
+        }
+    }
+    *best = -fx;
+    return x;
+}
+
+/* The fastest rate the output can oscillate at between the nodes of the step starting at record r, in a
+ * measurable amount: for the tip, the fastest mode whose free vibration there (amplitude |g_k| sqrt(eta_k^2 +
+ * (v_k / omega_k)^2) at the step's start, g_k the tip's deflection per unit eta_k) and that of every faster mode
+ * add up to more than 1e-9 of the sum over all modes; for any other output, the fastest mode. */
+static double fastest_rate(const probe_t *p, int r) {
+    const fb_basis *b = p->b;
+    int N = b->N, n = p->m->n, off = p->m->nrigid - p->m->ngiven;
+    double wmax = 0.0;
+    for (int k = 0; k < N; k++) wmax = fmax(wmax, b->omega[k]);
+    if (p->column != FB_COL_TIP) return wmax;
+    const double *rec = p->records + (size_t)r * p->R, *eta = rec + 4, *v = eta + N, *phi = p->m->points[1].phi;
+    double amp[FB_MAXN], total = 0.0;
+    for (int k = 0; k < N; k++) {
+        double g = 0.0;
+        for (int j = 0; j < n; j++) g += phi[j] * b->Psi[(off + j) * N + k];
+        double w = b->omega[k], a = w > 0.0 ? sqrt(eta[k] * eta[k] + (v[k] / w) * (v[k] / w)) : 0.0;
+        amp[k] = fabs(g) * a;
+        total += amp[k];
+    }
+    int used[FB_MAXN] = {0};
+    double unresolved = 0.0; /* drop the fastest modes while what they add up to is negligible */
+    for (int it = 0; it < N; it++) {
+        int top = -1;
+        for (int k = 0; k < N; k++)
+            if (!used[k] && (top < 0 || b->omega[k] > b->omega[top])) top = k;
+        if (unresolved + amp[top] > 1e-9 * total) return b->omega[top];
+        unresolved += amp[top];
+        used[top] = 1;
+    }
+    return 0.0;
+}
+
+/* The grid a bracket [a, z] is searched on before Brent's method: 33 points, and at least 8 per half-period of
+ * the fastest measurable oscillation there (fastest_rate; the exactly propagated steps are not limited by the
+ * modes' frequencies, so the output may oscillate between the step's nodes), at most 4097. */
+static int grid_points(const probe_t *p, double a, double z) {
+    double w = fmax(fastest_rate(p, step_of(p, a)), fastest_rate(p, step_of(p, z)));
+    double need = 1.0 + ceil(8.0 * w * (z - a) / 3.141592653589793);
+    return need < 33.0 ? 33 : need > 4097.0 ? 4097 : (int)need;
+}
+
+/* For each bracket [lo[k], hi[k]] (clipped to [t0, t1]) the abscissa and the value of the largest sign * output:
+ * the largest value on a grid that resolves the fastest mode (grid_points), then Brent's method between that grid
+ * point's neighbours, where the output is unimodal.  A bracket whose bound reach[k] on its maximum is below the
+ * best value found so far (or ``floor``) is skipped (t_out NaN, v_out -inf): give the brackets in decreasing
+ * order of their bounds. */
+void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, int nrec, const fb_contacts *c,
+                   double t0, double t1, const double *y0, const double *y1, int column, double sign,
+                   const double *lo, const double *hi, const double *reach, double floor, int count, double xtol,
+                   double *t_out, double *v_out) {
+    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, column, sign};
+    double top = floor;
+    for (int k = 0; k < count; k++) {
+        if (reach[k] < top) {
+            t_out[k] = NAN;
+            v_out[k] = -INFINITY;
+            continue;
+        }
+        double a = fmax(lo[k], t0), z = fmin(hi[k], t1);
+        int G = grid_points(&p, a, z);
+        double dt = (z - a) / (G - 1), t_best = a, v_best = -INFINITY;
+        for (int i = 0; i < G; i++) {
+            double t = i == G - 1 ? z : a + i * dt, v = probe_value(&p, t);
+            if (v > v_best) t_best = t, v_best = v;
+        }
+        if (z - a > xtol) {
+            double best, t = brent_max(&p, fmax(a, t_best - dt), fmin(z, t_best + dt), xtol, &best);
+            if (best > v_best) t_best = t, v_best = best;
+        }
+        t_out[k] = t_best;
+        v_out[k] = v_best;
+        if (v_best > top) top = v_best;
+    }
+}
