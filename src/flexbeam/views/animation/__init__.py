@@ -154,8 +154,26 @@ def animate(
         The file written (``.gif`` instead of ``.mp4`` on the fallback).
     """
     out = Path(out)
-    suffix = out.suffix.lower()
-    if suffix not in SUFFIXES:
+    frames, width, height = _checked_options(out, frames, fps, size, contact_share, reference, scale)
+    out, ffmpeg = _video_encoder(out, width, height)
+    history = History.load(result, case)
+    scene = Scene.build(history, window, frames, contact_share, reference, scale)
+    _render(scene, out, width, height, fps, ffmpeg, progress)
+    return out
+
+
+def _checked_options(
+    out: Path,
+    frames: int,
+    fps: float,
+    size: tuple[int, int],
+    contact_share: float,
+    reference: str,
+    scale: float | str,
+) -> tuple[int, int, int]:
+    """:func:`animate`'s options checked (a :class:`~flexbeam.errors.ParameterError` on the first bad one):
+    returns (frames, width, height) as ints."""
+    if out.suffix.lower() not in SUFFIXES:
         raise ParameterError(f"out: unsupported file type '{out.suffix or out.name}'; allowed: .gif, .mp4")
     frames = _check_int("frames", frames, 2, MAX_FRAMES)
     width = _check_int("size (width)", size[0], MIN_PIXELS, MAX_PIXELS)
@@ -168,36 +186,51 @@ def animate(
         raise ParameterError(f"reference: unknown reference '{reference}'; allowed: {', '.join(REFERENCES)}")
     if scale != "auto" and not (isinstance(scale, (int, float)) and math.isfinite(scale) and scale > 0):
         raise ParameterError(f"scale: must be 'auto' or a number > 0 (got {scale!r})")
+    return frames, width, height
 
-    writer_kind = "gif"
-    if suffix == ".mp4":
-        try:
-            import imageio_ffmpeg
-        except ImportError:
-            gif = out.with_suffix(".gif")
-            warnings.warn(
-                f"imageio-ffmpeg is not installed (pip install 'flexbeam[video]'): writing {gif} instead of {out}",
-                VideoFallbackWarning,
-                stacklevel=2,
-            )
-            out = gif
-        else:
-            if width % 2 or height % 2:
-                raise ParameterError(f"size: an MP4 (H.264) needs an even width and height (got {width}x{height})")
-            writer_kind = "mp4"
 
-    history = History.load(result, case)
-    scene = Scene.build(history, window, frames, contact_share, reference, scale)
+def _video_encoder(out: Path, width: int, height: int) -> tuple[Path, Any]:
+    """The file to write and, for an MP4, the ``imageio_ffmpeg`` module that encodes it (None: a GIF).
+
+    An MP4 without ``imageio-ffmpeg`` becomes a GIF of the same name, with a
+    :class:`~flexbeam.views.animation.writers.VideoFallbackWarning` pointing at :func:`animate`'s caller; an MP4
+    (H.264) needs an even width and height.
+    """
+    if out.suffix.lower() != ".mp4":
+        return out, None
+    try:
+        import imageio_ffmpeg
+    except ImportError:
+        gif = out.with_suffix(".gif")
+        warnings.warn(
+            f"imageio-ffmpeg is not installed (pip install 'flexbeam[video]'): writing {gif} instead of {out}",
+            VideoFallbackWarning,
+            stacklevel=3,
+        )
+        return gif, None
+    if width % 2 or height % 2:
+        raise ParameterError(f"size: an MP4 (H.264) needs an even width and height (got {width}x{height})")
+    return out, imageio_ffmpeg
+
+
+def _render(
+    scene: Scene,
+    out: Path,
+    width: int,
+    height: int,
+    fps: float,
+    ffmpeg: Any,
+    progress: bool | Callable[[int, int], None],
+) -> None:
+    """Every frame of ``scene`` drawn and written to ``out`` (an MP4 by ``ffmpeg``, the ``imageio_ffmpeg``
+    module; None: a GIF), reporting to ``progress`` (True: a bar on stderr, closed at the end)."""
     bar = FrameProgress(f"rendering {out.name}") if progress is True else None
     report = progress if callable(progress) else bar
     try:
-        write_animation(
-            scene, out, width, height, fps, writer_kind, report, imageio_ffmpeg if writer_kind == "mp4" else None
-        )
+        write_animation(scene, out, width, height, fps, "gif" if ffmpeg is None else "mp4", report, ffmpeg)
     finally:
         if bar is not None:
             bar.close()
-    return out
 
 
 def _check_int(name: str, value: Any, lo: int, hi: int) -> int:

@@ -8,12 +8,18 @@ trace with a cursor (one trace per contact pair in its own colour, :func:`pair_c
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Circle, Polygon
+    from matplotlib.text import Text
 
     from ...contact.setup import ObstacleGeometry
     from .scene import Scene
@@ -81,7 +87,9 @@ class FrameRenderer:
     pyplot).
 
     The static part (axes, ticks, labels, force traces, fixed obstacles) is drawn once; each frame restores it and
-    draws only the moving artists (Matplotlib's blitting), about 8x faster than redrawing the figure.
+    draws only the moving artists (Matplotlib's blitting), about 8x faster than redrawing the figure.  The beam's
+    axes show a fixed view of everything the frames draw; the moving artists are the beam's, the clock and the
+    force's cursor, each group with its own ``update``.
 
     Attributes
     ----------
@@ -119,62 +127,138 @@ class FrameRenderer:
             raise RuntimeError(f"frame of {frame.shape[1]}x{frame.shape[0]} px, asked {self.size}")
         return frame.copy()
 
+    def update(self, i: int) -> None:
+        """Move the moving artists to frame ``i``."""
+        scene = self.scene
+        self._beam.update(scene, i, self._colours)
+        if self._moves and self.obstacle is not None:
+            self.obstacle.set_center(self._obstacle_centre + scene.obstacle_shift[i])
+        self._clock.update(scene, i)
+        self._force.update(scene, i)
+
     def _build(self, w_in: float, h_in: float, dpi: float, fps: float, font: float) -> None:
+        """Draw the figure (``w_in`` x ``h_in`` inches): the beam's axes above, the contact force below."""
         from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.figure import Figure
-        from matplotlib.patches import Circle, Polygon
 
         scene = self.scene
-        h, system = scene.history, scene.system
-        obstacle = system.contact.obstacle
-        obstacles, pairs = system.contact.obstacles, system.contact.pairs
-        multi = scene.pairs > 1
-        colours = [pair_colour(k) for k in range(scene.pairs)] if multi else ["C3"]
-        L, rh = system.beam.length, system.beam.hub_radius
+        obstacle = scene.system.contact.obstacle
+        self._colours = [pair_colour(k) for k in range(scene.pairs)] if scene.pairs > 1 else ["C3"]
         fig = self.fig = Figure(figsize=(w_in, h_in), dpi=dpi, facecolor="white")
         self.canvas = FigureCanvasAgg(fig)
         gs = fig.add_gridspec(2, 1, height_ratios=(3, 1), left=0.13, right=0.97, top=0.9, bottom=0.11, hspace=0.38)
         ax = fig.add_subplot(gs[0])
         axf = fig.add_subplot(gs[1])
-
-        # -- a fixed view of everything the frames draw, equal scales in x and y
-        centre = np.asarray(obstacle.centre, float)
-        beam_pts = np.concatenate(
-            [scene.upper.reshape(-1, 2), scene.lower.reshape(-1, 2), np.array([[-rh, -rh], [rh, rh]])]
-        )
-        lo, hi = beam_pts.min(axis=0), beam_pts.max(axis=0)
-        beam_lo, beam_hi = lo, hi
-        for j, ob in enumerate(obstacles):
-            r_ob = ob.radius if ob.kind == 0 else 0.0
-            at = np.asarray(ob.centre, float) + (scene.obstacle_shift if j == 0 else np.zeros((1, 2)))
-            ob_lo, ob_hi = np.min(at, axis=0) - r_ob, np.max(at, axis=0) + r_ob
-            # an obstacle joins the view when it is near the beam (a case may park it far away: no contact)
-            if np.all(ob_lo <= beam_hi + 0.5 * (rh + L)) and np.all(ob_hi >= beam_lo - 0.5 * (rh + L)):
-                lo, hi = np.minimum(lo, ob_lo), np.maximum(hi, ob_hi)
-        mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo) + 0.05 * float(np.max(hi - lo))
-        box = ax.get_position()
-        aspect = (box.height * h_in) / (box.width * w_in)  # height / width of the axes box
-        half = np.array([max(half[0], half[1] / aspect), max(half[1], half[0] * aspect)])
-        ax.set_xlim(mid[0] - half[0], mid[0] + half[0])
-        ax.set_ylim(mid[1] - half[1], mid[1] + half[1])
-        ax.set_xlabel("x [m]", labelpad=1)
-        ax.set_ylabel("y [m]", labelpad=1)
-        ax.tick_params(length=2, pad=1)
-        span = 2.0 * float(half[0])
+        span = _fit_view(ax, scene, w_in, h_in)
 
         # -- the obstacles: only obstacle 0 moves, and only on a compliant support
-        moves = bool(np.any(scene.obstacle_shift))
-        edges = ["0.3"] * len(obstacles)
-        if multi:  # each obstacle edged in the colour of the (first) pair touching it
-            for k in reversed(range(len(pairs))):
-                edges[pairs[k].obstacle] = colours[k]
-        self.obstacles = [
-            _draw_obstacle(ax, ob, edges[j], 20.0 * (span + L), animated=moves and j == 0)
-            for j, ob in enumerate(obstacles)
-        ]
+        self._moves = bool(np.any(scene.obstacle_shift))
+        self._obstacle_centre = np.asarray(obstacle.centre, float)
+        self.obstacles = _draw_obstacles(ax, scene, self._colours, span, self._moves)
         self.obstacle = self.obstacles[0] if obstacle.kind == 0 and obstacle.radius > 0 else None
 
-        # -- the beam (a band of its thickness about the magnified centre line), the reference line, P, the hub
+        self._beam = _BeamArtists.draw(ax, scene, font)
+        _draw_titles(fig, ax, scene, font)
+        mult, unit = _time_unit(scene.times[-1] - scene.times[0])
+        self._clock = _Clock.draw(ax, font, mult, unit, _clock_decimals(scene.times, mult), fps)
+        self._force = _ForceArtists.draw(axf, scene, self._colours, font, mult, unit)
+        self.moving = [
+            a
+            for a in (
+                self.obstacle if self._moves else None,
+                *self._beam.artists,
+                self._clock.text,
+                *self._force.artists,
+            )
+            if a is not None
+        ]
+
+
+def _fit_view(ax: Axes, scene: Scene, w_in: float, h_in: float) -> float:
+    """Fix the view of ``ax`` on everything the frames draw, with equal scales in x and y; return its width [m].
+
+    The view holds the beam's band in every frame, the hub and each obstacle near the beam (a case may park one
+    far away: no contact), with a 5 % margin, widened in x or y to the shape of the axes' box in a figure of
+    ``w_in`` x ``h_in`` inches.
+    """
+    system = scene.system
+    L, rh = system.beam.length, system.beam.hub_radius
+    beam_pts = np.concatenate(
+        [scene.upper.reshape(-1, 2), scene.lower.reshape(-1, 2), np.array([[-rh, -rh], [rh, rh]])]
+    )
+    lo, hi = beam_pts.min(axis=0), beam_pts.max(axis=0)
+    beam_lo, beam_hi = lo, hi
+    for j, ob in enumerate(system.contact.obstacles):
+        r_ob = ob.radius if ob.kind == 0 else 0.0
+        at = np.asarray(ob.centre, float) + (scene.obstacle_shift if j == 0 else np.zeros((1, 2)))
+        ob_lo, ob_hi = np.min(at, axis=0) - r_ob, np.max(at, axis=0) + r_ob
+        # an obstacle joins the view when it is near the beam (a case may park it far away: no contact)
+        if np.all(ob_lo <= beam_hi + 0.5 * (rh + L)) and np.all(ob_hi >= beam_lo - 0.5 * (rh + L)):
+            lo, hi = np.minimum(lo, ob_lo), np.maximum(hi, ob_hi)
+    mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo) + 0.05 * float(np.max(hi - lo))
+    box = ax.get_position()
+    aspect = (box.height * h_in) / (box.width * w_in)  # height / width of the axes box
+    half = np.array([max(half[0], half[1] / aspect), max(half[1], half[0] * aspect)])
+    ax.set_xlim(mid[0] - half[0], mid[0] + half[0])
+    ax.set_ylim(mid[1] - half[1], mid[1] + half[1])
+    ax.set_xlabel("x [m]", labelpad=1)
+    ax.set_ylabel("y [m]", labelpad=1)
+    ax.tick_params(length=2, pad=1)
+    return 2.0 * float(half[0])
+
+
+def _draw_obstacles(ax: Axes, scene: Scene, colours: list[str], span: float, moves: bool) -> list[Artist]:
+    """Draw every obstacle of the case on ``ax`` (a view ``span`` [m] wide) and return their artists.
+
+    With several pairs each obstacle is edged in the colour of the (first) pair touching it, else grey; obstacle
+    0 is animated when it ``moves`` (a compliant support).
+    """
+    system = scene.system
+    obstacles, pairs = system.contact.obstacles, system.contact.pairs
+    edges = ["0.3"] * len(obstacles)
+    if scene.pairs > 1:  # each obstacle edged in the colour of the (first) pair touching it
+        for k in reversed(range(len(pairs))):
+            edges[pairs[k].obstacle] = colours[k]
+    big = 20.0 * (span + system.beam.length)
+    return [_draw_obstacle(ax, ob, edges[j], big, animated=moves and j == 0) for j, ob in enumerate(obstacles)]
+
+
+def _draw_titles(fig: Figure, ax: Axes, scene: Scene, font: float) -> None:
+    """The run's label above the figure and, above the beam, the reference line and the magnification."""
+    how = "line O-P" if scene.reference == "contact" else "hub's radial line"
+    fig.text(0.5, 0.965, scene.history.label, ha="center", va="center", fontsize=font * 1.1)
+    ax.set_title(f"deflection from the {how} magnified x{scene.scale:.4g}", fontsize=font * 0.9, pad=2)
+
+
+def _clock_decimals(times: np.ndarray, mult: float) -> int:
+    """Decimals of the clock in units ``1 / mult`` s: one more than the smallest step between frames needs."""
+    steps = np.diff(times) * mult
+    smallest = float(np.min(steps[steps > 0], initial=1.0))
+    return int(np.clip(math.ceil(-math.log10(smallest)) + 1, 0, 9))
+
+
+@dataclass
+class _BeamArtists:
+    """The beam's moving artists: a band of its thickness about the magnified centre line, the centre line, the
+    rigid reference line, each pair's contact point and the hub with its radial line."""
+
+    chord: Line2D
+    band: Polygon
+    line: Line2D
+    marks: list[Line2D]
+    anywhere: list[bool]  # per pair: contact anywhere (its point is marked only in contact)
+    hub: Circle
+    hub_line: Line2D
+    reach: float  # length of the hub's radial line [m]
+
+    @classmethod
+    def draw(cls, ax: Axes, scene: Scene, font: float) -> _BeamArtists:
+        """Add the (empty) artists to ``ax``."""
+        from matplotlib.patches import Circle, Polygon
+
+        system = scene.system
+        pairs = system.contact.pairs
+        L, rh = system.beam.length, system.beam.hub_radius
         (chord,) = ax.plot([], [], ls="--", lw=0.6, color="0.55", zorder=2, animated=True)
         band = ax.add_patch(
             Polygon(np.zeros((3, 2)), closed=True, facecolor="C0", edgecolor="C0", alpha=0.85, zorder=3, animated=True)
@@ -187,10 +271,45 @@ class FrameRenderer:
             Circle((0.0, 0.0), hub_r, facecolor="white" if rh == 0 else "0.85", edgecolor="k", zorder=6, animated=True)
         )
         (hub_line,) = ax.plot([], [], color="k", lw=1.0, zorder=7, animated=True)
-        how = "line O-P" if scene.reference == "contact" else "hub's radial line"
-        fig.text(0.5, 0.965, h.label, ha="center", va="center", fontsize=font * 1.1)
-        ax.set_title(f"deflection from the {how} magnified x{scene.scale:.4g}", fontsize=font * 0.9, pad=2)
-        clock = ax.text(
+        reach = max(hub_r, 0.04 * L) if rh > 0 else hub_r
+        return cls(chord, band, line, marks, anywhere, hub, hub_line, reach)
+
+    @property
+    def artists(self) -> list[Artist]:
+        """The artists in drawing order."""
+        return [self.chord, self.band, self.line, *self.marks, self.hub, self.hub_line]
+
+    def update(self, scene: Scene, i: int, colours: list[str]) -> None:
+        """Move them to frame ``i``; a pair's point in its colour while in contact, else dark grey."""
+        self.band.set_xy(np.concatenate((scene.upper[i], scene.lower[i][::-1])))
+        self.line.set_data(scene.centre[i, :, 0], scene.centre[i, :, 1])
+        self.chord.set_data(scene.chord[i, :, 0], scene.chord[i, :, 1])
+        for k, mark in enumerate(self.marks):
+            on = bool(scene.pair_force[i, k] > 0.0)
+            if self.anywhere[k] and not on:  # an anywhere pair's point is marked only in contact
+                mark.set_data([], [])
+            else:
+                mark.set_data([scene.pair_points[i, k, 0]], [scene.pair_points[i, k, 1]])
+            mark.set_color(colours[k] if on else "0.2")
+        a = scene.hub_angle[i]
+        self.hub_line.set_data([0.0, self.reach * math.cos(a)], [0.0, self.reach * math.sin(a)])
+
+
+@dataclass
+class _Clock:
+    """The text in the beam's corner: the simulated time, the playback speed (:func:`speed_label`) and
+    "contact" while a pair touches."""
+
+    text: Text
+    mult: float  # the time unit's factor: 1e3 for ms, 1 for s
+    unit: str
+    decimals: int
+    fps: float
+
+    @classmethod
+    def draw(cls, ax: Axes, font: float, mult: float, unit: str, decimals: int, fps: float) -> _Clock:
+        """Add the (empty) text to the top left corner of ``ax``."""
+        text = ax.text(
             0.01,
             0.97,
             "",
@@ -202,9 +321,34 @@ class FrameRenderer:
             family="monospace",
             animated=True,
         )
+        return cls(text, mult, unit, decimals, fps)
 
-        # -- the contact force with a cursor
-        mult, unit = _time_unit(scene.times[-1] - scene.times[0])
+    def update(self, scene: Scene, i: int) -> None:
+        """Show frame ``i``'s time, speed and contact."""
+        touching = bool(np.any(scene.pair_force[i] > 0.0))
+        t = scene.times[i] * self.mult
+        self.text.set_text(
+            f"t = {t:.{self.decimals}f} {self.unit}\n{speed_label(scene.density[i], self.fps)}"
+            + ("\ncontact" if touching else "")
+        )
+
+
+@dataclass
+class _ForceArtists:
+    """The contact force against time (one trace per pair that touches, with several) and its moving cursor and
+    dots."""
+
+    cursor: Line2D
+    traces: list[int]  # the pairs traced
+    dots: list[Line2D]  # one per traced pair: its force at the frame
+    mult: float
+
+    @classmethod
+    def draw(cls, axf: Axes, scene: Scene, colours: list[str], font: float, mult: float, unit: str) -> _ForceArtists:
+        """Draw the traces on ``axf`` (times in units ``1 / mult`` s, named ``unit``) and add the cursor and
+        dots."""
+        h, pairs = scene.history, scene.system.contact.pairs
+        multi = scene.pairs > 1
         sel = (h.time >= scene.times[0]) & (h.time <= scene.times[-1])
         if multi and h.pair_force is not None:  # each pair that touches in the window, pair 0 always
             traces = [k for k in range(scene.pairs) if k == 0 or np.any(h.pair_force[sel, k] > 0.0)]
@@ -222,43 +366,20 @@ class FrameRenderer:
         axf.set_ylabel("Contact force [N]", labelpad=1)
         axf.tick_params(length=2, pad=1)
         cursor = axf.axvline(scene.times[0] * mult, color="k", lw=0.8, animated=True)
-        fdots = [
+        dots = [
             axf.plot([], [], "o", color=colours[k] if multi else "k", ms=max(1.5, font * 0.4), animated=True)[0]
             for k in traces
         ]
+        return cls(cursor, traces, dots, mult)
 
-        steps = np.diff(scene.times) * mult
-        smallest = float(np.min(steps[steps > 0], initial=1.0))
-        decimals = int(np.clip(math.ceil(-math.log10(smallest)) + 1, 0, 9))
-        reach = max(hub_r, 0.04 * L) if rh > 0 else hub_r
+    @property
+    def artists(self) -> list[Artist]:
+        """The moving artists in drawing order."""
+        return [self.cursor, *self.dots]
 
-        def update(i: int) -> None:
-            band.set_xy(np.concatenate((scene.upper[i], scene.lower[i][::-1])))
-            line.set_data(scene.centre[i, :, 0], scene.centre[i, :, 1])
-            chord.set_data(scene.chord[i, :, 0], scene.chord[i, :, 1])
-            touching = bool(np.any(scene.pair_force[i] > 0.0))
-            for k, mark in enumerate(marks):
-                on = bool(scene.pair_force[i, k] > 0.0)
-                if anywhere[k] and not on:  # an anywhere pair's point is marked only in contact
-                    mark.set_data([], [])
-                else:
-                    mark.set_data([scene.pair_points[i, k, 0]], [scene.pair_points[i, k, 1]])
-                mark.set_color(colours[k] if on else "0.2")
-            a = scene.hub_angle[i]
-            hub_line.set_data([0.0, reach * math.cos(a)], [0.0, reach * math.sin(a)])
-            if moves and self.obstacle is not None:
-                self.obstacle.set_center(centre + scene.obstacle_shift[i])
-            t = scene.times[i] * mult
-            clock.set_text(
-                f"t = {t:.{decimals}f} {unit}\n{speed_label(scene.density[i], fps)}" + ("\ncontact" if touching else "")
-            )
-            cursor.set_xdata([t, t])
-            for k, fdot in zip(traces, fdots):
-                fdot.set_data([t], [scene.pair_force[i, k]])
-
-        self.update = update
-        self.moving = [
-            a
-            for a in (self.obstacle if moves else None, chord, band, line, *marks, hub, hub_line, clock, cursor, *fdots)
-            if a is not None
-        ]
+    def update(self, scene: Scene, i: int) -> None:
+        """Move the cursor and the dots to frame ``i``."""
+        t = scene.times[i] * self.mult
+        self.cursor.set_xdata([t, t])
+        for k, dot in zip(self.traces, self.dots):
+            dot.set_data([t], [scene.pair_force[i, k]])

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -98,22 +98,77 @@ class Scene:
                 f"animate: the result has {history.q.shape[1]} modal coordinates, its case "
                 f"{beam.n} (a finite-element result has none: animate a modal run)"
             )
-        ta, tb = float(t[0]), float(t[-1])
-        t0, t1 = (ta, tb) if window is None else (float(window[0]), float(window[1]))
-        slack = 1e-9 * max(abs(ta), abs(tb), tb - ta)
-        if not (math.isfinite(t0) and math.isfinite(t1) and ta - slack <= t0 < t1 <= tb + slack):
-            raise ParameterError(
-                f"window: must satisfy {ta:g} <= t0 < t1 <= {tb:g} s, the simulated time (got {t0:g},{t1:g})"
-            )
-        t0, t1 = max(t0, ta), min(t1, tb)
-        times, density = frame_times((t0, t1), history.contacts, frames, contact_share)
-
+        times, density = frame_times(_window(t, window), history.contacts, frames, contact_share)
         phi = np.interp(times, t, history.phi)
         q = np.column_stack([np.interp(times, t, col) for col in history.q.T]) if beam.n else np.zeros((frames, 0))
+        x = np.union1d(np.linspace(0.0, beam.length, BEAM_POINTS), [p.position for p in system.contact.pairs])
+        iP = int(np.searchsorted(x, system.contact.position))
+        band = _Band.magnified(system, phi, q, x, iP, reference, scale)
+        shift = _support_shift(history, system, times, frames)
+        force = np.interp(times, t, history.force)
+        pair_points, pair_force = _pairs_at_frames(history, system, times, x, band, shift)
+        return cls(
+            history,
+            times,
+            density,
+            band.scale,
+            reference,
+            band.centre,
+            band.upper,
+            band.lower,
+            band.lower[:, iP],
+            band.chord,
+            band.hub_angle,
+            shift,
+            force,
+            system,
+            pair_points,
+            pair_force,
+        )
+
+
+def _window(t: np.ndarray, window: tuple[float, float] | None) -> tuple[float, float]:
+    """The animated interval (t0, t1) [s]: ``window`` (default: all of ``t``), checked to lie within the simulated
+    time up to a relative 1e-9 and clipped to it."""
+    ta, tb = float(t[0]), float(t[-1])
+    t0, t1 = (ta, tb) if window is None else (float(window[0]), float(window[1]))
+    slack = 1e-9 * max(abs(ta), abs(tb), tb - ta)
+    if not (math.isfinite(t0) and math.isfinite(t1) and ta - slack <= t0 < t1 <= tb + slack):
+        raise ParameterError(
+            f"window: must satisfy {ta:g} <= t0 < t1 <= {tb:g} s, the simulated time (got {t0:g},{t1:g})"
+        )
+    return max(t0, ta), min(t1, tb)
+
+
+class _Band(NamedTuple):
+    """The beam drawn with its deflection magnified, per frame (m frames, k points)."""
+
+    scale: float  # the magnification
+    centre: np.ndarray  # (m, k, 2) magnified centre line
+    normal: np.ndarray  # (m, k, 2) its unit normal (e2 of the magnified line)
+    upper: np.ndarray  # (m, k, 2) band edges, half-thickness c either side
+    lower: np.ndarray
+    chord: np.ndarray  # (m, 2, 2) the rigid reference line from O to r_h + L
+    hub_angle: np.ndarray  # (m,) drawn hub angle
+
+    @classmethod
+    def magnified(
+        cls,
+        system: BeamSystem,
+        phi: np.ndarray,
+        q: np.ndarray,
+        x: np.ndarray,
+        iP: int,
+        reference: str,
+        scale: float | str,
+    ) -> _Band:
+        """The centre line by :func:`~flexbeam.views.animation.geometry.beam_shape` at the points ``x`` (``x[iP]``:
+        the contact point) for hub angles ``phi`` and modal coordinates ``q``, its deviation from the rigid line at
+        :func:`~flexbeam.views.animation.geometry.reference_angle` magnified by ``scale`` (``"auto"``:
+        :func:`~flexbeam.views.animation.geometry.auto_scale` of its largest norm), the band's edges offset by the
+        contact offset c along the magnified line's normal, the hub turned by the same magnification."""
+        beam = system.beam
         xP, c, L, rh = system.contact.position, system.contact.offset, beam.length, beam.hub_radius
-        pairs = system.contact.pairs
-        x = np.union1d(np.linspace(0.0, L, BEAM_POINTS), [p.position for p in pairs])
-        iP = int(np.searchsorted(x, xP))
         X, Y = beam_shape(system, phi, q, x)
         r = np.stack((X, Y), axis=-1)  # (m, k, 2)
         alpha = reference_angle(reference, phi, r[:, iP], rh + xP, rh + L)
@@ -128,46 +183,48 @@ class Scene:
         upper, lower = centre + c * normal, centre - c * normal
         chord = np.stack((np.zeros_like(e1), (rh + L) * e1), axis=1)
         hub_angle = alpha + k * (phi - alpha)
-        shift = np.zeros((frames, 2))
-        obstacle = system.contact.obstacle
-        if history.support is not None and obstacle.compliant:
-            shift = np.interp(times, t, history.support)[:, None] * np.asarray(obstacle.support[3:5])[None, :]
-        force = np.interp(times, t, history.force)
-        pair_points, pair_force = None, None
-        if history.pair_force is not None and history.pair_force.shape[1] == len(pairs):
-            pair_force = np.column_stack([np.interp(times, t, col) for col in history.pair_force.T])
-            moving = history.pair_position
-            where = np.empty((frames, len(pairs)))
-            for j, pair in enumerate(pairs):
-                if pair.anywhere and moving is not None:
-                    where[:, j] = np.clip(np.interp(times, t, moving[:, j]), 0.0, L)
-                else:
-                    where[:, j] = pair.position
-            mid, nrm = _on_line(centre, x, where), _on_line(normal, x, where)  # fixed pairs: the line's points
-            pair_points = mid - np.array([p.offset for p in pairs])[None, :, None] * nrm
-            for j, pair in enumerate(pairs):
-                if pair.anywhere:
-                    ob = system.contact.obstacles[pair.obstacle]
-                    moved = shift if pair.obstacle == 0 else np.zeros_like(shift)
-                    pair_points[:, j] = _facing(mid[:, j], nrm[:, j], pair.offset, ob, moved)
-        return cls(
-            history,
-            times,
-            density,
-            k,
-            reference,
-            centre,
-            upper,
-            lower,
-            lower[:, iP],
-            chord,
-            hub_angle,
-            shift,
-            force,
-            system,
-            pair_points,
-            pair_force,
-        )
+        return cls(k, centre, normal, upper, lower, chord, hub_angle)
+
+
+def _support_shift(history: History, system: BeamSystem, times: np.ndarray, frames: int) -> np.ndarray:
+    """(frames, 2): obstacle 0's displacement [m] on a compliant support at the frame ``times`` (else zero)."""
+    shift = np.zeros((frames, 2))
+    obstacle = system.contact.obstacle
+    if history.support is not None and obstacle.compliant:
+        shift = np.interp(times, history.time, history.support)[:, None] * np.asarray(obstacle.support[3:5])[None, :]
+    return shift
+
+
+def _pairs_at_frames(
+    history: History, system: BeamSystem, times: np.ndarray, x: np.ndarray, band: _Band, shift: np.ndarray
+) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """Each pair's contact point on the magnified ``band`` (at the points ``x``) and its force, (m, p, 2) and
+    (m, p), at the frame ``times``; (None, None) when the result has no per-pair forces.
+
+    A pair's point is offset by its own c from the magnified centre line at its material coordinate: a fixed
+    pair's is a point of ``x``; an anywhere pair's moves (the result's ``pair_contact_position``, interpolated
+    linearly) and lies on the side facing its obstacle (obstacle 0 displaced by ``shift``).
+    """
+    pairs, L, t = system.contact.pairs, system.beam.length, history.time
+    if history.pair_force is None or history.pair_force.shape[1] != len(pairs):
+        return None, None
+    frames = times.size
+    pair_force = np.column_stack([np.interp(times, t, col) for col in history.pair_force.T])
+    moving = history.pair_position
+    where = np.empty((frames, len(pairs)))
+    for j, pair in enumerate(pairs):
+        if pair.anywhere and moving is not None:
+            where[:, j] = np.clip(np.interp(times, t, moving[:, j]), 0.0, L)
+        else:
+            where[:, j] = pair.position
+    mid, nrm = _on_line(band.centre, x, where), _on_line(band.normal, x, where)  # fixed pairs: the line's points
+    pair_points = mid - np.array([p.offset for p in pairs])[None, :, None] * nrm
+    for j, pair in enumerate(pairs):
+        if pair.anywhere:
+            ob = system.contact.obstacles[pair.obstacle]
+            moved = shift if pair.obstacle == 0 else np.zeros_like(shift)
+            pair_points[:, j] = _facing(mid[:, j], nrm[:, j], pair.offset, ob, moved)
+    return pair_points, pair_force
 
 
 def _on_line(values: np.ndarray, x: np.ndarray, where: np.ndarray) -> np.ndarray:

@@ -1,0 +1,5 @@
+"""``python -m flexbeam.cli``: the ``flexbeam`` command."""
+
+from . import main
+
+main()

@@ -1,0 +1,62 @@
+"""``flexbeam animate``: a GIF or MP4 of a run, simulated first or read from a ``result.nc``."""
+
+from __future__ import annotations
+
+import sys
+import warnings
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from ..errors import ParameterError
+from .messages import one_line
+from .options import MethodOpt, SetOpt
+from .runs import load, simulate
+
+
+def animate(
+    source: Annotated[str, typer.Argument(help="built-in case name, TOML file (simulated first) or a result.nc")],
+    out: Annotated[Path, typer.Option("--out", "-o", help="output file: .gif or .mp4 (MP4 needs flexbeam[video])")],
+    scale: Annotated[str, typer.Option("--scale", help="deflection magnification: auto or a number")] = "auto",
+    window: Annotated[str | None, typer.Option("--window", help="time window t0,t1 [s] (default: all)")] = None,
+    frames: Annotated[int, typer.Option("--frames", help="number of frames")] = 200,
+    fps: Annotated[float, typer.Option("--fps", help="frames per second of the file")] = 25.0,
+    size: Annotated[str, typer.Option("--size", help="frame size WIDTHxHEIGHT [px]")] = "800x600",
+    method: MethodOpt = "ccfm",
+    set_: SetOpt = None,
+) -> None:
+    """Animate a run: deformed beam (magnified deflection), hub, obstacle and contact force, slow motion in
+    contacts."""
+    from ..views.animation import VideoFallbackWarning, parse_scale, parse_size, parse_window
+    from ..views.animation import animate as render
+
+    options = {
+        "scale": parse_scale(scale),
+        "window": parse_window(window),
+        "frames": frames,
+        "fps": fps,
+        "size": parse_size(size),
+    }
+    result = _result(source, set_, method)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", VideoFallbackWarning)
+        path = render(result, out, **options)
+    for w in caught:
+        if issubclass(w.category, VideoFallbackWarning):
+            sys.stderr.write(f"note: {one_line(w.message)}\n")
+        else:
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    typer.echo(f"wrote {path}")
+
+
+def _result(source: str, sets: list[str] | None, method: str) -> Any:
+    """What to animate: the path of a ``result.nc`` as it is (no ``--set``), or a case (name or TOML file) run
+    with ``method``."""
+    if source.endswith(".nc"):
+        if sets:
+            raise ParameterError("--set: only with a case, not with a result file")
+        if not Path(source).is_file():
+            raise ParameterError(f"source: no such result file '{source}'")
+        return Path(source)
+    return simulate(load(source, sets), method, outputs=True)

@@ -1,0 +1,66 @@
+"""``flexbeam run`` (one case, one method: its metrics) and ``flexbeam compare`` (several methods on one case,
+against the paper's table)."""
+
+from __future__ import annotations
+
+import json
+from typing import Annotated
+
+import typer
+
+from ..errors import ParameterError
+from ..registry import METHOD_NAMES
+from .options import JsonOpt, MethodOpt, OutOpt, SetOpt
+from .runs import exit_unless_complete, load, run_progress, simulate
+from .tables import print_metrics
+
+
+def run(
+    case: Annotated[str, typer.Argument(help="built-in case name or TOML file")],
+    method: MethodOpt = "ccfm",
+    set_: SetOpt = None,
+    out: OutOpt = None,
+    json_: JsonOpt = False,
+) -> None:
+    """Simulate one case and print its metrics."""
+    c = load(case, set_)
+    sol = simulate(c, method, outputs=out is not None)
+    metrics = sol.metrics()
+    if out is not None:
+        from ..views.report import write_run_outputs
+
+        write_run_outputs(sol, c, out)
+    if json_:
+        from ..results.files import metrics_json
+
+        typer.echo(metrics_json(metrics))
+    else:
+        print_metrics(metrics, f"{c.name} [{method}]")
+    exit_unless_complete([sol])
+
+
+def compare(
+    case: Annotated[str, typer.Argument(help="built-in case name or TOML file")],
+    set_: SetOpt = None,
+    out: OutOpt = None,
+    methods: Annotated[str, typer.Option("--methods", help="comma-separated methods")] = "ccfm,ccm,fem",
+    json_: JsonOpt = False,
+) -> None:
+    """Run CCFM, CCM and the FE reference on one case; figures and a table against the paper."""
+    from ..parameters.io import reference_data
+    from ..views.report import compare as run_compare
+    from ..views.report import markdown_table
+
+    c = load(case, set_)
+    chosen = tuple(m.strip() for m in methods.split(",") if m.strip())
+    for m in chosen:
+        if m not in METHOD_NAMES:
+            raise ParameterError(f"--methods: unknown method '{m}'; allowed: {', '.join(METHOD_NAMES)}")
+    solutions, rows = run_compare(c, out, chosen, lambda m: run_progress(c.solver.t_end, f"{c.name} [{m}]"))
+    if json_:
+        from ..results.files import jsonable
+
+        typer.echo(json.dumps(jsonable(rows), indent=2))
+    else:
+        typer.echo(markdown_table(rows, reference_data(c.name)), nl=False)
+    exit_unless_complete(solutions)
