@@ -8,7 +8,7 @@ machine to the next.  An event-driven impact simulation amplifies such a bit -- 
 rejected on the other, an impact at 1e-6 m/s exists on one and not the other -- into a different contact count.
 Everything that determines a run of the modal model therefore goes through this module or the compiled kernels:
 
-* elementary functions: ``kernels/src/detmath.c`` (only +, -, *, / and sqrt, which IEEE 754 rounds correctly);
+* elementary functions: ``kernels/src/detmath*.c`` (only +, -, *, / and sqrt, which IEEE 754 rounds correctly);
 * sums: :func:`math.fsum` (correctly rounded) or the fixed order of ``kernels/src/linalg.c``;
 * linear algebra: ``kernels/src/linalg.c`` (fixed summation order, no contraction);
 * numpy only for what IEEE 754 makes exact: elementwise +, -, *, /, sqrt, abs, comparisons, copies.

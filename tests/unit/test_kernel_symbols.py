@@ -1,6 +1,6 @@
 """The compiled kernels call no elementary function of the C library whose bits depend on the machine.
 
-glibc picks FMA/AVX2 variants of exp, sin, cos, pow, log, ... by CPU; the kernels use detmath.c instead
+glibc picks FMA/AVX2 variants of exp, sin, cos, pow, log, ... by CPU; the kernels use detmath*.c instead
 (docs/reproducibility.md).  What the built extension still takes from the C library must be exact on every IEEE 754
 machine: sqrt, fabs, fmin/fmax, ldexp, rounding.  The undefined symbols of the shared object say what it calls.
 """

@@ -1,0 +1,58 @@
+/* x^y with the same bits on every machine (detmath.h).
+ *
+ *   fb_pow     exp(y log x) with log x and y log x in double-double (absolute error of y log x < 2^-68 for
+ *              |y log x| < 745) and e^z evaluated at the double-double z: error < 0.502 ulp for x > 0 over the
+ *              whole range of results (subnormal ones included).  Exact cases: pow(x, 0) = 1, pow(x, 1) = x,
+ *              pow(x, 2) = x*x, pow(x, -1) = 1/x, pow(x, 0.5) = sqrt(x) for x >= 0 (except -0, +0 per Annex F).
+ *              Signed zeros, infinities, NaNs and x < 0 per C99 Annex F (F.9.4.4).
+ */
+#include "detmath.h"
+#include "detmath_dd.h"
+#include "detmath_exp.h"
+#include "detmath_log.h"
+
+static inline int is_integer(double y) { return floor(y) == y; } /* y finite */
+
+static inline int is_odd_integer(double y) { /* y finite */
+    return fabs(y) < 0x1p53 && floor(y) == y && floor(0.5 * y) != 0.5 * y;
+}
+
+double fb_pow(double x, double y) {
+    if (y == 0.0 || x == 1.0) return 1.0; /* even for a NaN in the other argument (F.9.4.4) */
+    if (isnan(x) || isnan(y)) return x + y;
+    if (y == 1.0) return x;
+    if (y == 2.0) return x * x;
+    if (y == -1.0) return 1.0 / x;
+    double ax = fabs(x);
+    if (isinf(y)) {
+        if (ax == 1.0) return 1.0; /* (-1)^+-inf */
+        return (ax > 1.0) == (y > 0.0) ? INFINITY : 0.0;
+    }
+    int odd = is_odd_integer(y);
+    if (x == 0.0) {
+        if (y < 0.0) return odd ? 1.0 / x : INFINITY; /* +-inf for odd y, like 1/+-0 */
+        return odd ? x : 0.0;
+    }
+    if (isinf(x)) {
+        if (x > 0.0) return y < 0.0 ? 0.0 : INFINITY;
+        if (y < 0.0) return odd ? -0.0 : 0.0;
+        return odd ? -INFINITY : INFINITY;
+    }
+    double sign = 1.0;
+    if (x < 0.0) {
+        if (!is_integer(y)) return (x - x) / (x - x); /* NaN */
+        if (odd) sign = -1.0;
+    }
+    if (ax == 1.0) return sign;
+    if (y == 0.5) return sqrt(x);
+    if (fabs(y) > 0x1p63) /* |y log x| >= 2^63 2^-53 > 745 for x != 1 */
+        return (ax > 1.0) == (y > 0.0) ? sign * INFINITY : sign * 0.0;
+    dd l = log_core(ax);
+    dd p = two_prod(y, l.hi);
+    dd z = fast_two_sum(p.hi, p.lo + y * l.lo); /* y log x, relative error < 2^-69 */
+    if (z.hi > 709.79) return sign * INFINITY;
+    if (z.hi < -745.14) return sign * 0.0;
+    int m;
+    dd v = exp_core(z.hi, z.lo, &m);
+    return sign * exp_scale(v, m);
+}
