@@ -8,7 +8,6 @@ from collections.abc import Callable
 
 import numpy as np
 
-from . import numerics as nm
 from .errors import ParameterError
 from .integrate.loop import PhaseMethod, RunResult, Stop, run_phases
 from .integrate.modal import ModalStepper
@@ -26,17 +25,11 @@ from .version import __version__
 
 
 def initial_state(system: BeamSystem, case: Case) -> tuple[np.ndarray, dict[str, float]]:
-    """Initial state vector for ``case.initial`` and a dict of derived values.
-
-    * ``impact``: frame angle = impact angle, beam straight (q = 0: the hub angle is the frame angle) and at
-      rest in the floating frame, theta' chosen so that P's normal velocity delta' = J_theta theta' equals the
-      impact velocity.
-    * ``state``: theta, theta' as given, beam straight.
-    * ``release``: at rest in the static equilibrium of the beam under gravity with the hub held at the release
-      angle (:func:`release_state`); the release angle, when not given, is solved for (shooting with
-      :func:`scipy.optimize.brentq` on the free flight) so that P reaches the obstacle at the impact velocity.
-    """
-    y, info = _initial_state(system, case)
+    """Initial state vector for ``case.initial`` and a dict of derived values, as the case's joint defines them
+    (:meth:`flexbeam.model.joints.Joint.initial_state`; the revolute joint: ``impact``, ``state``, ``release``
+    from rest, its angle solved for by shooting on the free flight when not given), checked by
+    :func:`check_start`."""
+    y, info = system.joint.initial_state(system, case, lambda y0: first_impact_velocity(system, case, y0))
     check_start(system, case, y)
     return y, info
 
@@ -81,53 +74,6 @@ def _obstacle_field(index: int) -> str:
     return "obstacle" if index == 0 else f"obstacles[{index - 1}]"
 
 
-def _initial_state(system: BeamSystem, case: Case) -> tuple[np.ndarray, dict[str, float]]:
-    init = case.initial
-    if system.prescribed:
-        th, thd, _ = system.drive.motion(0.0)
-        return system.state(th, thd), {}
-    if init.kind == "state":
-        return system.state(init.angle, init.rate), {}
-    if init.kind == "impact":
-        y = system.state(init.impact_angle, 0.0)
-        J_theta = system.gap(0.0, y)[3][0]
-        y = system.state(init.impact_angle, init.impact_rate(J_theta))
-        return y, {"impact_rate": float(y[system.n + 1])}
-    angle = init.release_angle
-    info: dict[str, float] = {}
-    if angle is None:
-        angle = solve_release_angle(system, case)
-    info["release_angle"] = float(angle)
-    return release_state(system, angle), info
-
-
-def release_state(system: BeamSystem, angle: float) -> np.ndarray:
-    """At rest in static equilibrium under gravity with the hub held at the hub angle ``angle``.
-
-    The potential V = 1/2 q^T K q + g [sin(theta)(m1 - 1/2 q^T G q) + cos(theta) s_f q] is stationary under the
-    constraint theta + d q = angle (d = 0 in the hub frame):
-    [K - g sin(theta) (G - d^T s_f)] q = -g cos(theta) [s_f - (m1 - 1/2 q^T G q) d^T], theta = angle - d q,
-    solved by fixed-point iteration on theta and q^T G q (d q is of the order of the static slope).
-    """
-    b, g = system.beam, system.g
-    q = np.zeros(b.n)
-    theta = angle
-    if b.n:
-        for _ in range(50):
-            s, c = nm.sin(theta), nm.cos(theta)
-            A = b.Kff - g * s * b.G + g * s * np.outer(b.d, b.sf)
-            rhs = -g * c * b.sf + g * c * (b.m1 - 0.5 * nm.dot(q, nm.matmul(b.G, q))) * b.d
-            q_new = nm.solve(A, rhs)
-            theta_new = angle - nm.dot(b.d, q_new)
-            done = abs(theta_new - theta) <= 1e-15 * max(1.0, abs(angle)) and np.allclose(
-                q_new, q, rtol=1e-14, atol=0.0
-            )
-            q, theta = q_new, theta_new
-            if done:
-                break
-    return system.state(theta, 0.0, q)
-
-
 class _UntilImpact(CCFM):
     """Free flight that stops at the first impact, reporting P's normal velocity."""
 
@@ -135,46 +81,12 @@ class _UntilImpact(CCFM):
         raise Stop("impact", repr(self.gap_event(t, y, pair)[1]))
 
 
-def _first_impact_velocity(system: BeamSystem, case: Case, angle: float) -> float:
+def first_impact_velocity(system: BeamSystem, case: Case, y0: np.ndarray) -> float:
+    """P's normal velocity at the first impact of a free flight from ``y0`` (NaN if it does not reach an obstacle
+    within 10 s): the shooting function of a start whose impact speed is solved for."""
     stepper = ModalStepper(system, rtol=1e-10, atol=1e-13)
-    run = run_phases(_UntilImpact(system, case), stepper, release_state(system, angle), 10.0)
-    if run.status != "impact":
-        raise ParameterError(f"initial.release_angle: released at {angle:.6g} rad the beam does not reach the obstacle")
-    return float(run.message)
-
-
-def solve_release_angle(system: BeamSystem, case: Case) -> float:
-    """Release angle from rest that gives P the impact velocity at first contact."""
-    init = case.initial
-    th_i = init.impact_angle
-    y = system.state(th_i, 0.0)
-    rate = init.impact_rate(system.gap(0.0, y)[3][0])
-    b = system.beam
-    if system.g <= 0.0 or b.m1 <= 0.0:
-        raise ParameterError("initial.kind: 'release' needs gravity (model.gravity > 0)")
-    # rigid estimate: g m1 (sin th_r - sin th_i) = 1/2 J_c rate^2 (falling towards -theta)
-    s = nm.sin(th_i) + 0.5 * b.Jc * (rate * rate) / (system.g * b.m1)
-    if s >= 1.0:
-        raise ParameterError(
-            f"initial.impact_velocity: {init.impact_velocity:g} m/s cannot be reached by release "
-            "from rest under gravity"
-        )
-    guess = nm.asin(s)
-    target = init.impact_velocity
-
-    def miss(angle: float) -> float:
-        return _first_impact_velocity(system, case, angle) - target
-
-    from scipy.optimize import brentq
-
-    lo, hi = th_i + 0.8 * (guess - th_i), min(th_i + 1.25 * (guess - th_i), 0.5 * math.pi)
-    try:
-        return float(brentq(miss, lo, hi, xtol=1e-12, rtol=1e-10))
-    except ValueError:
-        raise ParameterError(
-            "initial.release_angle: no release angle near the rigid estimate "
-            f"{guess:.6g} rad gives the impact velocity; give initial.release_angle"
-        ) from None
+    run = run_phases(_UntilImpact(system, case), stepper, y0, 10.0)
+    return float(run.message) if run.status == "impact" else math.nan
 
 
 def simulate(
@@ -273,8 +185,8 @@ __all__ = [
     "IMPACT_METHODS",
     "METHOD_NAMES",
     "PhaseMethod",
+    "check_start",
+    "first_impact_velocity",
     "initial_state",
-    "release_state",
     "simulate",
-    "solve_release_angle",
 ]

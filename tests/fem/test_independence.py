@@ -5,8 +5,8 @@ if the finite-element package does not run them.  It may take from the modal sid
 case's inputs, interpreted alike on purpose: the contact set-up (where P is, where the obstacle stands, which
 law with which stiffness: ``ContactSetup.from_case``), the contact law objects and their chi(e)
 (``make_law``, ``ContactLaw``), the Hertz stiffness of the materials and the rigid Hertz
-impact duration (used to size the contact step, not in the equations), and the prescribed
-drive profile (``JointDrive``).  This test reads the import statements of every module.
+impact duration (used to size the contact step, not in the equations), and the joint's description: its kind
+and its prescribed drive profile (``joint_of``, ``JointDrive``).  This test reads the import statements of every module.
 """
 
 from __future__ import annotations
@@ -23,7 +23,8 @@ ALLOWED = {
     "contact.setup": {"ContactSetup"},
     "contact.laws": {"ContactLaw", "make_law"},
     "contact.hertz": {"effective_modulus", "sphere_on_cylinder_stiffness", "rigid_hertz_impact"},
-    "model.drive": {"JointDrive"},
+    "model.joints.drive": {"JointDrive"},
+    "model.joints": {"joint_of"},
 }
 
 

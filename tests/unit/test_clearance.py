@@ -20,8 +20,9 @@ import flexbeam as fb
 from flexbeam.contact.setup import OBSTACLE_PLANE, OBSTACLE_SPHERE, ObstacleGeometry
 from flexbeam.errors import ParameterError
 from flexbeam.model.clearance import outline, penetrations
+from flexbeam.model.joints.revolute import RevoluteJoint
 from flexbeam.model.system import BeamSystem
-from flexbeam.simulation import START_INSIDE, initial_state, release_state
+from flexbeam.simulation import START_INSIDE, initial_state
 
 
 def _rotate(theta: float, p) -> np.ndarray:
@@ -135,7 +136,7 @@ def test_released_beam_is_checked_in_its_statically_deflected_shape():
     data["obstacles"] = [{"kind": "sphere", "radius": r_s, "centre": centre.tolist()}]
     case = fb.load_case(data)
     system = BeamSystem.from_case(case)
-    y = release_state(system, angle)
+    y = RevoluteJoint.release_state(system, angle)
     th, _, q, _ = system.split(0.0, y)
     p = penetrations(system.beam, c, th, q, system.contact.obstacles)[1]
     w = b.line_density * g * math.cos(angle) * xs**2 * (6 * L**2 - 4 * L * xs + xs**2) / (24 * b.bending_stiffness)

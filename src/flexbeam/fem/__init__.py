@@ -36,7 +36,7 @@ compliant ``obstacle.support``) raises a ParameterError.
 It shares no equations with the modal model: the contact force and the gap are
 evaluated by its own kernels; only the case's inputs are interpreted alike (the law and
 its chi(e), the Hertz stiffness, the obstacle placement, the drive profile
-:class:`flexbeam.model.drive.JointDrive`) and the results go into the same
+:class:`flexbeam.model.joints.drive.JointDrive`) and the results go into the same
 :class:`~flexbeam.results.solution.Solution`.
 """
 

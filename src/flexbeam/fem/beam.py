@@ -29,7 +29,7 @@ import numpy as np
 
 from ..contact.laws import ContactLaw
 from ..contact.setup import ContactSetup
-from ..model.drive import JointDrive
+from ..model.joints.drive import JointDrive
 from ..parameters.case import Case
 from .assembly import assemble, node_states
 from .banded import BAND, band_to_dense

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -35,6 +36,9 @@ _INFO_T0, _INFO_REJECT = 5, 6
 _REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
 _INFO_SIZE = _INFO_REJECT + len(_REJECT_CAUSES)
 _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4}
+#: floats at the end of a step record that summarise the step (FB_RECORD_SUMMARY in kernels/src/phase.h): the total
+#: and kinetic energy at its end, the tip deflection at its FB_P Gauss nodes
+SUMMARY = 6
 
 
 @dataclass(frozen=True)
@@ -56,17 +60,8 @@ class ModalBasis:
 
     @classmethod
     def of(cls, system: BeamSystem) -> ModalBasis:
-        b = system.beam
-        n, nz = b.n, system.nz
-        if system.prescribed:
-            M0, K0 = b.Mqq.copy(), b.Kff.copy()
-        else:
-            M0 = np.zeros((n + 1, n + 1))
-            M0[0, 0] = b.Jc
-            M0[0, 1:] = M0[1:, 0] = b.mtq
-            M0[1:, 1:] = b.Mqq
-            K0 = np.zeros((n + 1, n + 1))
-            K0[1:, 1:] = b.Kff
+        nz = system.nz
+        M0, K0, varying = system.joint.linear_model(system.beam)
         offdiag = lambda A: A - np.diag(np.diag(A))  # noqa: E731
         diagonal = not offdiag(M0).any() and not offdiag(K0).any()
         if diagonal:
@@ -80,8 +75,8 @@ class ModalBasis:
         omega = np.sqrt(np.maximum(w2, 0.0))
         if nz:
             M0inv = nm.inv(M0)
-            row0 = M0inv[0] if not system.prescribed else np.zeros(nz)
-            inv00 = float(M0inv[0, 0]) if not system.prescribed else 0.0
+            row0 = M0inv[varying] if varying is not None else np.zeros(nz)
+            inv00 = float(M0inv[varying, varying]) if varying is not None else 0.0
         else:
             row0, inv00 = np.zeros(0), 0.0
         toM = nm.matmul(np.ascontiguousarray(Psi.T), M0)
@@ -125,19 +120,25 @@ class ModalDense:
         """The step boundaries."""
         return np.append(self.records[:, 0], self.records[-1, 0] + self.records[-1, 1])
 
+    @cached_property
+    def ends(self) -> np.ndarray:
+        """Each step's end time t0 + h (as the kernels compute it)."""
+        return self.records[:, 0] + self.records[:, 1]
+
     def __call__(self, times: np.ndarray) -> np.ndarray:
+        """States at ``times``: each in the first step that ends at or after it (the kernels' own choice), found by
+        bisection, so an evaluation costs the steps it touches, not the phase's length."""
         times = np.ascontiguousarray(times, float)
         order = np.argsort(times, kind="stable")
         Y = np.empty((times.size, self.stepper.system.size))
         Ys = np.empty_like(Y)
-        core.dense(
-            self.stepper.kernel,
-            self.stepper.basis_buffer,
-            self.records,
-            self.records.shape[0],
-            np.ascontiguousarray(times[order]),
-            Ys,
-        )
+        if times.size:
+            ts = np.ascontiguousarray(times[order])
+            nrec = self.records.shape[0]
+            i0 = min(int(np.searchsorted(self.ends, ts[0], side="left")), nrec - 1)
+            i1 = min(int(np.searchsorted(self.ends, ts[-1], side="left")) + 1, nrec)
+            recs = self.records[i0:i1]
+            core.dense(self.stepper.kernel, self.stepper.basis_buffer, recs, recs.shape[0], ts, Ys)
         Y[order] = Ys
         return Y
 
@@ -153,6 +154,18 @@ class ModalDense:
         multiplier)."""
         c, w = gauss_nodes()
         return nm.fsum(self.records[:, 1] * nm.matmul(np.ascontiguousarray(self._forces(pair)), w))
+
+    def step_energies(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(each step's end time, the total energy T + V_e + V_g + U_c + E_d - W there, the kinetic energy there), as
+        the integrator booked them for its energy balance (the last floats of a record, ``FB_RECORD_SUMMARY``)."""
+        tail = self.records[:, -SUMMARY:]
+        return self.ends, tail[:, 0], tail[:, 1]
+
+    def tip_nodes(self) -> tuple[np.ndarray, np.ndarray]:
+        """(times, values) of the tip deflection at every step's Gauss nodes, as the integrator evaluated it."""
+        c, _ = gauss_nodes()
+        t = self.records[:, 0:1] + self.records[:, 1:2] * c[None, :]
+        return t.ravel(), self.records[:, -SUMMARY + 2 :].ravel()
 
     def nodal_forces(self, pair: int = 0) -> tuple[np.ndarray, np.ndarray]:
         """(times, values) of a pair's contact force (or multiplier) at every step's Gauss nodes."""

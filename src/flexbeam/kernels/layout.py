@@ -2,9 +2,9 @@
 
 Model buffer (float64; integers stored exactly)::
 
-    [version, n, prescribed, drive, profile, npoints, nobstacles, npairs, nmeasure,
+    [version, n, joint kind, njp, 0, npoints, nobstacles, npairs, nmeasure,
      kind_0 .. kind_{nobstacles-1},
-     Jc, m1, g, torque, spin_rate, spin_up_time, theta0,
+     Jc, m1, g, the joint's parameters (njp: flexbeam.model.joints, Joint.parameters),
      Mc (n x n), Mqq (n x n), mtq (n), K (n x n), sf (n), G (n x n), d (n),
      per point:    base, offset, phi (n), dphi (n), H (n x n),
      per obstacle: cx, cy, radius, nx, ny, m_s, k_s, c_s, u_x, u_y,
@@ -38,11 +38,8 @@ import numpy as np
 if TYPE_CHECKING:
     from ..contact.setup import ObstacleGeometry
     from ..model.beam import ModalBeam, PointData, StationTable
-    from ..parameters.case import Drive
 
-LAYOUT_VERSION = 2
-DRIVES = {"free": 0, "torque": 1, "prescribed": 2}
-PROFILES = {"constant-rate": 0, "kane-spinup": 1}
+LAYOUT_VERSION = 3
 
 #: columns of the kernels' ``outputs`` (``FB_NCOLS`` in C), in order
 OUTPUT_COLUMNS = (
@@ -56,8 +53,8 @@ PAIR_COLUMNS = ("gap", "normal_velocity", "contact_force", "contact_position")
 
 def pack_model(
     beam: ModalBeam,
-    drive: Drive,
-    theta0: float,
+    joint: int,
+    joint_parameters: Sequence[float],
     gravity: float,
     points: Sequence[PointData],
     obstacles: Sequence[ObstacleGeometry],
@@ -65,31 +62,24 @@ def pack_model(
     nmeasure: int | None = None,
     stations: StationTable | None = None,
 ) -> np.ndarray:
-    """The model buffer of a beam, its drive, points (P, tip, measuring points, other contact points), obstacles
-    and contact pairs (point index, obstacle index, anywhere); ``nmeasure`` measuring points follow P and the tip
-    (default: every point after them); ``stations``: the shape tables of contact anywhere."""
+    """The model buffer of a beam, its joint (its kind's code and parameters), points (P, tip, measuring points,
+    other contact points), obstacles and contact pairs (point index, obstacle index, anywhere); ``nmeasure``
+    measuring points follow P and the tip (default: every point after them); ``stations``: the shape tables of
+    contact anywhere."""
     n = beam.n
     head = [
         LAYOUT_VERSION,
         n,
-        int(drive.kind == "prescribed"),
-        DRIVES[drive.kind],
-        PROFILES[drive.profile],
+        joint,
+        len(joint_parameters),
+        0,
         len(points),
         len(obstacles),
         len(pairs),
         len(points) - 2 if nmeasure is None else nmeasure,
         *[o.kind for o in obstacles],
     ]
-    scalars = [
-        beam.Jc,
-        beam.m1,
-        gravity,
-        drive.torque if drive.kind == "torque" else 0.0,
-        drive.spin_rate,
-        drive.spin_up_time,
-        theta0,
-    ]
+    scalars = [beam.Jc, beam.m1, gravity, *joint_parameters]
     parts: list[np.ndarray] = [np.asarray(head, float), np.asarray(scalars, float)]
     for arr in (beam.Mc, beam.Mqq, beam.mtq, beam.Kff, beam.sf, beam.G, beam.d):
         parts.append(np.asarray(arr, float).ravel())

@@ -94,11 +94,7 @@ class ImpactMethod:
         sysm = self.system
         _, _, gamma, J = sysm.gap(t, y, pair)
         yd = sysm.rhs(t, y, contacts)[0]
-        n = sysm.n
-        if sysm.prescribed:
-            zdd = np.concatenate(([sysm.drive.motion(t)[2]], yd[n : 2 * n]))
-        else:
-            zdd = yd[n + 1 : 2 * n + 2]
+        zdd = sysm.joint.full_accelerations(t, yd, sysm.n)
         if sysm.compliant:  # s'' of the support coordinate
             zdd = np.append(zdd, yd[sysm.support_index + 1])
         return nm.dot(J, zdd) + gamma

@@ -101,7 +101,7 @@ def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs
     J = np.array([system.gap(t, y, k)[3] for k in pairs])
     zd = system.velocities(t, y)
     v_minus = nm.matmul(J, zd)
-    free = slice(1, None) if system.prescribed else slice(None)
+    free = slice(system.ngiven, None)
     Mr, Jr = M[free, free], J[:, free]
     T_minus = system.energies(t, y)["kinetic"]
     if Jr.shape[1] == 0:

@@ -59,7 +59,7 @@ def centre_line(beam: ModalBeam, q: np.ndarray, x: np.ndarray) -> tuple[np.ndarr
     (sorted, starting at 0) for the modal coordinates ``q``."""
     q = np.asarray(q, float)
     base = beam.hub_radius + x
-    if beam.n == 0:
+    if beam.n == 0 or not np.any(q):  # undeformed (every start from rest): the straight line, no shapes evaluated
         zero = np.zeros_like(x)
         return base, zero, zero
     w = beam.shapes(x, 0) @ q

@@ -1,6 +1,8 @@
 """The assembled beam system: equations of motion, contact kinematics and energies (via the compiled kernels).
 
-State vector (first-order form, with two bookkeeping integrals appended):
+The beam hangs on its joint (:mod:`flexbeam.model.joints`), whose frame coordinates lead the full coordinates
+[rigid, q]; the coordinates the joint gives as functions of time are not in the state.  State vector (first-order
+form, with two bookkeeping integrals appended), for the revolute joint:
 
 * joint free or torque-driven:  y = [theta, q_1..q_n, theta', q'_1..q'_n, E_d, W]
 * theta(t) prescribed:          y = [q_1..q_n, q'_1..q'_n, E_d, W]
@@ -26,7 +28,7 @@ from ..contact.setup import ContactSetup
 from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS, core, pack_contacts, pack_model
 from ..parameters.case import Case
 from .beam import ModalBeam, PointData, build_modal_beam, station_table
-from .drive import JointDrive
+from .joints import Joint, joint_of
 
 #: columns of :meth:`BeamSystem.outputs` that exist only for a compliant obstacle support
 SUPPORT_COLUMNS = ("support_displacement", "sensor_force")
@@ -41,7 +43,7 @@ class BeamSystem:
 
     case: Case
     beam: ModalBeam
-    drive: JointDrive
+    joint: Joint
     contact: ContactSetup
     point: PointData
     measuring: list[PointData] = field(default_factory=list)
@@ -53,10 +55,10 @@ class BeamSystem:
         beam = build_modal_beam(case)
         contact = contact or ContactSetup.from_case(case)
         P = beam.point(contact.position, offset=contact.offset)
-        drive = JointDrive(case.drive, theta0=_initial_angle_guess(case))
+        joint = joint_of(case)
         measuring = [beam.point(x, 0.0) for x in case.output.measuring_points]
         others = [beam.point(p.position, offset=p.offset) for p in contact.pairs[1:]]
-        return cls(case, beam, drive, contact, P, measuring, others)
+        return cls(case, beam, joint, contact, P, measuring, others)
 
     @cached_property
     def kernel(self) -> np.ndarray:
@@ -68,7 +70,7 @@ class BeamSystem:
         if any(p.anywhere for p in self.contact.pairs):
             stations = station_table(self.beam, self.case.beam.surface_offset)
         return pack_model(
-            self.beam, self.case.drive, self.drive.theta0, self.g, points, list(self.contact.obstacles), pairs,
+            self.beam, self.joint.code, self.joint.parameters(), self.g, points, list(self.contact.obstacles), pairs,
             len(self.measuring), stations,
         )  # fmt: skip
 
@@ -104,7 +106,18 @@ class BeamSystem:
 
     @property
     def prescribed(self) -> bool:
-        return self.drive.prescribed
+        """Does the joint give a coordinate as a function of time (theta(t) prescribed)?"""
+        return self.joint.prescribed
+
+    @property
+    def nfull(self) -> int:
+        """Number of full coordinates [rigid, q] (the equations' rows)."""
+        return self.joint.nrigid + self.n
+
+    @property
+    def ngiven(self) -> int:
+        """Number of the joint's coordinates given as functions of time (leading the full coordinates)."""
+        return self.joint.ngiven
 
     @property
     def compliant(self) -> bool:
@@ -113,8 +126,9 @@ class BeamSystem:
 
     @property
     def nz(self) -> int:
-        """Number of generalised coordinates of the beam: n + 1 ([theta, q]) or n (theta prescribed)."""
-        return self.n if self.prescribed else self.n + 1
+        """Number of the state's generalised coordinates of the beam: the full ones without the given ones (n + 1,
+        [theta, q], or n with theta prescribed)."""
+        return self.nfull - self.ngiven
 
     @property
     def size(self) -> int:
@@ -133,18 +147,11 @@ class BeamSystem:
     # ---------------------------------------------------------- state access
     def split(self, t: float, y: np.ndarray) -> tuple[float, float, np.ndarray, np.ndarray]:
         """(theta, theta', q, q') of state y at time t (theta the frame angle)."""
-        n = self.n
-        if self.prescribed:
-            th, thd, _ = self.drive.motion(t)
-            return th, thd, y[:n], y[n : 2 * n]
-        return float(y[0]), float(y[n + 1]), y[1 : n + 1], y[n + 2 : 2 * n + 2]
+        return self.joint.frame(t, y, self.n)
 
     def hub_angle(self, t: float, y: np.ndarray) -> tuple[float, float]:
         """Hub angle phi = theta + d q and its rate [rad, rad/s]."""
-        th, thd, q, qd = self.split(t, y)
-        if not self.n:
-            return th, thd
-        return th + nm.dot(self.beam.d, q), thd + nm.dot(self.beam.d, qd)
+        return self.joint.hub_angle(self.beam, *self.split(t, y))
 
     def support_state(self, y: np.ndarray) -> tuple[float, float]:
         """(s, s') of a compliant obstacle support; (0, 0) for a rigid obstacle."""
@@ -154,21 +161,16 @@ class BeamSystem:
         return float(y[k]), float(y[k + 1])
 
     def velocities(self, t: float, y: np.ndarray) -> np.ndarray:
-        """Generalised velocities z' = [theta', q'] (and s' of a compliant support)."""
-        _, thd, _, qd = self.split(t, y)
-        extra = [self.support_state(y)[1]] if self.compliant else []
-        return np.concatenate(([thd], qd, extra))
+        """Generalised velocities over the full coordinates, z' = [theta', q'] (and s' of a compliant support)."""
+        zd = self.joint.full_velocities(t, y, self.n)
+        return np.append(zd, self.support_state(y)[1]) if self.compliant else zd
 
     def with_velocities(self, t: float, y: np.ndarray, zd: np.ndarray) -> np.ndarray:
-        """Copy of y with generalised velocities replaced (theta' only if free)."""
-        y = y.copy()
-        n = self.n
-        if self.prescribed:
-            y[n : 2 * n] = zd[1 : n + 1]
-        else:
-            y[n + 1 : 2 * n + 2] = zd[: n + 1]
+        """Copy of y with the generalised velocities ``zd`` (full coordinates [, s']) put in (those the joint gives
+        are left out)."""
+        y = self.joint.with_velocities(y, zd, self.n)
         if self.compliant:
-            y[self.support_index + 1] = zd[n + 1]
+            y[self.support_index + 1] = zd[self.nfull]
         return y
 
     # ----------------------------------------------------------- equations
@@ -206,13 +208,13 @@ class BeamSystem:
         return float(self.rhs(t, y, contacts)[2])
 
     def _equations(self, t: float, y: np.ndarray):
-        N = self.n + 1
+        N = self.nfull
         M, Q, E = np.empty((N, N)), np.empty(N), np.empty(3)
         core.equations(self.kernel, float(t), np.ascontiguousarray(y, float), M, Q, E)
         return M, Q, E
 
     def mass_matrix(self, t: float, y: np.ndarray) -> np.ndarray:
-        """Generalised mass matrix M(q), (n+1) x (n+1), bordered by m_s for a compliant support."""
+        """Generalised mass matrix M(q) over the full coordinates, bordered by m_s for a compliant support."""
         M = self._equations(t, y)[0]
         if self.compliant:
             N = M.shape[0]
@@ -230,16 +232,16 @@ class BeamSystem:
     def point_state(self, t: float, y: np.ndarray, index: int = 0):
         """(r, v, a0, dr/dz) of point ``index`` (0: P, 1: tip, 2..: measuring points, then the other pairs'
         contact points); a0 = acceleration at z''=0."""
-        out = np.empty(6 + 2 * (self.n + 1))
+        out = np.empty(6 + 2 * self.nfull)
         core.kinematics(self.kernel, int(index), float(t), np.ascontiguousarray(y, float), out)
-        return out[0:2], out[2:4], out[4:6], out[6:].reshape(2, self.n + 1)
+        return out[0:2], out[2:4], out[4:6], out[6:].reshape(2, self.nfull)
 
     def gap(self, t: float, y: np.ndarray, pair: int = 0) -> tuple[float, float, float, np.ndarray]:
         """(delta, delta', gamma, J) of contact pair ``pair``: gap, its rate, J' z' and the Jacobian d delta/dz.
 
         For a compliant support z includes s and J ends with d delta/d s (zero for a pair on another obstacle).
         """
-        J = np.empty(self.n + 1 + (1 if self.compliant else 0))
+        J = np.empty(self.nfull + (1 if self.compliant else 0))
         delta, rate, gamma, _, _ = core.gap(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J)
         return delta, rate, gamma, J
 
@@ -258,8 +260,9 @@ class BeamSystem:
         """The Delassus matrix W = J M^-1 J^T of the given pairs (rows of J: their gap Jacobians) [1/kg]."""
         J = np.array([self.gap(t, y, k)[3] for k in pairs])
         M = self.mass_matrix(t, y)
-        if self.prescribed:
-            J, M = J[:, 1:], M[1:, 1:]
+        if self.ngiven:
+            g = self.ngiven
+            J, M = J[:, g:], M[g:, g:]
             if J.shape[1] == 0:
                 return np.zeros((len(pairs), len(pairs)))
         return nm.matmul(J, nm.solve(M, np.ascontiguousarray(J.T)))
@@ -314,15 +317,4 @@ class BeamSystem:
         q = np.zeros(n) if q is None else np.asarray(q, float)
         qd = np.zeros(n) if qd is None else np.asarray(qd, float)
         tail = [0.0, 0.0, 0.0, 0.0] if self.compliant else [0.0, 0.0]  # [s, s',] E_d, W
-        if self.prescribed:
-            return np.concatenate((q, qd, tail))
-        return np.concatenate(([theta], q, [omega], qd, tail))
-
-
-def _initial_angle_guess(case: Case) -> float:
-    init = case.initial
-    if init.kind == "state":
-        return init.angle
-    if init.kind == "release" and init.release_angle is not None:
-        return init.release_angle
-    return init.impact_angle
+        return self.joint.state(n, np.array([theta]), np.array([omega]), q, qd, tail)

@@ -51,6 +51,23 @@ class RunSource:
     def segments(self) -> list[Segment]:
         return self.run.segments
 
+    @cached_property
+    def _starts(self) -> np.ndarray:
+        """Each segment's start time (non-decreasing: the segments follow each other)."""
+        return np.array([s.t0 for s in self.segments], float)
+
+    @cached_property
+    def _ends(self) -> np.ndarray:
+        """Each segment's end time (non-decreasing)."""
+        return np.array([s.t1 for s in self.segments], float)
+
+    def _around(self, t0: float, t1: float) -> range:
+        """The indices of the segments that may touch [t0, t1] (end >= t0 and start <= t1), by bisection: a query
+        costs the segments it touches, not the run's length."""
+        lo = int(np.searchsorted(self._ends, t0, side="left"))
+        hi = int(np.searchsorted(self._starts, t1, side="right"))
+        return range(lo, max(lo, hi))
+
     def evaluate(self, seg: Segment, times: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
         """(columns, measuring velocities, states) of segment ``seg`` at ``times``."""
         cols, mv, _, Y = self.evaluate_pairs(seg, times)
@@ -109,11 +126,17 @@ class RunSource:
 
     # ---------------------------------------------------------------- contact force on the dense output
     def _contact_segments(self, t0: float, t1: float, pair: int = 0) -> list[Segment]:
-        return [s for s in self.segments if s.phase.modes[pair] != 0 and s.t1 >= t0 and s.t0 <= t1 and s.t1 > s.t0]
+        segs = self.segments
+        return [
+            s
+            for s in (segs[i] for i in self._around(t0, t1))
+            if s.phase.modes[pair] != 0 and s.t1 >= t0 and s.t0 <= t1 and s.t1 > s.t0
+        ]
 
     def force_at(self, t: float, pair: int = 0) -> float:
         """A pair's contact force at time t on the dense output (0 outside its contact phases)."""
-        for seg in self.segments:
+        for i in self._around(t, t):
+            seg = self.segments[i]
             if seg.phase.modes[pair] != 0 and seg.t0 <= t <= seg.t1 and seg.t1 > seg.t0:
                 return float(self.pair_force(seg, np.array([t]), pair)[0])
         return 0.0
@@ -124,7 +147,10 @@ class RunSource:
         times = np.asarray(times, float)
         out = np.zeros(times.size)
         done = np.zeros(times.size, bool)
-        for seg in self.segments:
+        if not times.size:
+            return out
+        for i in self._around(float(np.min(times)), float(np.max(times))):
+            seg = self.segments[i]
             if seg.phase.modes[pair] == 0 or seg.t1 <= seg.t0:
                 continue
             sel = ~done & (times >= seg.t0) & (times <= seg.t1)
@@ -145,6 +171,28 @@ class RunSource:
             if t.size:
                 ts.append(t)
                 fs.append(self.pair_force(seg, t, pair))
+        if not ts:
+            return np.empty(0), np.empty(0)
+        t, f = np.concatenate(ts), np.concatenate(fs)
+        order = np.argsort(t, kind="stable")
+        return t[order], f[order]
+
+    def nodal_profile(self, t0: float, t1: float, pair: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """(times, force) of a pair at the force's own nodes in [t0, t1]: the compiled integrator's collocated
+        contact forces (or multipliers) at every step's Gauss nodes, which it has already computed; a phase of
+        the reference integrator is sampled as in :meth:`force_profile`.  Candidates for the force's maxima at
+        no cost of evaluation."""
+        ts, fs = [], []
+        for seg in self._contact_segments(t0, t1, pair):
+            if hasattr(seg.dense, "nodal_forces"):
+                t, f = seg.dense.nodal_forces(pair)
+                keep = (t >= t0) & (t <= t1)
+                t, f = t[keep], f[keep]
+            else:
+                t, f = self.force_profile(max(t0, seg.t0), min(t1, seg.t1), pair)
+            if t.size:
+                ts.append(t)
+                fs.append(f)
         if not ts:
             return np.empty(0), np.empty(0)
         t, f = np.concatenate(ts), np.concatenate(fs)
@@ -175,7 +223,7 @@ class RunSource:
     def mechanical_energy(self, t: float, after: bool = False) -> float:
         """T + V_e + V_g at time t (no contact potential, no bookkeeping): in the last segment containing t
         (``after``: after a jump there) or the first."""
-        segs = [s for s in self.segments if s.t0 <= t <= s.t1]
+        segs = [s for s in (self.segments[i] for i in self._around(t, t)) if s.t0 <= t <= s.t1]
         if not segs:
             return math.nan
         seg = segs[-1] if after else segs[0]
@@ -195,6 +243,9 @@ class RunSource:
             b = seg.breaks()
             if b.size < 2:
                 continue
+            if column == "tip_deflection" and hasattr(seg.dense, "tip_nodes"):
+                grids.append((seg, *self._tip_grid(seg)))
+                continue
             frac = np.linspace(0.0, 1.0, points_per_step + 1)[:-1]
             t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
             grids.append((seg, t, self.evaluate(seg, t)[0][column]))
@@ -212,30 +263,54 @@ class RunSource:
                 idx = np.nonzero(peak & (reach >= top))[0]
                 if idx.size:
                     lo, hi = t[np.maximum(idx - 1, 0)], t[np.minimum(idx + 1, t.size - 1)]
-                    best = max(best, self._zoom_all(seg, column, sign, lo, hi))
+                    best = max(best, self._zoom_all(seg, column, sign, lo, hi, floor=best))
             out.append(sign * best)
         return out[0], out[1]
 
+    def _tip_grid(self, seg: Segment) -> tuple[np.ndarray, np.ndarray]:
+        """(times, tip deflection) of a compiled phase at its ends and at every step's collocation nodes, where the
+        integrator evaluated it while it ran: only the two ends are evaluated here."""
+        t_nodes, v_nodes = seg.dense.tip_nodes()
+        ends = np.array([seg.t0, seg.t1])
+        v_ends = self.evaluate(seg, ends)[0]["tip_deflection"]
+        t = np.concatenate(([seg.t0], t_nodes, [seg.t1]))
+        v = np.concatenate(([v_ends[0]], v_nodes, [v_ends[1]]))
+        return t, v
+
     def _zoom_all(
-        self, seg: Segment, column: str, sign: float, lo: np.ndarray, hi: np.ndarray, points: int = 33
+        self,
+        seg: Segment,
+        column: str,
+        sign: float,
+        lo: np.ndarray,
+        hi: np.ndarray,
+        points: int = 33,
+        floor: float = -math.inf,
     ) -> float:
-        """Largest sign * column over the brackets [lo_k, hi_k] of one segment: each zoomed on a grid of ``points``
-        until below PEAK_XTOL, all brackets in one evaluation per level."""
+        """Largest sign * column over the brackets [lo_k, hi_k] of one segment (or ``floor``, a value already
+        reached): each zoomed on a grid of ``points`` until below PEAK_XTOL, all brackets in one evaluation per
+        level.  A bracket is dropped once it cannot beat the best value seen: a smooth peak stands above its
+        largest grid value by less than that value stands above the lower of the grid's two neighbours of it."""
         from .peaks import PEAK_XTOL
 
         lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
-        best = -math.inf
+        best = floor
         frac = np.linspace(0.0, 1.0, points)
-        while True:
+        while lo.size:
             t = lo[:, None] + (hi - lo)[:, None] * frac[None, :]
             v = sign * self.evaluate(seg, t.ravel())[0][column].reshape(t.shape)
+            rows = np.arange(t.shape[0])
             i = np.argmax(v, axis=1)
-            best = max(best, float(np.max(v)))
+            top = v[rows, i]
+            best = max(best, float(np.max(top)))
             if np.all(hi - lo <= PEAK_XTOL):
                 return best
+            low = np.minimum(v[rows, np.maximum(i - 1, 0)], v[rows, np.minimum(i + 1, points - 1)])
+            keep = top + (top - low) >= best
             dt = (hi - lo) / (points - 1)
-            centre = t[np.arange(t.shape[0]), i]
-            lo, hi = np.maximum(lo, centre - dt), np.minimum(hi, centre + dt)
+            centre = t[rows, i]
+            lo, hi = np.maximum(lo, centre - dt)[keep], np.minimum(hi, centre + dt)[keep]
+        return best
 
     # ---------------------------------------------------------------- energy balance
     @cached_property
@@ -243,6 +318,13 @@ class RunSource:
         """(times, total energy, kinetic energy) at every step boundary of the run."""
         ts, Es, Ts = [], [], []
         for seg in self.segments:
+            if hasattr(seg.dense, "step_energies"):  # the compiled integrator books them at every step's end
+                t_end, E_end, T_end = seg.dense.step_energies()
+                cols = self.evaluate(seg, np.array([seg.t0]))[0]
+                ts.append(np.concatenate(([seg.t0], t_end)))
+                Es.append(np.concatenate((total_energy(cols), E_end)))
+                Ts.append(np.concatenate((cols["kinetic_energy"], T_end)))
+                continue
             t = seg.breaks()
             cols = self.evaluate(seg, t)[0]
             ts.append(t)

@@ -1,17 +1,22 @@
-"""The sweep: plan, reuse what the store holds, compute the rest on Dask, assemble the Dataset."""
+"""The sweep: plan, reuse what the store holds, compute the rest on Dask, assemble the Dataset.
+
+:func:`sweep` plans the cases (:func:`~flexbeam.sweep.planning.plan`), sorts them (:func:`_triage`: reused from
+the store, invalid, or to compute), computes the rest on the cluster (:func:`~flexbeam.sweep.cluster.compute`) and
+writes the Dataset (:func:`_result`) -- also after an interruption.
+"""
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ..errors import ParameterError, closest
 from ..parameters.case import Case
 from ..parameters.io import load_case
 from .cluster import ProgressFn, cluster_client, compute
 from .dataset import build_dataset
-from .planning import Point, plan
+from .planning import Plan, Point, plan
 from .spec import Distribution
 from .store import Store
 
@@ -69,25 +74,44 @@ def sweep(
         outside a field's range, ``"missing"`` when not computed), ``error`` and
         ``case_key``; attributes ``computed``, ``reused``, ``failed``, ``missing``.
     """
-    from ..registry import METHOD_NAMES
-    from ..version import __version__
+    from ..registry import check_method
 
-    if method not in METHOD_NAMES:
-        raise ParameterError(
-            f"method: unknown impact method '{method}'; allowed: "
-            f"{', '.join(METHOD_NAMES)}{closest(method, METHOD_NAMES)}"
-        )
+    check_method(method)
     base = load_case(case, dict(overrides) if overrides else None)
     pl = plan(base, grid, samples, n, seed, method)
     store = Store(out) if out is not None else None
     spec = {**pl.spec, "histories": bool(histories)}
-    records: dict[str, dict[str, Any]] = {}
-    lost: dict[str, str] = {}
-    todo: list[Point] = []
-    seen: set[str] = set()
-    reused = invalid = 0
     if store is not None:
         store.write_manifest(spec)
+    cases = _triage(pl, method, store, histories)
+    lost: dict[str, str] = {}
+    if progress is not None:
+        progress(0, len(cases.todo))
+    try:
+        if cases.todo:
+            with cluster_client(scheduler, workers) as client:
+                compute(client, cases.todo, method, histories, store, cases.records, lost, progress)
+    finally:
+        ds = _result(spec, pl, cases, lost, store)
+    return ds
+
+
+@dataclass
+class _Triage:
+    """A plan's distinct cases before computing: the finished records by key (reused from the store, or invalid:
+    sampled values outside a field's range), the cases still to compute, and how many were reused and invalid."""
+
+    records: dict[str, dict[str, Any]] = field(default_factory=dict)
+    todo: list[Point] = field(default_factory=list)
+    reused: int = 0
+    invalid: int = 0
+
+
+def _triage(pl: Plan, method: str, store: Store | None, histories: bool) -> _Triage:
+    """Sort the distinct cases of ``pl`` (first occurrence of each key): a finished record in ``store`` is reused
+    (with its history when ``histories``), an invalid case is recorded (and saved) as such, the rest is to do."""
+    out = _Triage()
+    seen: set[str] = set()
     for p in pl.points:
         if p.key in seen:
             continue
@@ -95,36 +119,43 @@ def sweep(
         rec = store.load(p.key, histories) if store is not None else None
         if rec is not None:
             rec.pop("case", None)
-            records[p.key] = rec
-            reused += 1
+            out.records[p.key] = rec
+            out.reused += 1
         elif p.data is None:
-            rec = {
-                "key": p.key,
-                "method": method,
-                "status": "invalid",
-                "error": p.error,
-                "message": p.error,
-                "metrics": {},
-                "overrides": p.overrides,
-                "elapsed": 0.0,
-                "flexbeam_version": __version__,
-            }
+            rec = _invalid_record(p, method)
             if store is not None:
                 store.save(rec)
-            records[p.key] = rec
-            invalid += 1
+            out.records[p.key] = rec
+            out.invalid += 1
         else:
-            todo.append(p)
-    if progress is not None:
-        progress(0, len(todo))
-    try:
-        if todo:
-            with cluster_client(scheduler, workers) as client:
-                compute(client, todo, method, histories, store, records, lost, progress)
-    finally:
-        ds = build_dataset(spec, pl, records, lost)
-        ds.attrs["computed"] = len(records) - reused - invalid
-        ds.attrs["reused"] = reused
-        if store is not None:
-            store.write_result(ds)
+            out.todo.append(p)
+    return out
+
+
+def _invalid_record(p: Point, method: str) -> dict[str, Any]:
+    """The finished record of a case whose values fail validation: status ``"invalid"`` with the error, no
+    metrics."""
+    from ..version import __version__
+
+    return {
+        "key": p.key,
+        "method": method,
+        "status": "invalid",
+        "error": p.error,
+        "message": p.error,
+        "metrics": {},
+        "overrides": p.overrides,
+        "elapsed": 0.0,
+        "flexbeam_version": __version__,
+    }
+
+
+def _result(spec: dict[str, Any], pl: Plan, cases: _Triage, lost: dict[str, str], store: Store | None) -> xr.Dataset:
+    """The sweep's Dataset from every record so far (missing cases: status ``"missing"``), with the counts
+    ``computed`` and ``reused``; written to ``store`` as ``result.nc``."""
+    ds = build_dataset(spec, pl, cases.records, lost)
+    ds.attrs["computed"] = len(cases.records) - cases.reused - cases.invalid
+    ds.attrs["reused"] = cases.reused
+    if store is not None:
+        store.write_result(ds)
     return ds

@@ -2,11 +2,12 @@
  * the dense output; the mechanical energy of an evaluated state.
  *
  *   E_d = int sum_k (F_k - F_k,elastic)(-delta_k') + c_s s'^2 dt over the pairs under a law (Gauss quadrature of
- *   the nodal rates); the joint work W of a free or torque-driven joint is tau (phi1 - phi0), exact for the
- *   constant torque (phi the hub angle); with theta(t) prescribed W = int tau_joint theta' dt with the
- *   modal-acceleration part m_tq q'' theta' integrated by parts (its rapidly oscillating integrand is not
+ *   the nodal rates); the work W of a constant applied torque is tau (phi1 - phi0), exact (phi the angle it works
+ *   on, the joint's work_angle: the hub angle); for the coordinates g a joint gives as functions of time (theta(t)
+ *   prescribed) W = int tau_g theta_g' dt, the joint's reaction tau_g = M_gg a_g + M_gr a_r - Q_g - J_g F, with its
+ *   modal-acceleration part M_gr q'' theta_g' integrated by parts (its rapidly oscillating integrand is not
  *   quadrature material):
- *     W(t) = W0 + int [(M_tt theta'' - Q_t - sum_k J_k,t F_k) theta' - m_tq q' theta''] dt + [m_tq q' theta']_t0^t.
+ *     W(t) = W0 + int [(M_gg a_g - Q_g - sum_k J_k,g F_k) theta_g' - M_gr q' a_g] dt + [M_gr q' theta_g']_t0^t.
  */
 #include <string.h>
 
@@ -27,46 +28,69 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
         *ed += m->obstacles[0].cs * sd * sd;
     }
     *wd = 0.0;
-    if (!m->prescribed) return;
-    const double *q = nd->z, *qd = nd->zd;
-    double Q[FB_MAXN], J[FB_MAXN];
-    fb_forces(m, nd->th, nd->thd, q, qd, 0.0, 1, Q);
-    double Mtt = m->Jc + fb_quad(m->Mc, q, n), mq = 0.0, JF = 0.0;
-    for (int i = 0; i < n; i++) mq += m->mtq[i] * qd[i];
+    if (!m->ngiven) return;
+    const fb_joint_ops *jt = fb_joint(m);
+    int nr = m->nrigid, off = nr - m->ngiven;
+    const double *q = nd->z + off, *qd = nd->zd + off;
+    double Q[FB_MAXN], J[FB_MAXN], M[FB_MAXN * FB_MAXN];
+    jt->forces(m, &nd->frame, q, qd, 0.0, 1, Q);
+    jt->mass(m, q, M);
+    double Mtt = M[0], mq = 0.0, JF = 0.0; /* the given coordinate 0 (theta): its row of M */
+    for (int i = 0; i < n; i++) mq += M[nr + i] * qd[i];
     for (int k = 0; k < S; k++) {
         if (ph->c.mode[k] == FB_MODE_NONE) continue;
-        fb_pair_gap(m, k, nd->th, nd->thd, q, qd, 0.0, 0.0, 0, J);
+        fb_pair_gap(m, k, &nd->frame, q, qd, 0.0, 0.0, 0, J);
         JF += J[0] * F[k][j];
     }
-    *wd = (Mtt * nd->thdd - Q[0] - JF) * nd->thd - mq * nd->thdd;
+    *wd = (Mtt * nd->frame.thdd - Q[0] - JF) * nd->frame.thd - mq * nd->frame.thdd;
 }
 
 double fb_boundary_work(const fb_phase *ph, double t, const double *v) {
     const fb_model *m = ph->m;
-    if (!m->prescribed) return 0.0;
-    double z[FB_MAXN], th, thd, thdd, acc = 0.0;
-    fb_to_physical(ph->b, v, z);
-    fb_drive_motion(m, t, &th, &thd, &thdd);
-    for (int i = 0; i < m->n; i++) acc += m->mtq[i] * z[i];
-    return acc * thd;
+    if (!m->ngiven) return 0.0;
+    double z[FB_MAXN], zd[FB_MAXN], M[FB_MAXN * FB_MAXN], acc = 0.0;
+    fb_frame fr;
+    const double *q, *qd;
+    fb_to_physical(ph->b, v, zd);
+    memset(z, 0, sizeof z); /* the frame's rate needs no position: given coordinates come from time */
+    fb_joint(m)->split(m, t, z, zd, &fr, &q, &qd);
+    fb_joint(m)->mass(m, q, M);
+    for (int i = 0; i < m->n; i++) acc += M[m->nrigid + i] * zd[i];
+    return acc * fr.thd;
 }
 
 double fb_hub_angle(const fb_phase *ph, const double *eta) {
-    const fb_model *m = ph->m;
-    double z[FB_MAXN], acc;
+    double z[FB_MAXN];
     fb_to_physical(ph->b, eta, z);
-    acc = z[0];
-    for (int i = 0; i < m->n; i++) acc += m->d[i] * z[i + 1];
-    return acc;
+    return fb_joint(ph->m)->work_angle(ph->m, z);
 }
 
 /* T + V_e + V_g (+ the pairs' contact potentials under a law, + the support's energy) at an evaluated node, and
  * *scale = T + V_e (+ the support's), the energy the step's state error is measured against. */
 double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale) {
+    double T;
+    return fb_node_energy_parts(ph, nd, scale, &T);
+}
+
+/* The tip's deflection from the hub's radial line at an evaluated node (the output column tip_deflection). */
+double fb_node_tip(const fb_phase *ph, const fb_node *nd) {
     const fb_model *m = ph->m;
-    const double *q = m->prescribed ? nd->z : nd->z + 1, *qd = m->prescribed ? nd->zd : nd->zd + 1;
+    int off = m->nrigid - m->ngiven;
+    const double *q = nd->z + off, *qd = nd->zd + off;
+    fb_kin tip = {.want_acc = 0};
+    fb_point_kinematics(m, &m->points[1], &nd->frame, q, qd, &tip, NULL);
+    double phi, phid, s, c;
+    fb_joint(m)->hub(m, &nd->frame, q, qd, &phi, &phid);
+    fb_sincos(phi, &s, &c);
+    return -s * tip.r[0] + c * tip.r[1];
+}
+
+/* fb_node_energy, and the kinetic energy T (+ the support's) in *kinetic. */
+double fb_node_energy_parts(const fb_phase *ph, const fb_node *nd, double *scale, double *kinetic) {
+    const fb_model *m = ph->m;
+    const double *q = nd->z + (m->nrigid - m->ngiven), *qd = nd->zd + (m->nrigid - m->ngiven);
     double T, Ve, Vg;
-    fb_energies(m, nd->th, nd->thd, q, qd, &T, &Ve, &Vg);
+    fb_joint(m)->energies(m, &nd->frame, q, qd, &T, &Ve, &Vg);
     if (fb_compliant(m)) {
         const fb_obstacle *o = &m->obstacles[0];
         double s = nd->z[ph->b->N - 1], sd = nd->zd[ph->b->N - 1];
@@ -74,6 +98,7 @@ double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale) {
         Ve += 0.5 * o->ks * s * s;
     }
     *scale = T + Ve;
+    *kinetic = T;
     double E = T + Ve + Vg;
     for (int k = 0; k < ph->c.npairs; k++)
         if (ph->c.mode[k] == FB_MODE_FORCE) E += fb_law_potential(ph->c.p[k], -nd->gap[k].delta);
@@ -93,10 +118,11 @@ void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, con
         wd += tb->w[j] * rwd[j];
     }
     *dEd = h * ed;
-    if (m->prescribed)
+    double tau = fb_joint(m)->torque(m, t);
+    if (m->ngiven)
         *dW = h * wd + fb_boundary_work(ph, t + h, st->v1) - fb_boundary_work(ph, t, v);
-    else if (m->drive == FB_DRIVE_TORQUE)
-        *dW = m->torque * (fb_hub_angle(ph, st->eta1) - fb_hub_angle(ph, eta));
+    else if (tau != 0.0)
+        *dW = tau * (fb_hub_angle(ph, st->eta1) - fb_hub_angle(ph, eta));
     else
         *dW = 0.0;
 }
@@ -139,10 +165,11 @@ int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, i
             Ed += rec[1] * li * red[j];
             W += rec[1] * li * rwd[j];
         }
-        if (m->prescribed) {
+        double tau = fb_joint(m)->torque(m, t);
+        if (m->ngiven) {
             W += fb_boundary_work(&ph, t, v) - fb_boundary_work(&ph, rec[0], v0);
-        } else if (m->drive == FB_DRIVE_TORQUE) {
-            W = rec[3] + m->torque * (fb_hub_angle(&ph, eta) - fb_hub_angle(&ph, eta0));
+        } else if (tau != 0.0) {
+            W = rec[3] + tau * (fb_hub_angle(&ph, eta) - fb_hub_angle(&ph, eta0));
         }
         y[size - 2] = Ed;
         y[size - 1] = W;

@@ -2,14 +2,15 @@
  *
  * Linearising M(z) z'' = Q + J^T F about the undeformed beam at rest gives M0 z'' + K0 z = R with
  *   R = M0 M(z)^-1 (Q + J^T F) + K0 z,
- * M(z) = M0 + ds e0 e0^T (ds = q^T Mc q, free joint), so by Sherman-Morrison
+ * which the joint evaluates (joint.h, remainder and correct): for a revolute joint with theta free
+ * M(z) = M0 + ds e0 e0^T (ds = q^T Mc q), so by Sherman-Morrison
  *   M0 M^-1 x = x - c e0 (row0 . x),  c = ds / (1 + ds (M0^-1)_00),  row0 = e0^T M0^-1.
  * In modal coordinates z = Psi eta: eta'' + diag(w^2) eta = f = Psi^T R (exact propagation, propagation.c)
  * with f the interpolant of its values at the FB_P Gauss nodes, found by fixed-point iteration; the contact
  * forces (CCFM) or multipliers (CCM) of the pairs in contact at the nodes are solved inside each sweep by Newton's
  * method with their exact linear modal response (pairs and nodes together), so a stiff contact needs no small
- * step.  With theta(t) prescribed, z = q and
- * M = M_qq is constant: R = Q_q - m_tq theta'' + K q.  A compliant support is one more mode sqrt(m_s) s.
+ * step.  With theta(t) prescribed, z = q and M = M_qq is constant: R = Q_q - m_tq theta''.  A compliant support is
+ * one more mode sqrt(m_s) s.
  */
 #include <string.h>
 
@@ -41,9 +42,7 @@ void fb_phase_init(fb_phase *ph, const fb_model *m, const fb_basis *b, const fb_
     ph->rtol = rtol;
     ph->atol = atol;
     ph->omega_rigid = omega_rigid;
-    ph->row0_q = 0;
-    for (int i = 1; i < b->nz && !m->prescribed; i++)
-        if (b->row0[i] != 0.0) ph->row0_q = 1;
+    ph->row0_q = fb_joint(m)->row0_coupled(m, b);
 }
 
 void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double *v, int want, fb_node *out) {
@@ -55,42 +54,17 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
                       fb_node *out) {
     const fb_model *m = ph->m;
     const fb_basis *b = ph->b;
-    int n = m->n, N = b->N, nz = b->nz, pre = m->prescribed, compliant = fb_compliant(m);
+    const fb_joint_ops *jt = fb_joint(m);
+    int N = b->N, nz = b->nz, ng = m->ngiven, compliant = fb_compliant(m);
     double *z = out->z, *zd = out->zd;
     fb_to_physical(b, eta, z);
     fb_to_physical(b, v, zd);
-    const double *q = pre ? z : z + 1, *qd = pre ? zd : zd + 1;
-    double th, thd, thdd;
-    if (pre) {
-        fb_drive_motion(m, t, &th, &thd, &thdd);
-    } else {
-        th = z[0];
-        thd = zd[0];
-        thdd = 0.0;
-    }
+    const double *q, *qd;
+    jt->split(m, t, z, zd, &out->frame, &q, &qd);
     out->t = t;
-    out->th = th;
-    out->thd = thd;
-    out->thdd = thdd;
     double Q[FB_MAXN], R[FB_MAXN];
-    double ds = fb_forces(m, th, thd, q, qd, pre ? 0.0 : fb_drive_torque(m, t), 0, Q); /* no elastic force */
-    double c = 0.0;
-    if (pre) {
-        for (int i = 0; i < n; i++) R[i] = Q[i + 1] - m->mtq[i] * thdd;
-    } else {
-        c = ds / (1.0 + ds * b->inv00);
-        double r0 = 0.0;
-        for (int i = 0; i < nz; i++) r0 += b->row0[i] * Q[i];
-        if (ph->row0_q) { /* row0 . (-K0 z): the elastic force is not in Q */
-            for (int i = 0; i < n; i++) {
-                double kq = 0.0;
-                for (int j = 0; j < n; j++) kq += m->K[i * n + j] * q[j];
-                r0 -= b->row0[i + 1] * kq;
-            }
-        }
-        for (int i = 0; i < nz; i++) R[i] = Q[i];
-        R[0] -= c * r0;
-    }
+    double ds = jt->forces(m, &out->frame, q, qd, jt->torque(m, t), 0, Q); /* no elastic force */
+    double c = jt->remainder(m, b, ph->row0_q, &out->frame, q, Q, ds, R);
     double s = 0.0, sd = 0.0;
     if (compliant) {
         const fb_obstacle *o = &m->obstacles[0];
@@ -104,26 +78,24 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
         int active = ph->c.mode[k] != FB_MODE_NONE, jac = active || want == FB_WANT_JM;
         if (!active && want == FB_WANT_ACTIVE) continue;
         double J[FB_MAXN], Jx[FB_MAXN];
-        out->gap[k] = fb_pair_gap(m, k, th, thd, q, qd, s, sd, want_acc, jac ? J : NULL);
+        out->gap[k] = fb_pair_gap(m, k, &out->frame, q, qd, s, sd, want_acc, jac ? J : NULL);
         if (!jac) continue;
-        /* J in the integrator's coordinates: [theta, q] or q, then the support */
-        for (int i = 0; i < nz; i++) Jx[i] = J[i + (pre ? 1 : 0)];
+        /* J in the integrator's coordinates: the full ones without the given ([theta, q] or q), then the support */
+        for (int i = 0; i < nz; i++) Jx[i] = J[i + ng];
         if (compliant) Jx[N - 1] = out->gap[k].Js;
         fb_project(b, Jx, out->jm[k]);
         if (m->pairs[k].anywhere) { /* its point moves: bound over all surface points, |Psi|^T env */
             double env[FB_MAXN], ez[FB_MAXN];
             fb_anywhere_bound(m, q, env);
-            for (int i = 0; i < nz; i++) ez[i] = env[i + (pre ? 1 : 0)];
+            for (int i = 0; i < nz; i++) ez[i] = env[i + ng];
             if (compliant) ez[N - 1] = 1.0;
             fb_project_abs(b, ez, out->jb[k]);
         } else {
             for (int i = 0; i < N; i++) out->jb[k][i] = fabs(out->jm[k][i]);
         }
         if (!active) continue;
-        if (!pre && c != 0.0) {
-            double r0 = 0.0;
-            for (int i = 0; i < nz; i++) r0 += b->row0[i] * Jx[i];
-            Jx[0] -= c * r0;
+        if (c != 0.0) {
+            jt->correct(m, b, c, Jx);
             fb_project(b, Jx, out->b[k]);
         } else {
             memcpy(out->b[k], out->jm[k], sizeof(double) * N);
@@ -135,18 +107,14 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
 fb_gap fb_gap_at(const fb_phase *ph, int pair, double t, const double *eta, const double *v) {
     const fb_model *m = ph->m;
     const fb_basis *b = ph->b;
-    int N = b->N, pre = m->prescribed, compliant = fb_compliant(m);
-    double z[FB_MAXN], zd[FB_MAXN], th, thd, thdd;
+    int N = b->N, compliant = fb_compliant(m);
+    double z[FB_MAXN], zd[FB_MAXN];
+    fb_frame fr;
+    const double *q, *qd;
     fb_to_physical(b, eta, z);
     fb_to_physical(b, v, zd);
-    const double *q = pre ? z : z + 1, *qd = pre ? zd : zd + 1;
-    if (pre) {
-        fb_drive_motion(m, t, &th, &thd, &thdd);
-    } else {
-        th = z[0];
-        thd = zd[0];
-    }
-    return fb_pair_gap(m, pair, th, thd, q, qd, compliant ? z[N - 1] : 0.0, compliant ? zd[N - 1] : 0.0, 0, NULL);
+    fb_joint(m)->split(m, t, z, zd, &fr, &q, &qd);
+    return fb_pair_gap(m, pair, &fr, q, qd, compliant ? z[N - 1] : 0.0, compliant ? zd[N - 1] : 0.0, 0, NULL);
 }
 
 static void ensure_weights(const fb_phase *ph, fb_work *w, double h) {

@@ -207,7 +207,7 @@ static double max_forcing(const fb_dense *d, int k) {
 
 /* Is the obstacle out of reach within the step?  Each mode's velocity stays below its free amplitude
  * sqrt(v^2 + w^2 eta^2) plus h LEBESGUE max_j |f_jk|, so the gap's rate stays below R = sum_k |j_k| (that bound)
- * (+ |J_theta| max|theta'| for a prescribed theta, whose profiles have monotone rates; |J_theta| <= |r_P|); far
+ * (+ |J_theta| max|theta'| for a prescribed theta: the joint's rate_bound; |J_theta| <= |r_P|); far
  * if gap0 > 2 R h (a factor 2 for the variation of J over the step). */
 static int far(const fb_dense *d, const double *jm, double gap0) {
     if (gap0 <= 0.0) return 0;
@@ -218,14 +218,12 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
         R += fabs(jm[k]) *
              (sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]) + d->h * LEBESGUE * max_forcing(d, k));
     }
-    if (d->ph->m->prescribed) {
-        double th, thd0, thd1, thdd;
-        fb_drive_motion(d->ph->m, d->t0, &th, &thd0, &thdd);
-        fb_drive_motion(d->ph->m, d->t0 + d->h, &th, &thd1, &thdd);
-        const fb_model *m = d->ph->m;
+    const fb_model *m = d->ph->m;
+    double given = fb_joint(m)->rate_bound(m, d->t0, d->t0 + d->h);
+    if (given != 0.0) {
         const fb_point *P = &m->points[m->pairs[d->pair].point];
         double rP = m->pairs[d->pair].anywhere ? m->points[1].base + m->surface : P->base + fabs(P->offset);
-        R += rP * fmax(fabs(thd0), fabs(thd1));
+        R += rP * given;
     }
     return gap0 > 2.0 * R * d->h;
 }

@@ -13,20 +13,20 @@
 #include <stddef.h>
 
 #include "detmath.h" /* sin, cos, exp, pow with the same bits on every machine */
+#include "joint.h"   /* the joint seam: the frame's motion, its mass and forces, the drive */
 
-#define FB_LAYOUT_VERSION 2
+#define FB_LAYOUT_VERSION 3
 #define FB_PI 3.14159265358979323846
 #define FB_MAX_POINTS 64
 #define FB_MAX_OBSTACLES 8
 #define FB_MAX_PAIRS 8
+#define FB_MAX_JOINT_PARAMS 64 /* the joint's parameters in the model buffer (joint_<kind>.c reads them) */
 #define FB_P 4          /* Gauss-Legendre collocation nodes per step */
 #define FB_NPTS (FB_P + 1) /* the nodes and the step end */
 
 /* ContactMode (flexbeam.solution.ContactMode) */
 enum { FB_MODE_NONE = 0, FB_MODE_FORCE = 1, FB_MODE_CONSTRAINT = 2 };
 enum { FB_SPHERE = 0, FB_PLANE = 1 };
-enum { FB_DRIVE_FREE = 0, FB_DRIVE_TORQUE = 1, FB_DRIVE_PRESCRIBED = 2 };
-enum { FB_PROFILE_CONSTANT = 0, FB_PROFILE_KANE = 1 };
 
 /* A material point of the beam: base = r_h + x, offset c below the centre line (along -n of the deformed
  * section) and offset_t along its tangent (a point on the rounded end cap; 0 elsewhere), Psi(x), Psi'(x), H(x). */
@@ -50,12 +50,14 @@ typedef struct {
     int anywhere; /* the contact point is the beam-surface point nearest the obstacle (nearest.c) */
 } fb_pair;
 
-typedef struct {
-    int n;          /* flexible modes */
-    int prescribed; /* theta(t) given: coordinates q only */
-    int drive;      /* FB_DRIVE_* */
-    int profile;    /* FB_PROFILE_* (prescribed) */
-    double Jc, m1, g, torque, spin_rate, spin_up_time, theta0;
+typedef struct fb_model_s {
+    int n;      /* flexible modes */
+    int joint;  /* the joint's kind, FB_JOINT_* (joint.h); its code in joint_<kind>.c */
+    int nrigid; /* the floating frame's coordinates, leading the full coordinates [rigid, q] (1: theta) */
+    int ngiven; /* of them, those the joint gives as functions of time (not in the state: 1 for theta(t) prescribed) */
+    int njp;    /* the joint's parameters jp (joint_<kind>.c reads them) */
+    double jp[FB_MAX_JOINT_PARAMS];
+    double Jc, m1, g;
     const double *Mc, *Mqq, *mtq, *K, *sf, *G, *d; /* n x n, n x n, n, n x n, n, n x n, n */
     int npoints, nobstacles, npairs, nmeasure; /* nmeasure: measuring points, points[2 .. 2 + nmeasure) */
     fb_point points[FB_MAX_POINTS];       /* points[0]: the first pair's contact point P, points[1]: the tip */
@@ -83,8 +85,10 @@ typedef struct {
 /* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair]. */
 int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf);
 
-/* Number of generalised coordinates of the beam: [theta, q] or q. */
-static inline int fb_nz(const fb_model *m) { return m->prescribed ? m->n : m->n + 1; }
+/* Number of full coordinates [rigid, q] (the equations' rows) and of the state's coordinates (without the given
+ * ones): [theta, q] or q. */
+static inline int fb_nfull(const fb_model *m) { return m->nrigid + m->n; }
+static inline int fb_nz(const fb_model *m) { return m->nrigid - m->ngiven + m->n; }
 /* Is obstacle 0 on a compliant support (two more states s, s')? */
 static inline int fb_compliant(const fb_model *m) { return m->nobstacles > 0 && m->obstacles[0].ms > 0.0; }
 /* Length of the reference-layout state [z, z', (s, s'), E_d, W]. */
@@ -93,7 +97,7 @@ static inline int fb_state_size(const fb_model *m) { return 2 * fb_nz(m) + (fb_c
 int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf);
 
 /* ------------------------------------------------------------------ model.c */
-typedef struct {
+typedef struct fb_kin_s {
     double r[2], v[2], a0[2];
     int want_acc; /* in: compute a0 (its q'^T H q' costs an n x n product; the gap and its rate do not need it) */
 } fb_kin;
@@ -104,23 +108,17 @@ typedef struct {
     double x;     /* the contact point's material coordinate (fb_pair_gap) */
 } fb_gap;
 
-void fb_drive_motion(const fb_model *m, double t, double *th, double *thd, double *thdd);
-double fb_drive_torque(const fb_model *m, double t);
-void fb_state_split(const fb_model *m, double t, const double *y, double *th, double *thd, double *thdd,
-                    const double **q, const double **qd);
+/* The frame and the modal coordinates of a reference-layout state y = [z, z', ...] at time t. */
+void fb_state_split(const fb_model *m, double t, const double *y, fb_frame *f, const double **q, const double **qd);
 double fb_quad(const double *A, const double *x, int n);
 void fb_symv(const double *A, const double *x, int n, double *out);
 void fb_matvec(const double *A, const double *x, int n, double *out);
-void fb_mass_matrix(const fb_model *m, const double *q, double *M);
-double fb_forces(const fb_model *m, double th, double thd, const double *q, const double *qd, double tau, int elastic,
-                 double *Q);
-void fb_energies(const fb_model *m, double th, double thd, const double *q, const double *qd, double *T, double *Ve,
-                 double *Vg);
-void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double thd, const double *q,
-                         const double *qd, fb_kin *out, double *dr);
+double fb_dot(const double *a, const double *b, int n);
+void fb_point_kinematics(const fb_model *m, const fb_point *P, const fb_frame *f, const double *q, const double *qd,
+                         fb_kin *out, double *dr);
 fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int nz, double s, double sd,
                     double *J);
-fb_gap fb_pair_gap(const fb_model *m, int pair, double th, double thd, const double *q, const double *qd, double s,
+fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                    double sd, int want_acc, double *J);
 
 /* ------------------------------------------------------------------ nearest.c (contact anywhere) */
@@ -131,7 +129,7 @@ typedef struct {
     double phi[64], dphi[64], H[64 * 64];
 } fb_surface_point;
 
-void fb_nearest_point(const fb_model *m, const fb_obstacle *o, double th, const double *q, double s,
+void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
                       fb_surface_point *out);
 void fb_anywhere_bound(const fb_model *m, const double *q, double *env);
 double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd);
@@ -149,7 +147,7 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
 /* The linearisation about the undeformed beam at rest, M0 z'' + K0 z = R, in modal coordinates
  * z = Psi eta (Psi^T M0 Psi = I, Psi^T K0 Psi = diag(omega^2)); a compliant support adds the mode
  * sqrt(m_s) s of frequency sqrt(k_s / m_s) as the last one. */
-typedef struct {
+typedef struct fb_basis_s {
     int N;            /* modal coordinates (beam + support) */
     int nz;           /* beam coordinates */
     int diagonal;     /* Psi is diagonal (system frame, prescribed theta) */

@@ -32,7 +32,8 @@ enum {
 
 /* The model evaluated at one modal state: the smooth modal forcing, the contact directions and the gaps. */
 typedef struct {
-    double t, th, thd, thdd;
+    double t;
+    fb_frame frame;                   /* the floating frame's motion */
     double smooth[FB_MAXN];           /* Psi^T R without the contact forces */
     double b[FB_MAX_PAIRS][FB_MAXN];  /* Psi^T M0 M^-1 J_k^T: modal forcing per unit force of pair k (in contact) */
     double jm[FB_MAX_PAIRS][FB_MAXN]; /* Psi^T J_k^T: d delta_k / d eta (in contact; every pair with FB_WANT_JM) */

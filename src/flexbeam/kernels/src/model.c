@@ -1,17 +1,11 @@
-/* The rigid-flexible coupling equations of docs/formulation.md, evaluated in physical coordinates.
+/* The beam's part of the rigid-flexible coupling equations of docs/formulation.md, in physical coordinates: the model
+ * buffer, a material point's kinematics in the floating frame, the gap of a contact pair and the contact laws.  The
+ * frame's part -- its coordinates, its mass and forces, the drive, how the frame moves in the plane -- is the joint's
+ * (joint.h; joint_revolute.c writes out the equations of a beam on a revolute joint).
  *
- * Coordinates z = [theta, q] (free or torque-driven joint) or z = q (theta(t) prescribed).
- * First-order approximation model (zeroth order: D = G = H = 0, so Mc = M_ff):
- *
- *   M(q) = [[Jc + q^T Mc q, m_tq^T], [m_tq, M_qq]]
- *   Q_theta = tau - 2 theta' q^T Mc q' - g [cos(theta)(m1 - 1/2 q^T G q) - sin(theta) s_f q]
- *   Q_q     = -K q + theta'^2 Mc q - g [cos(theta) s_f - sin(theta) G q] + tau d
- *
- * so that M z'' = Q + J^T F; the joint torque tau works on the hub angle theta + d q.
- * Energies T = 1/2 z'^T M z', V_e = 1/2 q^T K q, V_g = g [sin(theta)(m1 - 1/2 q^T G q) + cos(theta) s_f q].
  * A material point at x, offset c below the centre line along the deformed section normal and c_t along its
- * tangent (section rotation a = Psi'(x) q):
- *   rho = (r_h + x - 1/2 q^T H q + c sin a + c_t cos a, Psi q - c cos a + c_t sin a),  r = A(theta) rho.
+ * tangent (section rotation a = Psi'(x) q), sits in the frame at
+ *   rho = (r_h + x - 1/2 q^T H q + c sin a + c_t cos a, Psi q - c cos a + c_t sin a).
  */
 #include <string.h>
 
@@ -19,9 +13,9 @@
 
 #define MAXZ 66 /* n <= 64 modes, theta, and a support coordinate */
 
-/* Model buffer: [version, n, prescribed, drive, profile, npoints, nobstacles, npairs, nmeasure,
+/* Model buffer: [version, n, joint kind, njp, (unused), npoints, nobstacles, npairs, nmeasure,
  * obstacle kinds (nobstacles),
- * Jc, m1, g, torque, spin_rate, spin_up_time, theta0, Mc, Mqq, mtq, K, sf, G, d,
+ * Jc, m1, g, the joint's parameters (njp), Mc, Mqq, mtq, K, sf, G, d,
  * per point: base, offset, phi, dphi, H; per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy;
  * per pair: point, obstacle, anywhere; hub_radius, nst, surface, first_order, then with nst > 0: x (nst), Psi, Psi', Psi'' (nst x n each),
  * H (nst x n x n), max |Psi| (n), max |Psi'| (n)] (flexbeam.kernels.layout.pack_model writes it). */
@@ -31,32 +25,29 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     if (nbuf < nints || (int)ints[0] != FB_LAYOUT_VERSION) return -1;
     int n = (int)ints[1];
     m->n = n;
-    m->prescribed = (int)ints[2];
-    m->drive = (int)ints[3];
-    m->profile = (int)ints[4];
+    m->joint = (int)ints[2];
+    m->njp = (int)ints[3];
     m->npoints = (int)ints[5];
     m->nobstacles = (int)ints[6];
     m->npairs = (int)ints[7];
     m->nmeasure = (int)ints[8];
     if (n < 0 || n > 64 || m->npoints < 1 || m->npoints > FB_MAX_POINTS || m->nobstacles < 0 ||
         m->nobstacles > FB_MAX_OBSTACLES || m->npairs < 0 || m->npairs > FB_MAX_PAIRS || m->nmeasure < 0 ||
-        m->nmeasure > m->npoints - 2 ||
+        m->nmeasure > m->npoints - 2 || m->joint < 0 || m->joint >= FB_JOINT_KINDS || m->njp < 0 ||
+        m->njp > FB_MAX_JOINT_PARAMS ||
         nbuf < nints + (size_t)m->nobstacles)
         return -1;
     nints += (size_t)m->nobstacles;
     const double *f = buf + nints;
     size_t nf = nbuf - nints;
-    size_t need = 7 + 4 * (size_t)n * n + 3 * (size_t)n + (size_t)m->npoints * (2 + 2 * n + (size_t)n * n) +
+    size_t need = 3 + (size_t)m->njp + 4 * (size_t)n * n + 3 * (size_t)n + (size_t)m->npoints * (2 + 2 * n + (size_t)n * n) +
                   10 * (size_t)m->nobstacles + 3 * (size_t)m->npairs + 4;
     if (nf < need) return -2;
     const double *p = f;
     m->Jc = *p++;
     m->m1 = *p++;
     m->g = *p++;
-    m->torque = *p++;
-    m->spin_rate = *p++;
-    m->spin_up_time = *p++;
-    m->theta0 = *p++;
+    for (int i = 0; i < m->njp; i++) m->jp[i] = *p++;
     m->Mc = p; p += n * n;
     m->Mqq = p; p += n * n;
     m->mtq = p; p += n;
@@ -103,7 +94,7 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     m->st_H = p; p += M * n * n;
     m->st_maxphi = p; p += M ? n : 0;
     m->st_maxdphi = p;
-    return 0;
+    return fb_joint(m)->unpack(m) ? -4 : 0;
 }
 
 int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf) {
@@ -121,45 +112,9 @@ int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, siz
     return 0;
 }
 
-/* theta, theta', theta'' of a prescribed profile: constant rate, or Kane, Ryan & Banerjee (1987) eq. 57. */
-void fb_drive_motion(const fb_model *m, double t, double *th, double *thd, double *thdd) {
-    double W = m->spin_rate;
-    if (m->profile == FB_PROFILE_CONSTANT) {
-        *th = m->theta0 + W * t; *thd = W; *thdd = 0.0;
-        return;
-    }
-    double Ts = m->spin_up_time;
-    if (t < Ts) {
-        double a = 2.0 * FB_PI / Ts;
-        double sa, ca;
-        fb_sincos(a * t, &sa, &ca);
-        *th = m->theta0 + (W / Ts) * (0.5 * t * t + (ca - 1.0) / (a * a));
-        *thd = (W / Ts) * (t - sa / a);
-        *thdd = (W / Ts) * (1.0 - ca);
-        return;
-    }
-    *th = m->theta0 + W * (t - 0.5 * Ts); *thd = W; *thdd = 0.0;
-}
-
-double fb_drive_torque(const fb_model *m, double t) {
-    (void)t;
-    return m->drive == FB_DRIVE_TORQUE ? m->torque : 0.0;
-}
-
-void fb_state_split(const fb_model *m, double t, const double *y, double *th, double *thd, double *thdd,
-                    const double **q, const double **qd) {
-    int n = m->n;
-    if (m->prescribed) {
-        fb_drive_motion(m, t, th, thd, thdd);
-        *q = y;
-        *qd = y + n;
-    } else {
-        *th = y[0];
-        *thd = y[n + 1];
-        *thdd = 0.0;
-        *q = y + 1;
-        *qd = y + n + 2;
-    }
+/* The frame and the modal coordinates of a reference-layout state [z, z', ...] (z: the state's nz coordinates). */
+void fb_state_split(const fb_model *m, double t, const double *y, fb_frame *f, const double **q, const double **qd) {
+    fb_joint(m)->split(m, t, y, y + fb_nz(m), f, q, qd);
 }
 
 /* out = A x for a symmetric A, by column sweeps (out_i accumulates A_ji x_j over j in order): the inner loop runs
@@ -188,72 +143,21 @@ void fb_matvec(const double *A, const double *x, int n, double *out) {
     }
 }
 
-static double dot(const double *a, const double *b, int n) {
+double fb_dot(const double *a, const double *b, int n) {
     double acc = 0.0;
     for (int i = 0; i < n; i++) acc += a[i] * b[i];
     return acc;
 }
 
-void fb_mass_matrix(const fb_model *m, const double *q, double *M) {
-    int n = m->n, N = n + 1;
-    M[0] = m->Jc + fb_quad(m->Mc, q, n);
-    for (int i = 0; i < n; i++) {
-        M[i + 1] = m->mtq[i];
-        M[(i + 1) * N] = m->mtq[i];
-        for (int j = 0; j < n; j++) M[(i + 1) * N + j + 1] = m->Mqq[i * n + j];
-    }
-}
-
-/* Q of the equations (elastic: with the elastic force -K q); returns q^T Mc q (the theta-theta mass change). */
-double fb_forces(const fb_model *m, double th, double thd, const double *q, const double *qd, double tau, int elastic,
-                 double *Q) {
-    int n = m->n;
-    double c, s, g = m->g;
-    fb_sincos(th, &s, &c);
-    double qMcqd = 0.0, qMcq = 0.0, qGq = 0.0, sfq = 0.0, mcq[MAXZ], gq[MAXZ];
-    fb_symv(m->Mc, q, n, mcq);
-    for (int i = 0; i < n; i++) {
-        qMcqd += mcq[i] * qd[i];
-        qMcq += mcq[i] * q[i];
-        Q[i + 1] = thd * thd * mcq[i] + tau * m->d[i];
-    }
-    if (g != 0.0) {
-        fb_symv(m->G, q, n, gq);
-        for (int i = 0; i < n; i++) {
-            qGq += q[i] * gq[i];
-            sfq += m->sf[i] * q[i];
-            Q[i + 1] -= g * (c * m->sf[i] - s * gq[i]);
-        }
-    }
-    if (elastic) {
-        double kq[MAXZ];
-        fb_symv(m->K, q, n, kq);
-        for (int i = 0; i < n; i++) Q[i + 1] -= kq[i];
-    }
-    Q[0] = tau - 2.0 * thd * qMcqd - g * (c * (m->m1 - 0.5 * qGq) - s * sfq);
-    return qMcq;
-}
-
-void fb_energies(const fb_model *m, double th, double thd, const double *q, const double *qd, double *T, double *Ve,
-                 double *Vg) {
-    int n = m->n;
-    *T = 0.5 * thd * thd * (m->Jc + fb_quad(m->Mc, q, n)) + thd * dot(m->mtq, qd, n) + 0.5 * fb_quad(m->Mqq, qd, n);
-    *Ve = 0.5 * fb_quad(m->K, q, n);
-    double s, c;
-    fb_sincos(th, &s, &c);
-    *Vg = m->g * (s * (m->m1 - 0.5 * fb_quad(m->G, q, n)) + c * dot(m->sf, q, n));
-}
-
 /* Position r, velocity v and the acceleration a0 at z'' = 0 (velocity-product terms, for J' z') of a point,
- * and dr (2 x (n+1), row-major): dr/dz with z = [theta, q]. */
-void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double thd, const double *q,
-                         const double *qd, fb_kin *out, double *dr) {
-    int n = m->n, N = n + 1;
-    double ang = dot(P->dphi, q, n), angd = dot(P->dphi, qd, n);
-    double sa, ca, ct, st, c = P->offset, ot = P->offset_t;
+ * and dr (2 x nfull, row-major): dr/dz with z = [rigid, q]: the point's motion in the frame, placed by the joint. */
+void fb_point_kinematics(const fb_model *m, const fb_point *P, const fb_frame *f, const double *q, const double *qd,
+                         fb_kin *out, double *dr) {
+    int n = m->n;
+    double ang = fb_dot(P->dphi, q, n), angd = fb_dot(P->dphi, qd, n);
+    double sa, ca, c = P->offset, ot = P->offset_t;
     fb_sincos(ang, &sa, &ca);
-    fb_sincos(th, &st, &ct);
-    double qHq = 0.0, rhod_x = 0.0, rhod_y = 0.0, qdHqd = 0.0, hq[MAXZ], hqd[MAXZ];
+    double qHq = 0.0, rhod_x = 0.0, rhod_y = 0.0, qdHqd = 0.0, hq[MAXZ], hqd[MAXZ], drho[2 * MAXZ];
     fb_symv(P->H, q, n, hq);
     if (out->want_acc) {
         fb_symv(P->H, qd, n, hqd);
@@ -265,30 +169,21 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, double th, double
         double dy = P->phi[i] + (c * sa + ot * ca) * P->dphi[i];
         rhod_x += dx * qd[i];
         rhod_y += dy * qd[i];
-        if (dr) {
-            dr[i + 1] = ct * dx - st * dy;
-            dr[N + i + 1] = st * dx + ct * dy;
-        }
+        drho[i] = dx;
+        drho[n + i] = dy;
     }
-    double rx = P->base - 0.5 * qHq + c * sa + ot * ca;
-    double ry = dot(P->phi, q, n) - c * ca + ot * sa;
-    double acc_x = -qdHqd - (c * sa + ot * ca) * angd * angd, acc_y = (c * ca - ot * sa) * angd * angd;
-    if (dr) {
-        dr[0] = ct * (-ry) - st * rx;
-        dr[N] = st * (-ry) + ct * rx;
-    }
-    out->r[0] = ct * rx - st * ry;
-    out->r[1] = st * rx + ct * ry;
-    double vlx = rhod_x - thd * ry, vly = rhod_y + thd * rx;
-    out->v[0] = ct * vlx - st * vly;
-    out->v[1] = st * vlx + ct * vly;
-    double alx = acc_x - 2.0 * thd * rhod_y - thd * thd * rx, aly = acc_y + 2.0 * thd * rhod_x - thd * thd * ry;
-    out->a0[0] = ct * alx - st * aly;
-    out->a0[1] = st * alx + ct * aly;
+    fb_body_kin bk;
+    bk.rho[0] = P->base - 0.5 * qHq + c * sa + ot * ca;
+    bk.rho[1] = fb_dot(P->phi, q, n) - c * ca + ot * sa;
+    bk.rhod[0] = rhod_x;
+    bk.rhod[1] = rhod_y;
+    bk.acc[0] = -qdHqd - (c * sa + ot * ca) * angd * angd;
+    bk.acc[1] = (c * ca - ot * sa) * angd * angd;
+    fb_joint(m)->place(m, f, &bk, drho, out, dr);
 }
 
 /* Gap delta to obstacle o displaced by s along its support axis, its rate, gamma = delta'' at z'' = 0,
- * the normal and J = d delta / dz (nz = n + 1 entries, from dr) and Js = d delta / ds.
+ * the normal and J = d delta / dz (nz entries: the full coordinates, from dr) and Js = d delta / ds.
  * Sphere: delta = |r - c| - r_s, delta'' = n.r'' + (|r'|^2 - (n.r')^2) / |r - c|; half-plane: delta = n.(r - c). */
 fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int nz, double s, double sd,
                     double *J) {
@@ -317,9 +212,9 @@ fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int
     return out;
 }
 
-/* The gap state of contact pair ``pair`` at (theta, theta', q, q'), the support at (s, s') (used only if the pair's
- * obstacle is the compliant obstacle 0), and J = d delta / d[theta, q] (n + 1 entries; NULL: not wanted). */
-fb_gap fb_pair_gap(const fb_model *m, int pair, double th, double thd, const double *q, const double *qd, double s,
+/* The gap state of contact pair ``pair`` with the frame f and (q, q'), the support at (s, s') (used only if the
+ * pair's obstacle is the compliant obstacle 0), and J = d delta / d[rigid, q] (nfull entries; NULL: not wanted). */
+fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                    double sd, int want_acc, double *J) {
     const fb_pair *pr = &m->pairs[pair];
     const fb_obstacle *o = &m->obstacles[pr->obstacle];
@@ -329,15 +224,15 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, double th, double thd, const dou
     double x;
     if (pr->anywhere) { /* the surface point nearest the obstacle now, as a material point (envelope theorem) */
         fb_surface_point sp;
-        fb_nearest_point(m, o, th, q, s, &sp);
-        fb_point_kinematics(m, &sp.P, th, thd, q, qd, &k, J ? dr : NULL);
+        fb_nearest_point(m, o, f, q, s, &sp);
+        fb_point_kinematics(m, &sp.P, f, q, qd, &k, J ? dr : NULL);
         x = sp.x;
     } else {
         const fb_point *P = &m->points[pr->point];
-        fb_point_kinematics(m, P, th, thd, q, qd, &k, J ? dr : NULL);
+        fb_point_kinematics(m, P, f, q, qd, &k, J ? dr : NULL);
         x = P->base - m->hub_radius;
     }
-    fb_gap g = fb_gap_state(o, &k, J ? dr : NULL, m->n + 1, s, sd, J);
+    fb_gap g = fb_gap_state(o, &k, J ? dr : NULL, fb_nfull(m), s, sd, J);
     g.x = x;
     return g;
 }

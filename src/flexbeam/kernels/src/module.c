@@ -130,15 +130,17 @@ static PyObject *py_kinematics(PyObject *self, PyObject *args) {
     if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oo, &b[2], 1, "out") ||
         model_from(&b[0], &m))
         goto fail;
-    if (ip < 0 || ip >= m.npoints || LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[2]) != (size_t)(6 + 2 * (m.n + 1))) {
+    if (ip < 0 || ip >= m.npoints || LEN(b[1]) != (size_t)fb_state_size(&m) ||
+        LEN(b[2]) != (size_t)(6 + 2 * fb_nfull(&m))) {
         PyErr_SetString(PyExc_ValueError, "kinematics: bad point index or array sizes");
         goto fail;
     }
-    double th, thd, thdd, *out = PTR(b[2]);
+    double *out = PTR(b[2]);
+    fb_frame fr;
     const double *q, *qd;
-    fb_state_split(&m, t, PTR(b[1]), &th, &thd, &thdd, &q, &qd);
+    fb_state_split(&m, t, PTR(b[1]), &fr, &q, &qd);
     fb_kin k = {.want_acc = 1};
-    fb_point_kinematics(&m, &m.points[ip], th, thd, q, qd, &k, out + 6);
+    fb_point_kinematics(&m, &m.points[ip], &fr, q, qd, &k, out + 6);
     out[0] = k.r[0]; out[1] = k.r[1]; out[2] = k.v[0]; out[3] = k.v[1]; out[4] = k.a0[0]; out[5] = k.a0[1];
     release(b, 3);
     Py_RETURN_NONE;
@@ -147,7 +149,7 @@ fail:
     return NULL;
 }
 
-/* gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny); J (n + 1 [+ 1 with a support]) = d delta / dz */
+/* gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny); J (nfull [+ 1 with a support]) = d delta / dz */
 static PyObject *py_gap(PyObject *self, PyObject *args) {
     PyObject *om, *oy, *oJ;
     int pair;
@@ -159,18 +161,19 @@ static PyObject *py_gap(PyObject *self, PyObject *args) {
     if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oJ, &b[2], 1, "J") ||
         model_from(&b[0], &m))
         goto fail;
-    int compliant = fb_compliant(&m), N = m.n + 1;
+    int compliant = fb_compliant(&m), N = fb_nfull(&m);
     if (pair < 0 || pair >= m.npairs || LEN(b[1]) != (size_t)fb_state_size(&m) ||
         LEN(b[2]) != (size_t)(N + compliant)) {
         PyErr_SetString(PyExc_ValueError, "gap: no such pair, or array sizes do not match");
         goto fail;
     }
-    double th, thd, thdd, *J = PTR(b[2]);
+    double *J = PTR(b[2]);
+    fb_frame fr;
     const double *q, *qd, *y = PTR(b[1]);
-    fb_state_split(&m, t, y, &th, &thd, &thdd, &q, &qd);
+    fb_state_split(&m, t, y, &fr, &q, &qd);
     int nb = 2 * fb_nz(&m);
     double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
-    fb_gap g = fb_pair_gap(&m, pair, th, thd, q, qd, s, sd, 1, J);
+    fb_gap g = fb_pair_gap(&m, pair, &fr, q, qd, s, sd, 1, J);
     if (compliant) J[N] = g.Js;
     release(b, 3);
     return Py_BuildValue("ddddd", g.delta, g.rate, g.gamma, g.nx, g.ny);
@@ -179,7 +182,7 @@ fail:
     return NULL;
 }
 
-/* equations(model, t, y, M, Q, E): M ((n+1) x (n+1)), Q (n+1, with the applied torque), E = [T, Ve, Vg] */
+/* equations(model, t, y, M, Q, E): M (nfull x nfull), Q (nfull, with the applied torque), E = [T, Ve, Vg] */
 static PyObject *py_equations(PyObject *self, PyObject *args) {
     PyObject *om, *oy, *oM, *oQ, *oE;
     double t;
@@ -190,17 +193,19 @@ static PyObject *py_equations(PyObject *self, PyObject *args) {
     if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oM, &b[2], 1, "M") ||
         get_buf(oQ, &b[3], 1, "Q") || get_buf(oE, &b[4], 1, "E") || model_from(&b[0], &m))
         goto fail;
-    size_t N = (size_t)m.n + 1;
+    size_t N = (size_t)fb_nfull(&m);
     if (LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[2]) != N * N || LEN(b[3]) != N || LEN(b[4]) != 3) {
         PyErr_SetString(PyExc_ValueError, "equations: array sizes do not match");
         goto fail;
     }
-    double th, thd, thdd, *E = PTR(b[4]);
+    double *E = PTR(b[4]);
+    fb_frame fr;
     const double *q, *qd;
-    fb_state_split(&m, t, PTR(b[1]), &th, &thd, &thdd, &q, &qd);
-    fb_mass_matrix(&m, q, PTR(b[2]));
-    fb_forces(&m, th, thd, q, qd, m.prescribed ? 0.0 : fb_drive_torque(&m, t), 1, PTR(b[3]));
-    fb_energies(&m, th, thd, q, qd, &E[0], &E[1], &E[2]);
+    const fb_joint_ops *jt = fb_joint(&m);
+    fb_state_split(&m, t, PTR(b[1]), &fr, &q, &qd);
+    jt->mass(&m, q, PTR(b[2]));
+    jt->forces(&m, &fr, q, qd, jt->torque(&m, t), 1, PTR(b[3]));
+    jt->energies(&m, &fr, q, qd, &E[0], &E[1], &E[2]);
     release(b, 5);
     Py_RETURN_NONE;
 fail:

@@ -127,7 +127,7 @@ static double minimise(line_t *ln, int sphere, const double c[2], double a, doub
     return x;
 }
 
-void fb_nearest_point(const fb_model *m, const fb_obstacle *o, double th, const double *q, double s,
+void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
                       fb_surface_point *out) {
     int n = m->n, M = m->nst;
     double w[M], w1[M], w2[M], u[M];
@@ -135,13 +135,12 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, double th, const 
     line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u};
     for (int j = 0; j < M; j++) w[j] = w1[j] = w2[j] = u[j] = NAN;
     /* the obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction) */
-    double ct, st, cx = o->cx + s * o->ux, cy = o->cy + s * o->uy, c[2];
-    fb_sincos(th, &st, &ct);
+    double p[2] = {o->cx + s * o->ux, o->cy + s * o->uy}, nrm[2] = {o->nx, o->ny}, c[2];
     int sphere = o->kind == FB_SPHERE;
     if (sphere) {
-        c[0] = ct * cx + st * cy, c[1] = -st * cx + ct * cy;
+        fb_joint(m)->to_body(m, f, p, 0, c);
     } else {
-        c[0] = ct * o->nx + st * o->ny, c[1] = -st * o->nx + ct * o->ny;
+        fb_joint(m)->to_body(m, f, nrm, 1, c);
     }
     int best = 0;
     double best_val = INFINITY;
@@ -222,7 +221,7 @@ void fb_anywhere_bound(const fb_model *m, const double *q, double *env) {
     const double *HL = m->st_H + (size_t)(M - 1) * n * n;
     double qHq = fb_quad(HL, q, n), reach = m->points[1].base + m->surface;
     for (int k = 0; k < n; k++) reach += m->st_maxphi[k] * fabs(q[k]);
-    env[0] = reach;
+    fb_joint(m)->rigid_bound(m, reach, env);
     for (int k = 0; k < n; k++)
-        env[k + 1] = m->st_maxphi[k] + m->surface * m->st_maxdphi[k] + sqrt(fmax(HL[k * n + k], 0.0) * fmax(qHq, 0.0));
+        env[m->nrigid + k] = m->st_maxphi[k] + m->surface * m->st_maxdphi[k] + sqrt(fmax(HL[k * n + k], 0.0) * fmax(qHq, 0.0));
 }

@@ -33,7 +33,7 @@
 enum { ADV_END = 0, ADV_EVENT = 1, ADV_FULL = 2, ADV_UNDERFLOW = 3, ADV_NONFINITE = 4, ADV_STALLED = 5 };
 enum { EV_IMPACT = 1, EV_SEPARATION = 2, EV_RELEASE = 4 };
 
-int fb_record_size(int N, int S) { return 4 + 2 * N + FB_P * N + S * FB_P + 2 * FB_P; }
+int fb_record_size(int N, int S) { return 4 + 2 * N + FB_P * N + S * FB_P + 2 * FB_P + FB_RECORD_SUMMARY; }
 
 int fb_state_buffer_size(int N, int S) { return 5 + 2 * N + FB_P * N + S * FB_P; }
 
@@ -231,9 +231,9 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             retry = 1;
             continue;
         }
-        double E1, scale1, dEd, dW, red[FB_P], rwd[FB_P];
+        double E1, scale1, T1, dEd, dW, red[FB_P], rwd[FB_P];
         fb_step_books(&ph, w, t, h, eta, v, &st, red, rwd, &dEd, &dW);
-        E1 = fb_node_energy(&ph, &w->end, &scale1);
+        E1 = fb_node_energy_parts(&ph, &w->end, &scale1, &T1);
         if (!have_E0) {
             fb_node n0;
             fb_eval_node(&ph, t, eta, v, FB_WANT_GAP, &n0);
@@ -274,6 +274,8 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             h = hx;
             last = 0;
             fb_step_books(&ph, w, t, h, eta, v, &st, red, rwd, &dEd, &dW);
+            double scale_x;
+            E1 = fb_node_energy_parts(&ph, &w->end, &scale_x, &T1);
         } else if (event && x <= 0.0) {
             code = ADV_EVENT;
             info[0] = kind;
@@ -292,6 +294,10 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
         memcpy(rF, w->F, sizeof(double) * S * FB_P);
         memcpy(rF + S * FB_P, red, sizeof(double) * FB_P);
         memcpy(rF + S * FB_P + FB_P, rwd, sizeof(double) * FB_P);
+        double *sum = rF + S * FB_P + 2 * FB_P; /* the step's summary: energy balance and tip at the end, tip at nodes */
+        sum[0] = E1 + (Ed + dEd) - (W + dW);
+        sum[1] = T1;
+        for (int j = 0; j < FB_P; j++) sum[2 + j] = fb_node_tip(&ph, &w->node[j]);
         for (int k = 0; k < S; k++)
             if (c.mode[k] == FB_MODE_CONSTRAINT)
                 for (int j = 0; j < FB_P; j++) w->lambda_scale = fmax(w->lambda_scale, fabs(w->F[k][j]));

@@ -27,6 +27,11 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
 double fb_boundary_work(const fb_phase *ph, double t, const double *v);
 double fb_hub_angle(const fb_phase *ph, const double *eta);
 double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale);
+double fb_node_energy_parts(const fb_phase *ph, const fb_node *nd, double *scale, double *kinetic);
+double fb_node_tip(const fb_phase *ph, const fb_node *nd);
+/* Floats at the end of each record that summarise its step: [total energy T + V_e + V_g + U_c + E_d - W at the
+ * step's end, kinetic energy there, the tip deflection at the FB_P nodes] (flexbeam.integrate.modal reads them). */
+#define FB_RECORD_SUMMARY (2 + FB_P)
 void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, const double *eta, const double *v,
                    const fb_step *st, double *red, double *rwd, double *dEd, double *dW);
 

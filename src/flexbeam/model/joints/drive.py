@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .. import numerics as nm
-from ..parameters.case import Drive
+from ... import numerics as nm
+from ...parameters.case import Drive
 
 
 @dataclass(frozen=True)

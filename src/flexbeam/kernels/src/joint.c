@@ -1,0 +1,8 @@
+/* The joint kinds' tables (joint.h): the one place in the kernels that knows which kinds exist. */
+#include "flexbeam.h"
+
+static const fb_joint_ops *const KINDS[FB_JOINT_KINDS] = {
+    [FB_JOINT_REVOLUTE] = &fb_joint_revolute,
+};
+
+const fb_joint_ops *fb_joint(const fb_model *m) { return KINDS[m->joint]; }

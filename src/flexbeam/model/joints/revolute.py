@@ -1,0 +1,184 @@
+"""The revolute joint at a fixed point O: the floating frame turns by theta about O (docs/formulation.md).
+
+Coordinates ``[theta, q]``.  The drive (:class:`~flexbeam.model.joints.drive.JointDrive`, ``[drive]``) leaves theta
+free, applies a constant torque on the hub angle phi = theta + d q, or prescribes theta(t) -- then theta is given:
+the state holds q alone and the joint torque is an output.  The frame ``model.frame`` goes with the drive
+(``docs/formulation.md``, *The frame must match the joint*): the system frame with the hub + beam eigenmodes for a
+free or torque-driven joint, the hub frame with clamped-free modes for a prescribed angle.  The compiled side of the
+joint is ``kernels/src/joint_revolute.c``.
+
+Initial states (``[initial]``): ``impact`` (frame at the impact angle, beam straight, theta' giving P the impact
+velocity), ``state`` (theta, theta' as given, beam straight) and ``release`` (at rest in static equilibrium under
+gravity with the hub held at the release angle, solved for by shooting when not given).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ... import numerics as nm
+from ...errors import ParameterError
+from ...parameters.case import Case
+from .base import Joint
+from .drive import JointDrive
+
+if TYPE_CHECKING:
+    from ..beam import ModalBeam
+    from ..system import BeamSystem
+
+DRIVES = {"free": 0, "torque": 1, "prescribed": 2}
+PROFILES = {"constant-rate": 0, "kane-spinup": 1}
+
+
+def initial_angle_guess(case: Case) -> float:
+    """The hub angle a prescribed drive starts from: the initial state's angle."""
+    init = case.initial
+    if init.kind == "state":
+        return init.angle
+    if init.kind == "release" and init.release_angle is not None:
+        return init.release_angle
+    return init.impact_angle
+
+
+class RevoluteJoint(Joint):
+    """A revolute joint at O with its drive."""
+
+    kind = "revolute"
+    code = 0
+    coordinates = ("theta",)
+
+    def __init__(self, case: Case) -> None:
+        super().__init__(case)
+        self.drive = JointDrive(case.drive, theta0=initial_angle_guess(case))
+
+    @property
+    def ngiven(self) -> int:
+        return 1 if self.drive.prescribed else 0
+
+    def parameters(self) -> list[float]:
+        """[drive, profile, torque, spin rate, spin-up time, theta0] (``joint_revolute.c``)."""
+        d = self.drive.spec
+        return [float(DRIVES[d.kind]), float(PROFILES[d.profile]), d.torque if d.kind == "torque" else 0.0,
+                d.spin_rate, d.spin_up_time, self.drive.theta0]  # fmt: skip
+
+    def frame(self, t: float, y: np.ndarray, n: int) -> tuple[float, float, np.ndarray, np.ndarray]:
+        if self.drive.prescribed:
+            th, thd, _ = self.drive.motion(t)
+            return th, thd, y[:n], y[n : 2 * n]
+        return float(y[0]), float(y[n + 1]), y[1 : n + 1], y[n + 2 : 2 * n + 2]
+
+    def given(self, t: float) -> np.ndarray:
+        if not self.drive.prescribed:
+            return np.zeros((3, 0))
+        return np.array(self.drive.motion(t), float).reshape(3, 1)
+
+    def state(self, n: int, rigid, rates, q, qd, tail) -> np.ndarray:
+        if self.drive.prescribed:
+            return np.concatenate((q, qd, tail))
+        return np.concatenate(([rigid[0]], q, [rates[0]], qd, tail))
+
+    def hub_angle(self, beam: ModalBeam, theta: float, rate: float, q: np.ndarray, qd: np.ndarray):
+        if not beam.n:
+            return theta, rate
+        return theta + nm.dot(beam.d, q), rate + nm.dot(beam.d, qd)
+
+    def linear_model(self, beam: ModalBeam) -> tuple[np.ndarray, np.ndarray, int | None]:
+        n = beam.n
+        if self.drive.prescribed:
+            return beam.Mqq.copy(), beam.Kff.copy(), None
+        M0 = np.zeros((n + 1, n + 1))
+        M0[0, 0] = beam.Jc
+        M0[0, 1:] = M0[1:, 0] = beam.mtq
+        M0[1:, 1:] = beam.Mqq
+        K0 = np.zeros((n + 1, n + 1))
+        K0[1:, 1:] = beam.Kff
+        return M0, K0, 0
+
+    # ------------------------------------------------------------------------------------------ initial states
+    def initial_state(self, system: BeamSystem, case: Case, first_impact: Callable[[np.ndarray], float]):
+        init = case.initial
+        if self.drive.prescribed:
+            th, thd, _ = self.drive.motion(0.0)
+            return system.state(th, thd), {}
+        if init.kind == "state":
+            return system.state(init.angle, init.rate), {}
+        if init.kind == "impact":
+            y = system.state(init.impact_angle, 0.0)
+            J_theta = system.gap(0.0, y)[3][0]
+            y = system.state(init.impact_angle, init.impact_rate(J_theta))
+            return y, {"impact_rate": float(y[system.n + 1])}
+        angle = init.release_angle
+        info: dict[str, float] = {}
+        if angle is None:
+            angle = self.solve_release_angle(system, case, first_impact)
+        info["release_angle"] = float(angle)
+        return self.release_state(system, angle), info
+
+    @staticmethod
+    def release_state(system: BeamSystem, angle: float) -> np.ndarray:
+        """At rest in static equilibrium under gravity with the hub held at the hub angle ``angle``.
+
+        The potential V = 1/2 q^T K q + g [sin(theta)(m1 - 1/2 q^T G q) + cos(theta) s_f q] is stationary under the
+        constraint theta + d q = angle (d = 0 in the hub frame):
+        [K - g sin(theta) (G - d^T s_f)] q = -g cos(theta) [s_f - (m1 - 1/2 q^T G q) d^T], theta = angle - d q,
+        solved by fixed-point iteration on theta and q^T G q (d q is of the order of the static slope).
+        """
+        b, g = system.beam, system.g
+        q = np.zeros(b.n)
+        theta = angle
+        if b.n:
+            for _ in range(50):
+                s, c = nm.sin(theta), nm.cos(theta)
+                A = b.Kff - g * s * b.G + g * s * np.outer(b.d, b.sf)
+                rhs = -g * c * b.sf + g * c * (b.m1 - 0.5 * nm.dot(q, nm.matmul(b.G, q))) * b.d
+                q_new = nm.solve(A, rhs)
+                theta_new = angle - nm.dot(b.d, q_new)
+                done = abs(theta_new - theta) <= 1e-15 * max(1.0, abs(angle)) and np.allclose(
+                    q_new, q, rtol=1e-14, atol=0.0
+                )
+                q, theta = q_new, theta_new
+                if done:
+                    break
+        return system.state(theta, 0.0, q)
+
+    def solve_release_angle(self, system: BeamSystem, case: Case, first_impact: Callable[[np.ndarray], float]):
+        """Release angle from rest that gives P the impact velocity at first contact: brentq on the free flight
+        (``first_impact``) around the rigid estimate g m1 (sin th_r - sin th_i) = 1/2 J_c rate^2."""
+        init = case.initial
+        th_i = init.impact_angle
+        y = system.state(th_i, 0.0)
+        rate = init.impact_rate(system.gap(0.0, y)[3][0])
+        b = system.beam
+        if system.g <= 0.0 or b.m1 <= 0.0:
+            raise ParameterError("initial.kind: 'release' needs gravity (model.gravity > 0)")
+        s = nm.sin(th_i) + 0.5 * b.Jc * (rate * rate) / (system.g * b.m1)
+        if s >= 1.0:
+            raise ParameterError(
+                f"initial.impact_velocity: {init.impact_velocity:g} m/s cannot be reached by release "
+                "from rest under gravity"
+            )
+        guess = nm.asin(s)
+        target = init.impact_velocity
+
+        def miss(angle: float) -> float:
+            v = first_impact(self.release_state(system, angle))
+            if math.isnan(v):
+                raise ParameterError(
+                    f"initial.release_angle: released at {angle:.6g} rad the beam does not reach the obstacle"
+                )
+            return v - target
+
+        from scipy.optimize import brentq
+
+        lo, hi = th_i + 0.8 * (guess - th_i), min(th_i + 1.25 * (guess - th_i), 0.5 * math.pi)
+        try:
+            return float(brentq(miss, lo, hi, xtol=1e-12, rtol=1e-10))
+        except ValueError:
+            raise ParameterError(
+                "initial.release_angle: no release angle near the rigid estimate "
+                f"{guess:.6g} rad gives the impact velocity; give initial.release_angle"
+            ) from None

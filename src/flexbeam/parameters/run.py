@@ -1,0 +1,119 @@
+"""How a case runs: its initial state, the solvers' settings, the outputs and the finite-element reference's
+options."""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import Field, model_validator
+
+from .fields import MAX_RATE, Angle, Bounded, NonNegative, Positive, Rate, Section
+
+
+class Initial(Section):
+    """Initial state.
+
+    * ``impact``: start at the first contact, beam straight (q = q' = 0) at
+      theta = ``impact_angle``, with P's normal velocity ``impact_velocity`` (< 0 approaching).
+    * ``release``: start from rest, beam straight, at ``release_angle``; if that is
+      omitted it is solved for so that P reaches the obstacle at ``impact_velocity``.
+    * ``state``: theta = ``angle``, theta' = ``rate``, beam straight and at rest in the
+      floating frame.
+    """
+
+    kind: Literal["impact", "release", "state"] = "impact"
+    impact_velocity: Bounded(-1e3, 1e3) = Field(
+        -0.4,
+        description="normal velocity of P at first contact [m/s] (negative = approaching; at most 1e3 m/s, "
+        "beyond elastic impact)",
+    )
+    impact_angle: Angle = Field(0.0, description="hub angle at first contact [rad]")
+    release_angle: Angle | None = Field(None, description="release hub angle [rad]")
+    angle: Angle = Field(0.0, description="initial hub angle theta_0 [rad] (kind = state)")
+    rate: Rate = Field(0.0, description="initial hub rate theta'_0 [rad/s] (kind = state)")
+
+    def impact_rate(self, J_theta: float, velocity: float | None = None) -> float:
+        """The hub rate giving P the normal velocity ``velocity`` (default ``impact_velocity``) when P moves
+        ``J_theta`` m per radian along its normal; a one-line ParameterError when that needs more than
+        :data:`MAX_RATE` (P at or next to the joint)."""
+        from ..errors import ParameterError
+
+        v = self.impact_velocity if velocity is None else velocity
+        J_theta = float(J_theta)
+        if not abs(v) <= MAX_RATE * abs(J_theta):
+            raise ParameterError(
+                f"initial.impact_velocity: P (contact.position) moves {abs(J_theta):.3g} m per radian along the "
+                f"contact normal, so {v:g} m/s needs a hub rate above {MAX_RATE:g} rad/s"
+            )
+        return v / J_theta
+
+    @model_validator(mode="after")
+    def _approaching(self) -> Initial:
+        if self.kind != "state" and not self.impact_velocity < 0.0:
+            raise ValueError("initial.impact_velocity: must be < 0 m/s (P approaching the obstacle)")
+        return self
+
+
+class Solver(Section):
+    """Integration settings.
+
+    ``integrator = "exponential"`` (default): exact modal propagation with Gauss
+    collocation of the coupling and contact terms, compiled (fast; tolerances
+    ``fast_rtol``/``fast_atol``); it serves every impact method on a rigidly held
+    obstacle and CCFM on a compliant ``obstacle.support``; constrained phases against a
+    compliant support (CCM, IMM's resting contact) take the reference path.
+    ``"reference"``: scipy's DOP853, event-driven (``rtol``/``atol``).
+
+    A run whose estimated memory (dense output, phases and, when they are written or drawn, output
+    samples; :func:`flexbeam.memory.estimate`) exceeds ``memory_limit`` is refused before it starts.
+    """
+
+    integrator: Literal["exponential", "reference"] = Field(
+        "exponential",
+        description="time integrator (exponential: with a rigid obstacle, or CCFM "
+        "on a compliant support; else the reference is used)",
+    )
+    fast_rtol: Annotated[float, Field(gt=0, lt=1)] = Field(
+        1e-6, description="relative tolerance of the exponential integrator"
+    )
+    fast_atol: Annotated[float, Field(gt=0, lt=1)] = Field(
+        1e-9, description="absolute tolerance of the exponential integrator"
+    )
+
+    t_end: Positive = Field(0.1, description="simulated time [s]")
+    rtol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-9, description="relative tolerance")
+    atol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-12, description="absolute tolerance")
+    max_step: Positive | None = Field(None, description="largest step [s] (omitted = automatic)")
+    sample_step: Positive = Field(1e-5, description="output spacing outside contact [s]")
+    contact_sample_step: Positive = Field(2e-7, description="output spacing in contact [s]")
+    max_contacts: Annotated[int, Field(ge=1)] = Field(
+        1000, description="stop with a status after this many contacts (Zeno guard)"
+    )
+    baumgarte_frequency: NonNegative = Field(2000.0, description="CCM: Baumgarte stabilisation alpha = beta [1/s]")
+    rest_velocity: NonNegative = Field(
+        1e-6, description="IMM: impacts slower than this [m/s] start resting contact (Zeno)"
+    )
+    memory_limit: Positive | None = Field(
+        None,
+        description="largest memory a run may hold [B], estimated before it starts (omitted = half the "
+        "physical memory)",
+    )
+
+
+class Output(Section):
+    """What to record besides the contact point."""
+
+    measuring_points: list[NonNegative] = Field(
+        default_factory=list,
+        description="material coordinates of measuring points on the beam [m]",
+    )
+
+
+class Fem(Section):
+    """Settings of the independent finite-element reference (``--method fem``)."""
+
+    elements: Annotated[int, Field(ge=1, le=2000)] = Field(32, description="number of beam finite elements")
+    time_step: Positive | None = Field(None, description="time step [s] (omitted = automatic)")
+    rho_inf: Annotated[float, Field(ge=0.0, le=1.0)] = Field(
+        0.9, description="spectral radius at infinite frequency of the generalized-alpha scheme"
+    )
