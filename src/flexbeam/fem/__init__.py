@@ -8,7 +8,7 @@ iterations, with the same obstacles and contact pairs (``[obstacle]`` and each
 point of the deformed beam's capsule surface nearest the obstacle), CCFM contact laws,
 drives and initial states as the modal model -- but without modal truncation and without
 the second-order coupling-deformation approximation.  What it does not model (a
-compliant ``obstacle.support``) raises a ParameterError.
+compliant ``obstacle.support``) raises a ParameterError; a joint kind other than ``revolute`` a ModelError.
 
 * :mod:`flexbeam.fem.element` -- element internal force/tangent (Crisfield 1991) and
   exact inertia of the interpolated field (Numba);
@@ -35,8 +35,9 @@ compliant ``obstacle.support``) raises a ParameterError.
 
 It shares no equations with the modal model: the contact force and the gap are
 evaluated by its own kernels; only the case's inputs are interpreted alike (the law and
-its chi(e), the Hertz stiffness, the obstacle placement, the drive profile
-:class:`flexbeam.model.joints.drive.JointDrive`) and the results go into the same
+its chi(e), the Hertz stiffness, the obstacle placement, the joint of
+:func:`flexbeam.model.joints.joint_of`: its kind -- a revolute joint only, another kind raises a ModelError -- and
+its drive :class:`flexbeam.model.joints.drive.JointDrive`) and the results go into the same
 :class:`~flexbeam.results.solution.Solution`.
 """
 

@@ -29,6 +29,8 @@ import numpy as np
 
 from ..contact.laws import ContactLaw
 from ..contact.setup import ContactSetup
+from ..errors import ModelError
+from ..model.joints import joint_of
 from ..model.joints.drive import JointDrive
 from ..parameters.case import Case
 from .assembly import assemble, node_states
@@ -40,16 +42,36 @@ from .outputs import BeamOutputs
 from .pairs import ContactState, FemPair, pair_arrays, pairs_from_setup
 from .statics import StaticsAndVibration
 
+#: the joint kinds the FE reference models: a revolute joint at O (free, torque-driven or with its angle prescribed)
+JOINT_KINDS = ("revolute",)
 
-def initial_angle(case: Case) -> float:
-    """Hub angle theta(0) a prescribed drive starts from: the initial state's angle, the release
-    angle when given, else the impact angle (the case's convention, as in the modal model)."""
-    init = case.initial
-    if init.kind == "state":
-        return init.angle
-    if init.kind == "release" and init.release_angle is not None:
-        return init.release_angle
-    return init.impact_angle
+
+def joint_drive(case: Case) -> JointDrive:
+    """The drive of the case's joint, as the modal model takes it (:func:`flexbeam.model.joints.joint_of`): the
+    profile of ``[drive]`` and the hub angle theta(0) that a prescribed drive starts from.
+
+    Parameters
+    ----------
+    case
+        The validated case.
+
+    Returns
+    -------
+    JointDrive
+        The joint's own drive (the FE's hub angle theta is the revolute joint's angle).
+
+    Raises
+    ------
+    ModelError
+        For a joint kind the FE reference does not model (naming it): the FE beam is clamped to a hub turning about
+        the fixed point O.
+    """
+    joint = joint_of(case)
+    if joint.kind not in JOINT_KINDS:
+        raise ModelError(
+            f"joint.kind: the FE reference models a {' or '.join(map(repr, JOINT_KINDS))} joint, not {joint.kind!r}"
+        )
+    return joint.drive
 
 
 @dataclass
@@ -95,7 +117,13 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
     # ------------------------------------------------------------------ set-up
     @classmethod
     def from_case(cls, case: Case) -> FemBeam:
-        """Mesh, properties, drive, contact law and obstacle (read from the case, as the modal model does)."""
+        """Mesh, properties, drive, contact law and obstacle (read from the case, as the modal model does).
+
+        Raises
+        ------
+        ModelError
+            For a joint kind the FE reference does not model (:func:`joint_drive`).
+        """
         b = case.beam
         contact = ContactSetup.from_case(case)
         if len(contact.pairs) == 1:
@@ -117,7 +145,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
             hub_radius=case.hub.radius,
             hub_inertia=case.hub.inertia,
             gravity=case.model.gravity,
-            drive=JointDrive(case.drive, theta0=initial_angle(case)),
+            drive=joint_drive(case),
             law=contact.law,
             obstacle_kind=int(contact.obstacle.kind),
             obstacle_centre=np.asarray(contact.obstacle.centre, float),

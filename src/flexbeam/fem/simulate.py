@@ -119,6 +119,8 @@ def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) ->
     ------
     ParameterError
         For a case field the FE reference does not model (see :func:`check_supported`).
+    ModelError
+        For a joint kind the FE reference does not model (:func:`flexbeam.fem.beam.joint_drive`).
     """
     from ..parameters.io import dump_case
     from ..version import __version__
