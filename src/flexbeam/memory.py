@@ -17,7 +17,7 @@ integrator                 free flight         in contact
 exponential, CCFM          460 - 1900          4.7e4 - 9.2e4 (short contacts), 1.7e4 (resting, 2 s)
 exponential, CCM / IMM     640 - 7400          1.2e5 - 3.3e5 (constrained / resting)
 reference (DOP853, 1e-9)   1.8e5 - 2.0e5       1.5e5 - 2.0e5
-FE (generalized-alpha)     1 / (2 h_c)         1 / h_c, h_c = t_c / 200 (``fem.eventdriven``)
+FE (generalized-alpha)     1 / (2 h_c)         1 / h_c, h_c = t_c / 200 (``fem.step_size``)
 =========================  ==================  =====================================================
 
 and the bytes held: 800 B per record of the seed case (752 B of record), 2.6 KB per DOP853 step, 0.5 - 1.6 KB
@@ -186,9 +186,9 @@ def estimate(case: Case, method: str = "ccfm", outputs: bool = False) -> MemoryE
 def _fe_step(case: Case, contact: ContactSetup, touching: bool) -> float:
     """The FE reference's step: ``fem.time_step``, else h_c = t_c / STEPS_PER_CONTACT (in contact; twice that in
     free flight) from the rigid Hertz impact of the reference mass at the impact speed, as
-    ``fem.eventdriven.contact_step`` sizes it (the mass for the straight beam at the contact point)."""
+    ``fem.step_size.contact_step`` sizes it (the mass for the straight beam at the contact point)."""
     from .contact.hertz import rigid_hertz_impact
-    from .fem.eventdriven import FREE_STEP_FACTOR, STEPS_PER_CONTACT
+    from .fem.step_size import FREE_STEP_FACTOR, STEPS_PER_CONTACT
 
     if case.fem.time_step is not None:
         return min(case.fem.time_step, case.solver.t_end / 20.0)

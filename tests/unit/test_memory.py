@@ -75,7 +75,7 @@ def test_reference_integrator_steps_are_bounded():
 
 def test_fe_steps_are_bounded():
     """The FE reference's steps over 2 ms of the seed (one output row each) against the estimate, which sizes
-    the step as ``fem.eventdriven`` does (the run's steps: 2.2e-6 s in contact, 4.4e-6 s in flight)."""
+    the step as ``fem.step_size`` does (the run's steps: 2.2e-6 s in contact, 4.4e-6 s in flight)."""
     case = fb.load_case("seed-experiment", {"solver.t_end": 2e-3})
     est = memory.estimate(case, "fem")
     sol = fb.simulate(case, "fem")

@@ -1,5 +1,7 @@
 """Assembly of the FE equations of motion (Numba): node states, residual, iteration matrix, Newton.
 
+The outputs' kernels (energies, velocities of points) are in :mod:`flexbeam.fem.outputs`.
+
 Degrees of freedom
 ------------------
 z = [theta, X_1, Y_1, psi_1, ..., X_N, Y_N, psi_N]: node 0 is clamped to the hub at
@@ -19,7 +21,7 @@ import numpy as np
 
 from .banded import BAND, band_solve, fix_first_dof
 from .contact_law import law_force
-from .element import corotational_element, inertia_element, point_on_element
+from .element import corotational_element, inertia_element
 from .gap import anywhere_gap, gap_at
 from .jit import fem_jit
 
@@ -100,6 +102,30 @@ def assemble(
     R[:] = 0.0
     if want_S:
         ab[:, :] = 0.0
+    R0node = np.zeros(3)
+    _add_elements(X, V, A, T0, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab, R0node)
+    # contact of each pair at its node or, anywhere, at its nearest point
+    Jp = np.empty(3)
+    Jg = np.empty(6)
+    for q in range(pnodes.size):
+        if anyw[q] != 0:
+            _anywhere_pair(q, X, V, A, l0, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
+                           cK, cC, want_S, R, ab, R0node, Jg)  # fmt: skip
+        else:
+            _node_pair(q, pnodes[q], X, V, A, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
+                       cK, cC, want_S, R, ab, R0node, Jp)  # fmt: skip
+    # hub
+    R[0] += Jh * zdd[0] - t_tau
+    if want_S:
+        ab[2 * BAND, 0] += cM * Jh + cK * (R0node[0] * d2X0[0] + R0node[1] * d2X0[1])
+    return pout[0, 0], pout[0, 1], pout[0, 2], pout[0, 3]
+
+
+@fem_jit
+def _add_elements(X, V, A, T0, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab, R0node):
+    """Add each element's f_in + f_int - f_g to R and cM M_e + cK K_e to the band matrix ``ab`` (if ``want_S``),
+    node 0's mapped onto theta with the weights T0; node 0's unmapped forces are summed into ``R0node``
+    (:func:`assemble`)."""
     off = 2 * BAND
     xe = np.empty(6)
     ve = np.empty(6)
@@ -112,8 +138,7 @@ def assemble(
     G = np.empty((2, 6))
     idx = np.empty(6, np.int64)
     wts = np.empty(6)
-    R0node = np.zeros(3)
-    for e in range(nel):
+    for e in range(l0.size):
         for k in range(3):
             xe[k] = X[e, k]
             xe[3 + k] = X[e + 1, k]
@@ -136,49 +161,44 @@ def assemble(
                 for b in range(6):
                     i, j = idx[a], idx[b]
                     ab[off + i - j, j] += wts[a] * wts[b] * (cM * Me[a, b] + cK * Ke[a, b])
-    # contact of each pair at its node
-    Jp = np.empty(3)
+
+
+@fem_jit
+def _node_pair(
+    q, pnode, X, V, A, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout, cK, cC, want_S, R, ab,
+    R0node, Jp,
+):  # fmt: skip
+    """Contact pair q at mesh node ``pnode``: R -= J^T F, S += (cK dF/dd + cC dF/dd') J^T J (:func:`assemble`)."""
+    off = 2 * BAND
     pidx = np.empty(3, np.int64)
     pw = np.empty(3)
-    Jg = np.empty(6)
-    for q in range(pnodes.size):
-        if anyw[q] != 0:
-            _anywhere_pair(q, X, V, A, l0, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
-                           cK, cC, want_S, R, ab, R0node, Jg)  # fmt: skip
-            continue
-        pnode = pnodes[q]
-        F = 0.0
-        Fk = 0.0
-        delta, vn, _ = gap_at(X[pnode], V[pnode], A[pnode], cPs[q], okinds[q], ocentres[q], oradii[q], onormals[q], Jp)
-        if active[q] != 0:
-            d = -delta
-            dd = -vn
-            F, Fk, dFd, dFdd = law_force(lawps[q], d, dd)
-            # R -= J^T F; dF/dz = -dFd J - dFdd J (dz'/dz) (the gap Hessian is neglected)
-            for k in range(3):
-                if pnode == 0:
-                    pidx[k] = 0
-                    pw[k] = T0[k]
-                    R0node[k] -= Jp[k] * F
-                else:
-                    pidx[k] = 3 * pnode + k - 2
-                    pw[k] = 1.0
-                R[pidx[k]] -= pw[k] * Jp[k] * F
-            if want_S and F > 0.0:
-                coef = cK * dFd + cC * dFdd
-                for a in range(3):
-                    for b in range(3):
-                        i, j = pidx[a], pidx[b]
-                        ab[off + i - j, j] += pw[a] * pw[b] * coef * Jp[a] * Jp[b]
-        pout[q, 0] = F
-        pout[q, 1] = Fk
-        pout[q, 2] = delta
-        pout[q, 3] = vn
-    # hub
-    R[0] += Jh * zdd[0] - t_tau
-    if want_S:
-        ab[off, 0] += cM * Jh + cK * (R0node[0] * d2X0[0] + R0node[1] * d2X0[1])
-    return pout[0, 0], pout[0, 1], pout[0, 2], pout[0, 3]
+    F = 0.0
+    Fk = 0.0
+    delta, vn, _ = gap_at(X[pnode], V[pnode], A[pnode], cPs[q], okinds[q], ocentres[q], oradii[q], onormals[q], Jp)
+    if active[q] != 0:
+        d = -delta
+        dd = -vn
+        F, Fk, dFd, dFdd = law_force(lawps[q], d, dd)
+        # R -= J^T F; dF/dz = -dFd J - dFdd J (dz'/dz) (the gap Hessian is neglected)
+        for k in range(3):
+            if pnode == 0:
+                pidx[k] = 0
+                pw[k] = T0[k]
+                R0node[k] -= Jp[k] * F
+            else:
+                pidx[k] = 3 * pnode + k - 2
+                pw[k] = 1.0
+            R[pidx[k]] -= pw[k] * Jp[k] * F
+        if want_S and F > 0.0:
+            coef = cK * dFd + cC * dFdd
+            for a in range(3):
+                for b in range(3):
+                    i, j = pidx[a], pidx[b]
+                    ab[off + i - j, j] += pw[a] * pw[b] * coef * Jp[a] * Jp[b]
+    pout[q, 0] = F
+    pout[q, 1] = Fk
+    pout[q, 2] = delta
+    pout[q, 3] = vn
 
 
 @fem_jit
@@ -214,39 +234,6 @@ def _anywhere_pair(
     pout[q, 2] = delta
     pout[q, 3] = vn
     pout[q, 4] = x
-
-
-@fem_jit
-def energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
-    """(kinetic, elastic, gravitational) energy [J] of the mesh and hub."""
-    nel = l0.size
-    nn = nel + 1
-    X = np.empty((nn, 3))
-    V = np.empty((nn, 3))
-    A = np.empty((nn, 3))
-    node_states(z, zd, np.zeros(z.size), rh, X, V, A)
-    xe = np.empty(6)
-    ve = np.empty(6)
-    fe = np.empty(6)
-    Ke = np.empty((6, 6))
-    fin = np.empty(6)
-    Me = np.empty((6, 6))
-    fg = np.empty(6)
-    G = np.empty((2, 6))
-    T = 0.5 * Jh * zd[0] * zd[0]
-    Ve = 0.0
-    Vg = 0.0
-    for e in range(nel):
-        for k in range(3):
-            xe[k] = X[e, k]
-            xe[3 + k] = X[e + 1, k]
-            ve[k] = V[e, k]
-            ve[3 + k] = V[e + 1, k]
-        Ve += corotational_element(xe, l0[e], EA, EI, fe, Ke, False)
-        Te, Vge = inertia_element(xe, ve, ve, l0[e], mu, g, gxi, gw, fin, Me, fg, G)
-        T += Te
-        Vg += Vge
-    return T, Ve, Vg
 
 
 @fem_jit
@@ -286,27 +273,3 @@ def newton(
         if err < tol:
             return it, 0
     return max_iter, 1
-
-
-@fem_jit
-def normal_velocities(z, zd, rh, l0, elems, xis):
-    """Velocities along e2(theta) of centre-line points (element, xi) [m/s]."""
-    nn = l0.size + 1
-    X = np.empty((nn, 3))
-    V = np.empty((nn, 3))
-    A = np.empty((nn, 3))
-    node_states(z, zd, zd, rh, X, V, A)
-    out = np.empty(elems.size)
-    xe = np.empty(6)
-    ve = np.empty(6)
-    st, ct = math.sin(z[0]), math.cos(z[0])
-    for p in range(elems.size):
-        e = elems[p]
-        for k in range(3):
-            xe[k] = X[e, k]
-            xe[3 + k] = X[e + 1, k]
-            ve[k] = V[e, k]
-            ve[3 + k] = V[e + 1, k]
-        _, v = point_on_element(xe, ve, l0[e], xis[p])
-        out[p] = -st * v[0] + ct * v[1]
-    return out

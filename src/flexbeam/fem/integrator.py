@@ -35,8 +35,9 @@ from scipy.linalg.lapack import dgbsv
 from ..errors import SolverError
 from .assembly import newton
 from .banded import BAND, fix_first_dof
+from .beam import FemBeam
 from .contact_law import law_force
-from .model import ContactState, FemBeam
+from .pairs import ContactState
 
 #: Newton: scaled increment tolerance and iteration limit
 NEWTON_TOL = 1e-10

@@ -1,0 +1,116 @@
+"""What the FE beam reports at a state besides its contacts: energies, the tip deflection, the velocities of the
+measuring points and of any centre-line point (their kernels in Numba, on the element of
+:mod:`flexbeam.fem.element`)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .assembly import node_states
+from .element import GAUSS_W, GAUSS_XI, corotational_element, inertia_element, point_on_element
+from .jit import fem_jit
+
+
+@fem_jit
+def state_energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
+    """(kinetic, elastic, gravitational) energy [J] of the mesh and hub."""
+    nel = l0.size
+    nn = nel + 1
+    X = np.empty((nn, 3))
+    V = np.empty((nn, 3))
+    A = np.empty((nn, 3))
+    node_states(z, zd, np.zeros(z.size), rh, X, V, A)
+    xe = np.empty(6)
+    ve = np.empty(6)
+    fe = np.empty(6)
+    Ke = np.empty((6, 6))
+    fin = np.empty(6)
+    Me = np.empty((6, 6))
+    fg = np.empty(6)
+    G = np.empty((2, 6))
+    T = 0.5 * Jh * zd[0] * zd[0]
+    Ve = 0.0
+    Vg = 0.0
+    for e in range(nel):
+        for k in range(3):
+            xe[k] = X[e, k]
+            xe[3 + k] = X[e + 1, k]
+            ve[k] = V[e, k]
+            ve[3 + k] = V[e + 1, k]
+        Ve += corotational_element(xe, l0[e], EA, EI, fe, Ke, False)
+        Te, Vge = inertia_element(xe, ve, ve, l0[e], mu, g, gxi, gw, fin, Me, fg, G)
+        T += Te
+        Vg += Vge
+    return T, Ve, Vg
+
+
+@fem_jit
+def normal_velocities(z, zd, rh, l0, elems, xis):
+    """Velocities along e2(theta) of centre-line points (element, xi) [m/s]."""
+    nn = l0.size + 1
+    X = np.empty((nn, 3))
+    V = np.empty((nn, 3))
+    A = np.empty((nn, 3))
+    node_states(z, zd, zd, rh, X, V, A)
+    out = np.empty(elems.size)
+    xe = np.empty(6)
+    ve = np.empty(6)
+    st, ct = math.sin(z[0]), math.cos(z[0])
+    for p in range(elems.size):
+        e = elems[p]
+        for k in range(3):
+            xe[k] = X[e, k]
+            xe[3 + k] = X[e + 1, k]
+            ve[k] = V[e, k]
+            ve[3 + k] = V[e + 1, k]
+        _, v = point_on_element(xe, ve, l0[e], xis[p])
+        out[p] = -st * v[0] + ct * v[1]
+    return out
+
+
+class BeamOutputs:
+    """The output quantities of :class:`~flexbeam.fem.beam.FemBeam` (a mixin: it reads the beam's mesh ``l0``,
+    properties, ``measuring`` points and :meth:`~flexbeam.fem.beam.FemBeam.nodes`)."""
+
+    def point_state(self, z: np.ndarray, zd: np.ndarray, where: tuple[int, float]):
+        """Position and velocity of a centre-line point (element, xi)."""
+        X, V, _ = self.nodes(z, zd)
+        e, xi = where
+        xe = np.concatenate((X[e], X[e + 1]))
+        ve = np.concatenate((V[e], V[e + 1]))
+        return point_on_element(xe, ve, self.l0[e], xi)
+
+    def measuring_velocities(self, z: np.ndarray, zd: np.ndarray) -> np.ndarray:
+        """Velocities along e2(theta) of all measuring points [m/s]."""
+        if not self.measuring:
+            return np.empty(0)
+        if not hasattr(self, "_meas"):
+            self._meas = (
+                np.array([m[0] for m in self.measuring], np.int64),
+                np.array([m[1] for m in self.measuring], float),
+            )
+        return normal_velocities(z, zd, self.hub_radius, self.l0, *self._meas)
+
+    def tip_deflection(self, z: np.ndarray) -> float:
+        """Transverse tip displacement in the hub frame, e2(theta) . r_tip [m]."""
+        th = z[0]
+        return float(-math.sin(th) * z[-3] + math.cos(th) * z[-2])
+
+    def energies(self, z: np.ndarray, zd: np.ndarray) -> tuple[float, float, float]:
+        """(kinetic, elastic, gravitational) energy [J]; V_g = g int mu Y dx."""
+        T, Ve, Vg = state_energies(
+            z,
+            zd,
+            self.hub_radius,
+            self.hub_inertia,
+            self.l0,
+            self.mu,
+            self.EA,
+            self.EI,
+            self.gravity,
+            GAUSS_XI,
+            GAUSS_W,
+        )
+        return float(T), float(Ve), float(Vg)
