@@ -46,7 +46,8 @@ class Phase:
     ``records``: per pair the contact record it belongs to (None while that pair is free).
     ``max_step``: a bound on the integrator's step inside the phase [s], up to the time ``max_step_until`` [s]
     (after it the integrator's own bound and error control alone set the step: a contact under its law that has
-    outlasted its impact, see :data:`flexbeam.methods.base.RESTING_DURATIONS`).
+    outlasted its impact, see :data:`flexbeam.methods.base.RESTING_DURATIONS`; the compiled
+    :class:`~flexbeam.integrate.modal.ModalStepper` lifts it there, the reference integrator keeps it).
     """
 
     name: str
