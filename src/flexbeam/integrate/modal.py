@@ -268,21 +268,24 @@ class ModalStepper:
         h = min(self.h, FIRST_STEP) if phase.in_contact else self.h
         state[:5] = t, h, y[-2], y[-1], 0.0
         state[5 : 5 + N], state[5 + N : 5 + 2 * N] = eta, v
-        ctrl = pack_controls(
-            rtol=self.rtol, atol=self.atol, max_step=min(self.max_step, phase.max_step), omega_rigid=self.omega_rigid,
-            event_bits=sum(_EVENT_BITS[e] for e in phase.events), contacts=phase.buffer,
-        )  # fmt: skip
-        info = np.zeros(_INFO_SIZE)
-        chunks = []
-        capacity = 64
-        while True:
-            records = np.empty((capacity, self.record_size))
-            code, nrec = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info)
-            if nrec:
-                chunks.append(records[:nrec])
-            if code != _ADV_FULL:
+        # the phase's step bound holds up to phase.max_step_until (an impact's force pulse); the rest of the phase
+        # continues from the same state buffer (its nodal forcing the guess) under the stepper's own bound alone
+        until = phase.max_step_until
+        legs = [(min(self.max_step, phase.max_step), min(until, t_end) if t < until < t_end else t_end)]
+        if legs[0][1] < t_end:
+            legs.append((self.max_step, t_end))
+        chunks, steps, nfev = [], 0, 0
+        for hmax, leg_end in legs:
+            ctrl = pack_controls(
+                rtol=self.rtol, atol=self.atol, max_step=hmax, omega_rigid=self.omega_rigid,
+                event_bits=sum(_EVENT_BITS[e] for e in phase.events), contacts=phase.buffer,
+            )  # fmt: skip
+            info = np.zeros(_INFO_SIZE)
+            info[_INFO_T0] = state[0]  # the kernel sets it only at the phase's start (its effort budget)
+            code = self._run(ctrl, state, leg_end, info, chunks)
+            steps, nfev = steps + int(info[1]), nfev + int(info[3])
+            if code != _ADV_END:
                 break
-            capacity *= 2
         t1 = float(state[0])
         self.h = float(state[1])
         y1 = self.from_modal(state[5 : 5 + N], state[5 + N : 5 + 2 * N], state[2], state[3])
@@ -295,4 +298,17 @@ class ModalStepper:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_STALLED:
             failure = stalled_message(phase.name, t1, float(state[1]), info)
-        return PhaseRun(t1, y1, event, dense, int(info[1]), int(info[3]), failure, int(info[4]))
+        return PhaseRun(t1, y1, event, dense, steps, nfev, failure, int(info[4]))
+
+    def _run(self, ctrl: np.ndarray, state: np.ndarray, t_end: float, info: np.ndarray, chunks: list) -> int:
+        """The kernel's step loop from ``state`` to ``t_end`` or an event (``fb_advance``), its step records
+        appended to ``chunks``; returns its code."""
+        capacity = 64
+        while True:
+            records = np.empty((capacity, self.record_size))
+            code, nrec = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info)
+            if nrec:
+                chunks.append(records[:nrec])
+            if code != _ADV_FULL:
+                return code
+            capacity *= 2

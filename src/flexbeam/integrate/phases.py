@@ -44,7 +44,10 @@ class Phase:
     ``modes``: per pair its :class:`ContactMode`; ``parameters`` (pairs x 4): per pair its law's
     [K, n, chi/d'_0, C] (FORCE pairs); ``baumgarte``: the constraints' [alpha, beta] (CONSTRAINT pairs);
     ``records``: per pair the contact record it belongs to (None while that pair is free).
-    ``max_step``: a bound on the integrator's step inside the phase [s].
+    ``max_step``: a bound on the integrator's step inside the phase [s], up to the time ``max_step_until`` [s]
+    (after it the integrator's own bound and error control alone set the step: a contact under its law that has
+    outlasted its impact, see :data:`flexbeam.methods.base.RESTING_DURATIONS`; the compiled
+    :class:`~flexbeam.integrate.modal.ModalStepper` lifts it there, the reference integrator keeps it).
     """
 
     name: str
@@ -55,6 +58,7 @@ class Phase:
     records: tuple[ContactEvent | None, ...]
     baumgarte: tuple[float, float] = (0.0, 0.0)
     max_step: float = math.inf
+    max_step_until: float = math.inf
 
     @property
     def mode(self) -> ContactMode:

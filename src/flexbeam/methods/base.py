@@ -22,6 +22,12 @@ from .impulse import Jump
 
 #: steps per (estimated) contact duration at least: a contact phase's step is bounded by t_c / CONTACT_STEPS
 CONTACT_STEPS = 8
+#: a contact under its law that has lasted this many of its impact time scales t_c (the rigid Hertz contact duration
+#: at its onset speed, :meth:`ImpactMethod.contact_time`) rests on the obstacle: the step bound t_c / CONTACT_STEPS,
+#: which resolves an impact's force pulse, lifts there and the integrator's error control alone sets the step.  The
+#: impacts of every preset last at most 7.4 t_c (tip-wall, seed-experiment-calibrated), so their steps keep the bound;
+#: math.inf keeps it for the whole contact (``benchmarks/resting.py`` compares both).
+RESTING_DURATIONS = 20.0
 #: every phase watches all three kinds of event; each pair is watched for the one its mode can end on
 ALL_EVENTS = (EventKind.IMPACT, EventKind.SEPARATION, EventKind.RELEASE)
 
@@ -70,7 +76,10 @@ class ImpactMethod:
         Sec. VII.2), alpha = beta = ``solver.baumgarte_frequency``; a held pair starts consistent (delta = 0 at the
         located event, delta' = 0 after the e = 0 jump), so the terms only damp the integration drift.  Contacts are
         sampled at the contact spacing (IMM's resting contact at the free one); a pair under its law bounds the step
-        by its contact's time scale over CONTACT_STEPS.
+        by its contact's time scale t_c over CONTACT_STEPS until it has lasted RESTING_DURATIONS t_c (the bound
+        holds while any pair's contact is that young): a contact that outlasts its impact pulse by far is a
+        resting one, whose force follows the beam's slow motion and the ringing of its modes, and the error
+        control resolves it without the bound.
         """
         modes = tuple(ContactMode(m) for m in modes)
         if all(m == ContactMode.NONE for m in modes):
@@ -79,9 +88,11 @@ class ImpactMethod:
         force = any(m == ContactMode.FORCE for m in modes)
         name = "contact" if force else self.held_name
         sample = s.contact_sample_step if force or name == "constrained" else s.sample_step
-        steps = [r.time_scale / CONTACT_STEPS for m, r in zip(modes, records) if m == ContactMode.FORCE and r]
+        young = [r for m, r in zip(modes, records) if m == ContactMode.FORCE and r]
+        steps = [r.time_scale / CONTACT_STEPS for r in young]
+        until = max((r.onset + RESTING_DURATIONS * r.time_scale for r in young), default=math.inf)
         return Phase(name, modes, ALL_EVENTS, sample, np.asarray(parameters, float), tuple(records), self.baumgarte,
-                     min(steps, default=math.inf))  # fmt: skip
+                     min(steps, default=math.inf), until)  # fmt: skip
 
     # events -----------------------------------------------------------------
     def gap_event(self, t: float, y: np.ndarray, pair: int = 0) -> tuple[float, float]:

@@ -6,6 +6,13 @@ Sec. 3.1); several pairs in contact add their forces.  A pair's contact starts w
 downwards and ends when it crosses zero upwards; both instants are located as events.  The damping reference
 velocity d'_0 of the hysteresis laws is the approach speed at the onset of each contact, and the linear law's
 effective mass 1/(J M^-1 J^T) is taken there too.
+
+While a contact is an impact its step is bounded by t_c / CONTACT_STEPS, t_c the rigid Hertz contact duration at
+its onset speed (:meth:`~flexbeam.methods.base.ImpactMethod.contact_time`), so that the force pulse is resolved;
+once it has lasted RESTING_DURATIONS = 20 t_c (the impacts of every preset last at most 7.4 t_c) the beam rests
+on the obstacle under its law and the bound lifts: the same law, the same state, the step set by the error
+control alone.  The force at rest is the static one (the seed beam: F_s = m g L / (2 x_P) and
+d_s = (F_s / K)^(1/n), ``tests/validation/test_resting_contact.py``) plus whatever the beam's modes still ring.
 """
 
 from __future__ import annotations
