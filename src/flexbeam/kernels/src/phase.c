@@ -163,6 +163,132 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
     return x;
 }
 
+/* The next step's size and whether it is the phase's last: h is bounded by hmax and stretched to t_end when
+ * within 1% of it (not after a cut); returns ADV_FULL, ADV_UNDERFLOW or ADV_STALLED when the phase must stop
+ * here (the records are full, the step is below round-off, the step budget EFFORT_* is spent), else -1. */
+static int plan_step(double t, double t_end, double hmax, double rate, int retry, int nrec, int capacity,
+                     const double *info, double *h, int *last) {
+    if (nrec >= capacity) return ADV_FULL;
+    if (*h > hmax) *h = hmax;
+    *last = 0;
+    if (t + (retry ? 1.0 : 1.01) * *h >= t_end) {
+        *h = t_end - t;
+        *last = 1;
+    }
+    if (*h < H_MIN_REL * fmax(fabs(t), 1.0)) return ADV_UNDERFLOW;
+    if (info[1] + info[2] >= EFFORT_BASE + EFFORT_RATE * rate * (t - info[FB_INFO_T0])) return ADV_STALLED;
+    return -1;
+}
+
+/* One step's record (layout: fb_record_size): [t, h, E_d, W, eta, v, the nodal forcing f, the pairs' nodal forces
+ * F, the dissipation and drive-work rates at the nodes, the summary FB_RECORD_SUMMARY]; books = [E_d, W at the
+ * step's start, their increments over it, the energy and the kinetic energy at its end].  A constrained pair's
+ * multipliers raise the phase's multiplier scale. */
+static void write_record(const fb_phase *ph, fb_work *w, double *rec, double t, double h, const double *books,
+                         const double *eta, const double *v, const double *trial, const double *red,
+                         const double *rwd) {
+    int N = ph->b->N, S = ph->m->npairs;
+    double Ed = books[0], W = books[1], dEd = books[2], dW = books[3], E1 = books[4], T1 = books[5];
+    double *rf = rec + 4 + 2 * N, *rF = rf + FB_P * N;
+    rec[0] = t;
+    rec[1] = h;
+    rec[2] = Ed;
+    rec[3] = W;
+    memcpy(rec + 4, eta, sizeof(double) * N);
+    memcpy(rec + 4 + N, v, sizeof(double) * N);
+    memcpy(rf, trial, sizeof(double) * FB_P * N);
+    memcpy(rF, w->F, sizeof(double) * S * FB_P);
+    memcpy(rF + S * FB_P, red, sizeof(double) * FB_P);
+    memcpy(rF + S * FB_P + FB_P, rwd, sizeof(double) * FB_P);
+    double *sum = rF + S * FB_P + 2 * FB_P; /* the step's summary: energy balance and tip at the end, tip at nodes */
+    sum[0] = E1 + (Ed + dEd) - (W + dW);
+    sum[1] = T1;
+    for (int j = 0; j < FB_P; j++) sum[2 + j] = fb_node_tip(ph, &w->node[j]);
+    for (int k = 0; k < S; k++)
+        if (ph->c.mode[k] == FB_MODE_CONSTRAINT)
+            for (int j = 0; j < FB_P; j++) w->lambda_scale = fmax(w->lambda_scale, fabs(w->F[k][j]));
+}
+
+/* Collocate a step of size h from (t, eta, v), the iteration starting from the last nodal values (f, F); the
+ * nodal forcing in trial, the pairs' nodal forces in w->F.  Returns fb_collocate's status. */
+static int collocate_from(const fb_phase *ph, fb_work *w, double t, double h, const double *eta, const double *v,
+                          const double *f, double F[][FB_P], double *trial, fb_step *st, double *info) {
+    int N = ph->b->N, S = ph->m->npairs;
+    memcpy(trial, f, sizeof(double) * FB_P * N);
+    memcpy(w->F, F, sizeof(double) * S * FB_P);
+    int bad = fb_collocate(ph, w, t, h, eta, v, trial, st);
+    info[3] += FB_P * w->iterations;
+    return bad;
+}
+
+/* A step attempt of size *h: 0 when the collocation converged and the error estimate accepts it; 1 when it is
+ * rejected (*h cut, the cause booked in info); ADV_NONFINITE when the state is not finite even at 1e-12 s. */
+static int collocate_step(const fb_phase *ph, fb_work *w, double t, double *h, const double *eta, const double *v,
+                          const double *f, double F[][FB_P], double *trial, fb_step *st, double *info) {
+    int bad = collocate_from(ph, w, t, *h, eta, v, f, F, trial, st, info);
+    if (bad || !st->converged) {
+        if (bad && *h < 1e-12) return ADV_NONFINITE;
+        *h *= 0.25;
+        reject(info, FB_REJECT_COLLOCATION);
+        return 1;
+    }
+    if (st->err > 1.0) {
+        *h = fb_next_step(*h, st->err, 0);
+        reject(info, FB_REJECT_ERROR);
+        return 1;
+    }
+    return 0;
+}
+
+/* T + V_e + V_g (+ U_c) at (t, eta, v), and its scale T + V_e in *scale (fb_node_energy). */
+static double energy_at(const fb_phase *ph, double t, const double *eta, const double *v, double *scale) {
+    fb_node n0;
+    fb_eval_node(ph, t, eta, v, FB_WANT_GAP, &n0);
+    return fb_node_energy(ph, &n0, scale);
+}
+
+/* The phase ends at an event: its kind and pair in info; returns ADV_EVENT. */
+static int event_code(double *info, int kind, int pair) {
+    info[0] = kind;
+    info[4] = pair;
+    return ADV_EVENT;
+}
+
+/* The events on an accepted step's dense output: the fraction of the step at which the first event (*kind,
+ * *pair; *event set) or a law's kink (the collocation polynomial cannot follow it; *event cleared) falls, > 1 when
+ * none does; FB_UNDECIDED when the step must be shortened first, to just past the first sample seen beyond the
+ * surface (*h cut, the cause booked).  gap0: the pairs' gaps at the step's start, evaluated unless have_gap0. */
+static double step_events(const fb_phase *ph, fb_work *w, int events, double t, double *h, const double *eta,
+                          const double *v, const double *trial, fb_step *st, fb_gap *gap0, int have_gap0, int *event,
+                          int *kind, int *pair, double *info) {
+    if (!have_gap0)
+        for (int k = 0; k < ph->m->npairs; k++) gap0[k] = fb_gap_at(ph, k, t, eta, v);
+    double beyond, kink;
+    double x = find_events(ph, w, events, t, *h, eta, v, trial, st, gap0, kind, pair, &beyond, &kink);
+    if (x == FB_UNDECIDED) {
+        *h *= beyond < 1.0 ? fmax(beyond, 0.0625) : 0.25;
+        reject(info, FB_REJECT_EVENT);
+        return x;
+    }
+    *event = x <= 1.0;
+    if (kink < x) {
+        x = kink;
+        *event = 0;
+    }
+    return x;
+}
+
+/* Move the phase's state to the recorded step's end: its modal state, its nodal values (the next step's first
+ * guess) and its gaps. */
+static void move_to_end(int N, int S, const fb_work *w, const fb_step *st, const double *trial, double *eta,
+                        double *v, double *f, double F[][FB_P], fb_gap *gap0) {
+    memcpy(eta, st->eta1, sizeof(double) * N);
+    memcpy(v, st->v1, sizeof(double) * N);
+    memcpy(f, trial, sizeof(double) * FB_P * N);
+    memcpy(F, w->F, sizeof(double) * S * FB_P);
+    memcpy(gap0, w->end.gap, sizeof(fb_gap) * S);
+}
+
 /* Advance one phase from the state buffer toward t_end.  ctrl: see phase.h; records (capacity rows of
  * fb_record_size); info (FB_INFO_SIZE, see phase.h) accumulates over the calls of a phase.  Returns ADV_* and the
  * number of records written in *nrec. */
@@ -193,53 +319,24 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
     fb_gap gap0[FB_MAX_PAIRS];
     fb_step st;
     while (t < t_end) {
-        if (*nrec >= capacity) {
-            code = ADV_FULL;
+        int last = 0, stop = plan_step(t, t_end, hmax, rate, retry, *nrec, capacity, info, &h, &last);
+        if (stop >= 0) {
+            code = stop;
             break;
         }
-        if (h > hmax) h = hmax;
-        int last = 0;
-        if (t + (retry ? 1.0 : 1.01) * h >= t_end) {
-            h = t_end - t;
-            last = 1;
-        }
-        if (h < H_MIN_REL * fmax(fabs(t), 1.0)) {
-            code = ADV_UNDERFLOW;
+        int tried = collocate_step(&ph, w, t, &h, eta, v, f, F, trial, &st, info);
+        if (tried == ADV_NONFINITE) {
+            code = ADV_NONFINITE;
             break;
         }
-        if (info[1] + info[2] >= EFFORT_BASE + EFFORT_RATE * rate * (t - info[FB_INFO_T0])) {
-            code = ADV_STALLED;
-            break;
-        }
-        memcpy(trial, f, sizeof(double) * FB_P * N);
-        memcpy(w->F, F, sizeof(double) * S * FB_P);
-        int bad = fb_collocate(&ph, w, t, h, eta, v, trial, &st);
-        info[3] += FB_P * w->iterations;
-        if (bad || !st.converged) {
-            if (bad && h < 1e-12) {
-                code = ADV_NONFINITE;
-                break;
-            }
-            h *= 0.25;
-            reject(info, FB_REJECT_COLLOCATION);
-            retry = 1;
-            continue;
-        }
-        if (st.err > 1.0) {
-            h = fb_next_step(h, st.err, 0);
-            reject(info, FB_REJECT_ERROR);
+        if (tried) {
             retry = 1;
             continue;
         }
         double E1, scale1, T1, dEd, dW, red[FB_P], rwd[FB_P];
         fb_step_books(&ph, w, t, h, eta, v, &st, red, rwd, &dEd, &dW);
         E1 = fb_node_energy_parts(&ph, &w->end, &scale1, &T1);
-        if (!have_E0) {
-            fb_node n0;
-            fb_eval_node(&ph, t, eta, v, FB_WANT_GAP, &n0);
-            E0 = fb_node_energy(&ph, &n0, &scale0);
-            have_E0 = 1;
-        }
+        if (!have_E0) E0 = energy_at(&ph, t, eta, v, &scale0), have_E0 = 1;
         double balance =
             balance_error(&ph, E1 - E0 + dEd - dW, fmax(scale0, scale1), fabs(E1) + fabs(E0) + fabs(dEd) + fabs(dW));
         if (balance > 1.0) {
@@ -248,69 +345,31 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             retry = 1;
             continue;
         }
-        /* events on the accepted step's dense output */
-        if (!have_gap0)
-            for (int k = 0; k < S; k++) gap0[k] = fb_gap_at(&ph, k, t, eta, v);
-        int kind = 0, pair = 0;
-        double beyond, kink;
-        double x = find_events(&ph, w, events, t, h, eta, v, trial, &st, gap0, &kind, &pair, &beyond, &kink);
-        if (x == FB_UNDECIDED) { /* shorten the step, to just past the first sample seen beyond the surface */
-            h *= beyond < 1.0 ? fmax(beyond, 0.0625) : 0.25;
-            reject(info, FB_REJECT_EVENT);
+        int kind = 0, pair = 0, event = 0;
+        double x = step_events(&ph, w, events, t, &h, eta, v, trial, &st, gap0, have_gap0, &event, &kind, &pair, info);
+        if (x == FB_UNDECIDED) {
             retry = 1;
             continue;
         }
-        int event = x <= 1.0;
-        if (kink < x) { /* end the step at the kink (the collocation polynomial cannot follow it) */
-            x = kink;
-            event = 0;
-        }
         if (x < 1.0 && x > 0.0) { /* retake the step to end at the event (or kink) */
-            double hx = x * h;
-            memcpy(trial, f, sizeof(double) * FB_P * N);
-            memcpy(w->F, F, sizeof(double) * S * FB_P);
-            fb_collocate(&ph, w, t, hx, eta, v, trial, &st);
-            info[3] += FB_P * w->iterations;
-            h = hx;
+            h *= x;
             last = 0;
+            collocate_from(&ph, w, t, h, eta, v, f, F, trial, &st, info);
             fb_step_books(&ph, w, t, h, eta, v, &st, red, rwd, &dEd, &dW);
             double scale_x;
             E1 = fb_node_energy_parts(&ph, &w->end, &scale_x, &T1);
         } else if (event && x <= 0.0) {
-            code = ADV_EVENT;
-            info[0] = kind;
-            info[4] = pair;
+            code = event_code(info, kind, pair);
             break;
         }
         /* record the step and move to its end */
-        double *rec = records + (size_t)(*nrec) * R, *rf = rec + 4 + 2 * N, *rF = rf + FB_P * N;
-        rec[0] = t;
-        rec[1] = h;
-        rec[2] = Ed;
-        rec[3] = W;
-        memcpy(rec + 4, eta, sizeof(double) * N);
-        memcpy(rec + 4 + N, v, sizeof(double) * N);
-        memcpy(rf, trial, sizeof(double) * FB_P * N);
-        memcpy(rF, w->F, sizeof(double) * S * FB_P);
-        memcpy(rF + S * FB_P, red, sizeof(double) * FB_P);
-        memcpy(rF + S * FB_P + FB_P, rwd, sizeof(double) * FB_P);
-        double *sum = rF + S * FB_P + 2 * FB_P; /* the step's summary: energy balance and tip at the end, tip at nodes */
-        sum[0] = E1 + (Ed + dEd) - (W + dW);
-        sum[1] = T1;
-        for (int j = 0; j < FB_P; j++) sum[2 + j] = fb_node_tip(&ph, &w->node[j]);
-        for (int k = 0; k < S; k++)
-            if (c.mode[k] == FB_MODE_CONSTRAINT)
-                for (int j = 0; j < FB_P; j++) w->lambda_scale = fmax(w->lambda_scale, fabs(w->F[k][j]));
+        double books[6] = {Ed, W, dEd, dW, E1, T1};
+        write_record(&ph, w, records + (size_t)(*nrec) * R, t, h, books, eta, v, trial, red, rwd);
         (*nrec)++;
         info[1] += 1;
-        W += dW;
-        Ed += dEd;
-        memcpy(eta, st.eta1, sizeof(double) * N);
-        memcpy(v, st.v1, sizeof(double) * N);
-        memcpy(f, trial, sizeof(double) * FB_P * N);
-        memcpy(F, w->F, sizeof(double) * S * FB_P);
+        W += dW, Ed += dEd;
+        move_to_end(N, S, w, &st, trial, eta, v, f, F, gap0);
         t = last ? t_end : t + h;
-        memcpy(gap0, w->end.gap, sizeof(fb_gap) * S);
         have_gap0 = 1;
         if (x < 1.0 && x > 0.0) { /* retaken to an event or kink: its end is evaluated afresh */
             have_E0 = 0;
@@ -318,9 +377,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             E0 = E1, scale0 = scale1;
         }
         if (event) {
-            code = ADV_EVENT;
-            info[0] = kind;
-            info[4] = pair;
+            code = event_code(info, kind, pair);
             break;
         }
         retry = 0;
