@@ -2,8 +2,8 @@
  *
  * The model (model.c) evaluates the rigid-flexible coupling equations of docs/formulation.md;
  * the integrator (propagation.c, collocation.c, events.c, stepcontrol.c, phase.c) propagates
- * the modal equations exactly and collocates the nonlinear remainder.  module.c is the Python
- * glue.  Python packs every array once per system into two flat buffers (layout in
+ * the modal equations exactly and collocates the nonlinear remainder.  module.c and glue*.c are
+ * the Python glue (glue.h).  Python packs every array once per system into two flat buffers (layout in
  * flexbeam/kernels/layout.py) which fb_model_unpack / fb_basis_unpack read back as pointers.
  */
 #ifndef FLEXBEAM_KERNELS_H

@@ -13,115 +13,178 @@ static double given_force(const double *M, int N, int ng, int row, const double 
     return f;
 }
 
+/* One evaluation of the right-hand side, shared by its pieces: the state, the equations M z'' = Q of the full
+ * coordinates z, the pairs' gaps, Jacobians and forces, the force on the support's mass and the dissipated power. */
+typedef struct {
+    const fb_model *m;
+    const fb_contacts *c;
+    const fb_joint_ops *jt;
+    const fb_obstacle *o; /* the support (obstacle 0), or NULL */
+    fb_frame fr;
+    const double *q, *qd;
+    int N, ng, compliant;
+    double s, sd;                   /* the support's coordinate and rate (0 without a compliant support) */
+    double ga[FB_MAX_JOINT_PARAMS]; /* the given coordinates' accelerations */
+    double M[MAXZ * MAXZ], Q[MAXZ], J[FB_MAX_PAIRS][MAXZ];
+    fb_gap gp[FB_MAX_PAIRS];
+    double F[FB_MAX_PAIRS], Fsup, diss;
+    int con[FB_MAX_PAIRS], ncon; /* the constrained pairs */
+} rhs_eval;
+
+/* A (nn x nn, nn = N - off) = the rows and columns of M from off on: the block of the coordinates solved for. */
+static void free_block(const double *M, int N, int off, double *A) {
+    int nn = N - off;
+    for (int i = 0; i < nn; i++)
+        for (int j = 0; j < nn; j++) A[i * nn + j] = M[(i + off) * N + j + off];
+}
+
+/* The state at t and the equations without the contacts: the mass matrix M, the forces Q with the drive's torque
+ * (returned), the given coordinates' accelerations and the support's spring and damper force. */
+static double assemble(rhs_eval *e, const fb_model *m, const fb_contacts *c, double t, const double *y) {
+    const fb_joint_ops *jt = fb_joint(m);
+    int nb = 2 * fb_nz(m);
+    e->m = m;
+    e->c = c;
+    e->jt = jt;
+    e->N = fb_nfull(m);
+    e->ng = m->ngiven;
+    fb_state_split(m, t, y, &e->fr, &e->q, &e->qd);
+    jt->given_acc(m, &e->fr, e->ga);
+    e->o = m->nobstacles ? &m->obstacles[0] : NULL;
+    e->compliant = fb_compliant(m);
+    e->s = e->compliant ? y[nb] : 0.0;
+    e->sd = e->compliant ? y[nb + 1] : 0.0;
+    e->Fsup = e->compliant ? -e->o->ks * e->s - e->o->cs * e->sd : 0.0; /* the force on the support's mass */
+    double tau = jt->torque(m, t);
+    jt->mass(m, e->q, e->M);
+    jt->forces(m, &e->fr, e->q, e->qd, tau, 1, e->Q);
+    return tau;
+}
+
+/* The pairs in contact: their gaps and Jacobians; the law force of each FB_MODE_FORCE pair acts as J_k^T F_k (and
+ * Js_k F_k on the support), its damping dissipates; the FB_MODE_CONSTRAINT pairs are listed for the solve. */
+static void pair_forces(rhs_eval *e) {
+    const fb_contacts *c = e->c;
+    int N = e->N;
+    e->diss = 0.0;
+    e->ncon = 0;
+    for (int k = 0; k < e->m->npairs; k++) {
+        e->F[k] = 0.0;
+        if (c->mode[k] == FB_MODE_NONE) continue;
+        e->gp[k] = fb_pair_gap(e->m, k, &e->fr, e->q, e->qd, e->s, e->sd, 1, e->J[k]);
+        if (c->mode[k] == FB_MODE_CONSTRAINT) {
+            e->con[e->ncon++] = k;
+            continue;
+        }
+        const fb_gap *g = &e->gp[k];
+        double fk;
+        e->F[k] = fb_law_force(c->p[k], -g->delta, -g->rate, &fk, NULL, NULL);
+        e->diss += (e->F[k] - fk) * (-g->rate);
+        for (int i = 0; i < N; i++) e->Q[i] += e->J[k][i] * e->F[k];
+        e->Fsup += g->Js * e->F[k];
+    }
+}
+
+/* The constrained pairs' multipliers: [M J_c^T; J_c 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
+ * on the free rows (the given coordinates' accelerations known), by W = J_c A^-1 J_c^T over the free block A of M
+ * (plus Js Js / m_s with a compliant support); the forces join Q and the support's force.  -1 if a system is
+ * singular. */
+static int constraint_forces(rhs_eval *e) {
+    const fb_contacts *c = e->c;
+    const fb_gap *gp = e->gp;
+    const double *M = e->M, *ga = e->ga;
+    int N = e->N, ng = e->ng, ncon = e->ncon, off = ng, nn = N - off;
+    double a[MAXZ], B[FB_MAX_PAIRS][MAXZ], W[FB_MAX_PAIRS * FB_MAX_PAIRS], r[FB_MAX_PAIRS];
+    double A[MAXZ * MAXZ];
+    for (int i = 0; i < nn; i++) a[i] = e->Q[i + off] - given_force(M, N, ng, i + off, ga);
+    free_block(M, N, off, A);
+    if (nn > 0 && fb_solve(A, a, nn)) return -1;
+    for (int ia = 0; ia < ncon; ia++) {
+        for (int i = 0; i < nn; i++) B[ia][i] = e->J[e->con[ia]][i + off];
+        free_block(M, N, off, A);
+        if (nn > 0 && fb_solve(A, B[ia], nn)) return -1;
+    }
+    for (int ia = 0; ia < ncon; ia++) {
+        int k = e->con[ia];
+        const double *Jk = e->J[k];
+        r[ia] = -gp[k].gamma - 2.0 * c->alpha * gp[k].rate - c->beta * c->beta * gp[k].delta -
+                fb_dot(Jk + off, a, nn);
+        for (int g = 0; g < ng; g++) r[ia] -= Jk[g] * ga[g];
+        if (e->compliant) r[ia] -= gp[k].Js * e->Fsup / e->o->ms;
+        for (int ib = 0; ib < ncon; ib++) {
+            double wab = fb_dot(Jk + off, B[ib], nn);
+            if (e->compliant) wab += gp[k].Js * gp[e->con[ib]].Js / e->o->ms;
+            W[ia * ncon + ib] = wab;
+        }
+    }
+    if (fb_solve(W, r, ncon)) return -1;
+    for (int ia = 0; ia < ncon; ia++) {
+        int k = e->con[ia];
+        e->F[k] = r[ia];
+        for (int i = 0; i < N; i++) e->Q[i] += e->J[k][i] * e->F[k];
+        e->Fsup += gp[k].Js * e->F[k];
+    }
+    return 0;
+}
+
+/* The coordinates' rates and accelerations (dy's first rows) from M z'' = Q with the contact forces, the joint's
+ * torque and the energy balance's rates (dy's last two).  With given coordinates the free rows are solved with the
+ * given accelerations, and the joint's reaction torque is the given rows' residual; otherwise the torque is the
+ * drive's tau.  -1 if M is singular. */
+static int accelerations(rhs_eval *e, double tau, const double *y, double *dy, double *torque) {
+    const fb_model *m = e->m;
+    int N = e->N, ng = e->ng, size = fb_state_size(m);
+    double *M = e->M, *Q = e->Q;
+    if (ng) { /* the free rows with the given accelerations; the reaction is the given rows' residual */
+        int nn = N - ng;
+        double rhs[MAXZ], A[MAXZ * MAXZ];
+        for (int i = 0; i < nn; i++) rhs[i] = Q[i + ng] - given_force(M, N, ng, i + ng, e->ga);
+        free_block(M, N, ng, A);
+        if (nn > 0 && fb_solve(A, rhs, nn)) return -1;
+        double reaction = given_force(M, N, ng, 0, e->ga) - Q[0];
+        for (int i = 0; i < nn; i++) {
+            reaction += M[i + ng] * rhs[i];
+            dy[i] = y[nn + i];
+            dy[nn + i] = rhs[i];
+        }
+        dy[size - 2] = e->diss;
+        dy[size - 1] = e->jt->power(m, &e->fr, e->q, e->qd, reaction);
+        *torque = reaction;
+    } else {
+        if (fb_solve(M, Q, N)) return -1;
+        for (int i = 0; i < N; i++) dy[i] = y[N + i];
+        for (int i = 0; i < N; i++) dy[N + i] = Q[i];
+        dy[size - 2] = e->diss;
+        *torque = tau;
+        dy[size - 1] = e->jt->power(m, &e->fr, e->q, e->qd, tau);
+    }
+    return 0;
+}
+
 /* Right-hand side dy/dt of the reference-layout state with the contacts c (see flexbeam.kernels.rhs), pair k:
  * FB_MODE_FORCE: the law force F_k(d_k, d_k') of p_k acts as J_k^T F_k;
  * FB_MODE_CONSTRAINT: the multipliers of [M J_c^T; J_c 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
  * over the constrained pairs c (Baumgarte).  A compliant support (obstacle 0) adds m_s s'' = -k_s s - c_s s' +
  * sum_k Js_k F_k over the pairs on it.  The coordinates the joint gives as functions of time (theta(t) prescribed)
- * are not solved for: the other rows are, and the joint's reaction is the given rows' residual.  F (npairs) returns each pair's force.  Returns 0, or -1 for a non-finite state or a
- * singular system (dy then NaN). */
+ * are not solved for: the other rows are, and the joint's reaction is the given rows' residual.  F (npairs) returns
+ * each pair's force.  Returns 0, or -1 for a non-finite state or a singular system (dy then NaN). */
 int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, double *dy, double *F_out,
            double *torque_out) {
-    const fb_joint_ops *jt = fb_joint(m);
-    int N = fb_nfull(m), size = fb_state_size(m), nb = 2 * fb_nz(m), S = m->npairs, ng = m->ngiven;
+    int size = fb_state_size(m), nb = 2 * fb_nz(m), S = m->npairs;
     for (int i = 0; i < size; i++)
         if (!isfinite(y[i])) goto fail;
-    fb_frame fr;
-    const double *q, *qd;
-    fb_state_split(m, t, y, &fr, &q, &qd);
-    double ga[FB_MAX_JOINT_PARAMS]; /* the given coordinates' accelerations */
-    jt->given_acc(m, &fr, ga);
-    const fb_obstacle *o = m->nobstacles ? &m->obstacles[0] : NULL;
-    int compliant = fb_compliant(m);
-    double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
-    double Fsup = compliant ? -o->ks * s - o->cs * sd : 0.0; /* the force on the support's mass */
-    double tau = jt->torque(m, t);
-    double M[MAXZ * MAXZ], Q[MAXZ], J[FB_MAX_PAIRS][MAXZ];
-    jt->mass(m, q, M);
-    jt->forces(m, &fr, q, qd, tau, 1, Q);
-    double F[FB_MAX_PAIRS], diss = 0.0;
-    fb_gap gp[FB_MAX_PAIRS];
-    int con[FB_MAX_PAIRS], ncon = 0;
-    for (int k = 0; k < S; k++) {
-        F[k] = 0.0;
-        if (c->mode[k] == FB_MODE_NONE) continue;
-        gp[k] = fb_pair_gap(m, k, &fr, q, qd, s, sd, 1, J[k]);
-        if (c->mode[k] == FB_MODE_CONSTRAINT) {
-            con[ncon++] = k;
-            continue;
-        }
-        double fk;
-        F[k] = fb_law_force(c->p[k], -gp[k].delta, -gp[k].rate, &fk, NULL, NULL);
-        diss += (F[k] - fk) * (-gp[k].rate);
-        for (int i = 0; i < N; i++) Q[i] += J[k][i] * F[k];
-        Fsup += gp[k].Js * F[k];
+    rhs_eval e;
+    double tau = assemble(&e, m, c, t, y), torque;
+    pair_forces(&e);
+    if (e.ncon && constraint_forces(&e)) goto fail;
+    if (e.compliant) {
+        dy[nb] = e.sd;
+        dy[nb + 1] = e.Fsup / e.o->ms;
+        e.diss += e.o->cs * e.sd * e.sd;
     }
-    if (ncon) {
-        int off = ng, nn = N - off;
-        double a[MAXZ], B[FB_MAX_PAIRS][MAXZ], W[FB_MAX_PAIRS * FB_MAX_PAIRS], r[FB_MAX_PAIRS];
-        double A[MAXZ * MAXZ];
-        for (int i = 0; i < nn; i++) a[i] = Q[i + off] - given_force(M, N, ng, i + off, ga);
-        for (int i = 0; i < nn; i++)
-            for (int j = 0; j < nn; j++) A[i * nn + j] = M[(i + off) * N + j + off];
-        if (nn > 0 && fb_solve(A, a, nn)) goto fail;
-        for (int ia = 0; ia < ncon; ia++) {
-            for (int i = 0; i < nn; i++) B[ia][i] = J[con[ia]][i + off];
-            for (int i = 0; i < nn; i++)
-                for (int j = 0; j < nn; j++) A[i * nn + j] = M[(i + off) * N + j + off];
-            if (nn > 0 && fb_solve(A, B[ia], nn)) goto fail;
-        }
-        for (int ia = 0; ia < ncon; ia++) {
-            int k = con[ia];
-            r[ia] = -gp[k].gamma - 2.0 * c->alpha * gp[k].rate - c->beta * c->beta * gp[k].delta -
-                    fb_dot(J[k] + off, a, nn);
-            for (int g = 0; g < ng; g++) r[ia] -= J[k][g] * ga[g];
-            if (compliant) r[ia] -= gp[k].Js * Fsup / o->ms;
-            for (int ib = 0; ib < ncon; ib++) {
-                double wab = fb_dot(J[k] + off, B[ib], nn);
-                if (compliant) wab += gp[k].Js * gp[con[ib]].Js / o->ms;
-                W[ia * ncon + ib] = wab;
-            }
-        }
-        if (fb_solve(W, r, ncon)) goto fail;
-        for (int ia = 0; ia < ncon; ia++) {
-            int k = con[ia];
-            F[k] = r[ia];
-            for (int i = 0; i < N; i++) Q[i] += J[k][i] * F[k];
-            Fsup += gp[k].Js * F[k];
-        }
-    }
-    if (compliant) {
-        dy[nb] = sd;
-        dy[nb + 1] = Fsup / o->ms;
-        diss += o->cs * sd * sd;
-    }
-    double torque;
-    if (ng) { /* the free rows with the given accelerations; the reaction is the given rows' residual */
-        int nn = N - ng;
-        double rhs[MAXZ], A[MAXZ * MAXZ];
-        for (int i = 0; i < nn; i++) {
-            rhs[i] = Q[i + ng] - given_force(M, N, ng, i + ng, ga);
-            for (int j = 0; j < nn; j++) A[i * nn + j] = M[(i + ng) * N + j + ng];
-        }
-        if (nn > 0 && fb_solve(A, rhs, nn)) goto fail;
-        torque = given_force(M, N, ng, 0, ga) - Q[0];
-        for (int i = 0; i < nn; i++) {
-            torque += M[i + ng] * rhs[i];
-            dy[i] = y[nn + i];
-            dy[nn + i] = rhs[i];
-        }
-        dy[size - 2] = diss;
-        dy[size - 1] = jt->power(m, &fr, q, qd, torque);
-    } else {
-        if (fb_solve(M, Q, N)) goto fail;
-        for (int i = 0; i < N; i++) dy[i] = y[N + i];
-        for (int i = 0; i < N; i++) dy[N + i] = Q[i];
-        dy[size - 2] = diss;
-        torque = tau;
-        dy[size - 1] = jt->power(m, &fr, q, qd, tau);
-    }
+    if (accelerations(&e, tau, y, dy, &torque)) goto fail;
     if (F_out)
-        for (int k = 0; k < S; k++) F_out[k] = F[k];
+        for (int k = 0; k < S; k++) F_out[k] = e.F[k];
     if (torque_out) *torque_out = torque;
     return 0;
 fail:

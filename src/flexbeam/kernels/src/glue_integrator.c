@@ -1,0 +1,140 @@
+/* The Python glue of the integrator (glue.h): a phase (phase.c), its dense output (bookkeeping.c) and an output's
+ * largest value on it (extremes.c); the propagation's moments, weights and Gauss nodes (propagation.c, for the
+ * tests) and the sizes of the phase's buffers. */
+#include "glue.h"
+#include "phase.h"
+
+/* advance(model, basis, ctrl, state, t_end, records, info) -> (code, nrec) */
+PyObject *py_advance(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *oc, *os, *orec, *oi;
+    double t_end;
+    if (!PyArg_ParseTuple(args, "OOOOdOO", &om, &ob, &oc, &os, &t_end, &orec, &oi)) return NULL;
+    buf_t b[6];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(oc, &b[2], 0, "ctrl") ||
+        get_buf(os, &b[3], 1, "state") || get_buf(orec, &b[4], 1, "records") || get_buf(oi, &b[5], 1, "info") ||
+        model_from(&b[0], &m) || basis_from(&b[1], &bs))
+        goto fail;
+    int R = fb_record_size(bs.N, m.npairs);
+    if (LEN(b[3]) != (size_t)fb_state_buffer_size(bs.N, m.npairs) || LEN(b[4]) % R || LEN(b[5]) < FB_INFO_SIZE ||
+        bs.N > FB_MAXN) {
+        PyErr_SetString(PyExc_ValueError, "advance: array sizes do not match");
+        goto fail;
+    }
+    int nrec = 0, code;
+    Py_BEGIN_ALLOW_THREADS
+    code = fb_advance(&m, &bs, PTR(b[2]), LEN(b[2]), PTR(b[3]), t_end, PTR(b[4]), (int)(LEN(b[4]) / R), &nrec,
+                      PTR(b[5]));
+    Py_END_ALLOW_THREADS
+    release(b, 6);
+    if (code < 0) {
+        PyErr_SetString(PyExc_ValueError, "advance: ctrl does not match the model's pairs");
+        return NULL;
+    }
+    return Py_BuildValue("ii", code, nrec);
+fail:
+    release(b, 6);
+    return NULL;
+}
+
+/* dense(model, basis, records, nrec, times, Y) */
+PyObject *py_dense(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *orec, *ot, *oY;
+    int nrec;
+    if (!PyArg_ParseTuple(args, "OOOiOO", &om, &ob, &orec, &nrec, &ot, &oY)) return NULL;
+    buf_t b[5];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(orec, &b[2], 0, "records") ||
+        get_buf(ot, &b[3], 0, "times") || get_buf(oY, &b[4], 1, "Y") || model_from(&b[0], &m) ||
+        basis_from(&b[1], &bs))
+        goto fail;
+    size_t count = LEN(b[3]);
+    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs.N, m.npairs) ||
+        LEN(b[4]) != count * fb_state_size(&m)) {
+        PyErr_SetString(PyExc_ValueError, "dense: array sizes do not match");
+        goto fail;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    fb_dense_eval(&m, &bs, PTR(b[2]), nrec, PTR(b[3]), (int)count, PTR(b[4]));
+    Py_END_ALLOW_THREADS
+    release(b, 5);
+    Py_RETURN_NONE;
+fail:
+    release(b, 5);
+    return NULL;
+}
+
+/* column_max(model, basis, records, nrec, contacts, t0, t1, y0, y1, column, sign, lo, hi, reach, floor, xtol,
+ * t_out, v_out): per bracket [lo, hi] the largest sign * output (column >= 0; the contact force of pair
+ * -1 - column) on a phase's dense output, by Brent's method (extremes.c); brackets whose bound reach is below the
+ * best value yet are skipped */
+PyObject *py_column_max(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *orec, *oc, *oy0, *oy1, *olo, *ohi, *ore, *oto, *ovo;
+    int nrec, column;
+    double t0, t1, sign, floor, xtol;
+    if (!PyArg_ParseTuple(args, "OOOiOddOOidOOOddOO", &om, &ob, &orec, &nrec, &oc, &t0, &t1, &oy0, &oy1, &column,
+                          &sign, &olo, &ohi, &ore, &floor, &xtol, &oto, &ovo))
+        return NULL;
+    buf_t b[11];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    fb_contacts c;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(orec, &b[2], 0, "records") ||
+        get_buf(oc, &b[3], 0, "contacts") || get_buf(oy0, &b[4], 0, "y0") || get_buf(oy1, &b[5], 0, "y1") ||
+        get_buf(olo, &b[6], 0, "lo") || get_buf(ohi, &b[7], 0, "hi") || get_buf(oto, &b[8], 1, "t_out") ||
+        get_buf(ovo, &b[9], 1, "v_out") || get_buf(ore, &b[10], 0, "reach") || model_from(&b[0], &m) ||
+        basis_from(&b[1], &bs) ||
+        contacts_from(&b[3], &m, &c))
+        goto fail;
+    size_t count = LEN(b[6]), size = (size_t)fb_state_size(&m);
+    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs.N, m.npairs) || LEN(b[4]) != size ||
+        LEN(b[5]) != size || LEN(b[7]) != count || LEN(b[8]) != count || LEN(b[9]) != count || LEN(b[10]) != count ||
+        column >= FB_NCOLS || column < -m.npairs) {
+        PyErr_SetString(PyExc_ValueError, "column_max: bad column or array sizes");
+        goto fail;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    fb_column_max(&m, &bs, PTR(b[2]), nrec, &c, t0, t1, PTR(b[4]), PTR(b[5]), column, sign, PTR(b[6]), PTR(b[7]),
+                  PTR(b[10]), floor, (int)count, xtol, PTR(b[8]), PTR(b[9]));
+    Py_END_ALLOW_THREADS
+    release(b, 11);
+    Py_RETURN_NONE;
+fail:
+    release(b, 11);
+    return NULL;
+}
+
+/* moments(theta) -> (Cm_0..Cm_3, Sm_0..Sm_3) of propagation.c (for the tests) */
+PyObject *py_moments(PyObject *self, PyObject *args) {
+    double th, Cm[FB_P], Sm[FB_P];
+    if (!PyArg_ParseTuple(args, "d", &th)) return NULL;
+    fb_moments(th, Cm, Sm);
+    return Py_BuildValue("(dddd)(dddd)", Cm[0], Cm[1], Cm[2], Cm[3], Sm[0], Sm[1], Sm[2], Sm[3]);
+}
+
+/* weights(w, h, s) -> (C, SW, WS, RE (4), RV (4)) of one mode at the fraction s of a step h (for the tests) */
+PyObject *py_weights(PyObject *self, PyObject *args) {
+    double w, h, s;
+    if (!PyArg_ParseTuple(args, "ddd", &w, &h, &s)) return NULL;
+    fb_weight W;
+    fb_weights(w, h, s, &W);
+    return Py_BuildValue("ddd(dddd)(dddd)", W.C, W.SW, W.WS, W.RE[0], W.RE[1], W.RE[2], W.RE[3], W.RV[0], W.RV[1],
+                         W.RV[2], W.RV[3]);
+}
+
+/* nodes() -> the Gauss nodes of the collocation on (0, 1) */
+PyObject *py_nodes(PyObject *self, PyObject *args) {
+    const fb_tables *t = fb_gauss();
+    return Py_BuildValue("dddd", t->c[0], t->c[1], t->c[2], t->c[3]);
+}
+
+PyObject *py_sizes(PyObject *self, PyObject *args) {
+    int N, S;
+    if (!PyArg_ParseTuple(args, "ii", &N, &S)) return NULL;
+    return Py_BuildValue("iiiii", fb_record_size(N, S), fb_state_buffer_size(N, S), FB_P, FB_NCOLS, FB_PAIR_COLS);
+}
