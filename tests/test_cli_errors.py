@@ -305,3 +305,22 @@ def test_a_thick_beam_runs_with_one_warning_line():
     assert r.returncode == 0, r.stderr
     assert r.stderr.splitlines() == [r.stderr.strip()] and r.stderr.startswith("warning: beam.radius: r/L = 0.07143")
     assert '"status": "success"' in r.stdout
+
+
+FREE_BAR = Path(__file__).resolve().parent / "validation" / "data" / "free-bar-drop.toml"
+
+
+@pytest.mark.parametrize(
+    ("args", "field", "fragment"),
+    [
+        (("--set", "drive.kind=torque", "--set", "drive.torque=1"), "drive.kind", "no joint to drive"),
+        (("--set", "initial.kind=state", "--set", "initial.position=[0, 0.001]"), "obstacle.centre", "inside"),
+        (("--method", "ccm"), "joint.kind", "'ccm'"),
+        (("--method", "fem"), "joint.kind", "'fem'"),
+    ],
+)
+def test_what_a_free_beam_refuses(args, field, fragment):
+    """A free beam (joint.kind = "free"): a drive torque, a start inside the floor, the methods that do not model it
+    yet -- one line naming the field, exit 2."""
+    r = flexbeam("run", str(FREE_BAR), "--json", *args)
+    assert_one_line_error(r, field, fragment)

@@ -8,13 +8,14 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .errors import ParameterError
+from .errors import ModelError, ParameterError
 from .integrate.loop import PhaseMethod, RunResult, Stop, run_phases
 from .integrate.modal import ModalStepper
 from .memory import check as check_memory
 from .methods.base import ImpactMethod
 from .methods.ccfm import CCFM
 from .model.clearance import penetrations
+from .model.joints import JOINTS
 from .model.system import BeamSystem
 from .parameters.case import Case
 from .parameters.io import dump_case
@@ -61,7 +62,9 @@ def check_start(system: BeamSystem, case: Case, y: np.ndarray) -> None:
                 f"contact point at x = {pair.position:g} m); move the obstacle or the initial state"
             )
     theta, _, q, _ = system.split(0.0, y)
-    for p in penetrations(system.beam, case.beam.surface_offset, theta, q, system.contact.obstacles):
+    origin = system.joint.origin(0.0, y, system.n)
+    at = None if origin is None else tuple(origin[0])
+    for p in penetrations(system.beam, case.beam.surface_offset, theta, q, system.contact.obstacles, at):
         if p.depth > START_INSIDE:
             raise ParameterError(
                 f"{_obstacle_field(p.obstacle)}.centre: the beam starts {p.depth:.3g} m inside this obstacle, deepest "
@@ -102,6 +105,7 @@ def simulate(
     ``solver.memory_limit`` is refused with a :class:`~flexbeam.errors.ParameterError`.
     """
     check_method(method)  # an unknown method is named before anything else
+    check_joint_method(case, method)
     check_memory(case, method, outputs)
     if method == "fem":
         if case.obstacle.support.compliant:
@@ -120,6 +124,17 @@ def simulate(
     stepper = make_stepper(case, method, system)
     run = run_phases(impact, stepper, y0, case.solver.t_end, progress)
     return collect(run, impact, system, case, info, stepper)
+
+
+def check_joint_method(case: Case, method: str) -> None:
+    """A one-line ModelError naming ``joint.kind`` when the case's joint kind does not support ``method`` yet
+    (:attr:`flexbeam.model.joints.Joint.unsupported_methods`)."""
+    kind = case.joint.kind
+    if method in JOINTS[kind].unsupported_methods:
+        allowed = [m for m in METHOD_NAMES if m not in JOINTS[kind].unsupported_methods]
+        raise ModelError(
+            f"joint.kind: method '{method}' does not model a {kind!r} joint yet; use one of {', '.join(allowed)}"
+        )
 
 
 def make_stepper(case: Case, method: str, system: BeamSystem):

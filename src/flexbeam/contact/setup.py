@@ -162,13 +162,15 @@ def _outward(case: Case, side: str) -> np.ndarray:
 
 
 def place_obstacle(case: Case, position: float, offset: float) -> ObstacleGeometry:
-    """Obstacle 0's arrays; without a centre it touches P (beam straight, hub at ``initial.impact_angle``)."""
+    """Obstacle 0's arrays; without a centre it touches P (beam straight, hub at ``initial.impact_angle``; a free
+    beam's centre of mass at the origin)."""
     ob = case.obstacle
     th = case.initial.impact_angle
     s, c = nm.sin(th), nm.cos(th)
     e1 = np.array([c, s])
     e2 = np.array([-s, c])
-    r_P = (case.hub.radius + position) * e1 - offset * e2
+    root = -0.5 * case.beam.length if case.joint.kind == "free" else case.hub.radius  # x = 0 from the frame origin
+    r_P = (root + position) * e1 - offset * e2
     towards = _outward(case, case.contact.side)
     if ob.centre is not None:
         centre = np.array(ob.centre, float)

@@ -39,7 +39,7 @@ import numpy as np
 
 from .. import numerics as nm
 from ..parameters.case import Case
-from .modes import ModeShapes, mode_shapes
+from .modes import FreeFreeShapes, ModeShapes, free_free_shapes, mode_shapes
 
 
 @dataclass(frozen=True)
@@ -74,7 +74,7 @@ class ModalBeam:
     bending_stiffness: float
     hub_radius: float
     hub_inertia: float
-    shapes: ModeShapes
+    shapes: ModeShapes | FreeFreeShapes
     J0: float
     m1: float
     Mff: np.ndarray
@@ -85,6 +85,9 @@ class ModalBeam:
     G: np.ndarray
     #: hub slope d = Psi'(0) [1/m] (zero in the hub frame): hub angle = theta + d q
     d: np.ndarray
+    #: H(0), where the foreshortening's H(x) starts: r_h d^T d when None (a beam on a hub); -H_bar for a free beam,
+    #: whose u_x is measured from its mean (frame ``"mean-axis"``)
+    H_root: np.ndarray | None = None
     #: points already built by :meth:`point` (x, offset) -> PointData
     _points: dict = field(default_factory=dict, compare=False, repr=False)
     #: station tables already built by :func:`station_table`, by surface offset
@@ -127,7 +130,7 @@ class ModalBeam:
         dphi = self.shapes(np.array([x]), 1)[0]
         H = np.zeros((self.n, self.n))
         if self.first_order and self.n:
-            H = self.hub_radius * np.outer(self.d, self.d)
+            H = self.hub_radius * np.outer(self.d, self.d) if self.H_root is None else self.H_root.copy()
             if x > 0.0:
                 xg, wg = _gauss(0.0, x, _auto_points(self.n, 0))
                 d1 = self.shapes(xg, 1)
@@ -178,7 +181,7 @@ def _station_table(beam: ModalBeam, surface: float) -> StationTable:
     phi, dphi, ddphi = (np.ascontiguousarray(beam.shapes(x, k)) for k in (0, 1, 2))
     H = np.zeros((M, n, n))
     if beam.first_order:
-        acc = beam.hub_radius * np.outer(beam.d, beam.d)
+        acc = beam.hub_radius * np.outer(beam.d, beam.d) if beam.H_root is None else beam.H_root.copy()
         H[0] = acc
         for j in range(1, M):
             xg, wg = _gauss(x[j - 1], x[j], 24)
@@ -200,10 +203,13 @@ def _gauss(a: float, b: float, m: int) -> tuple[np.ndarray, np.ndarray]:
     return 0.5 * (b - a) * xi + 0.5 * (b + a), 0.5 * (b - a) * wi
 
 
-def case_shapes(case: Case) -> ModeShapes:
-    """Shape functions of ``case``'s frame: clamped-free (hub frame) or hub + beam eigenmodes (system)."""
+def case_shapes(case: Case) -> ModeShapes | FreeFreeShapes:
+    """Shape functions of ``case``'s frame: clamped-free (hub frame), hub + beam eigenmodes (system) or free-free
+    (a free beam's mean-axis frame)."""
     beam, hub = case.beam, case.hub
     L = beam.length
+    if case.frame == "mean-axis":
+        return free_free_shapes(case.model.modes, L)
     if case.frame == "hub":
         return mode_shapes(case.model.modes, L)
     inertia = hub.inertia / (beam.line_density * (L * L * L))
@@ -232,6 +238,8 @@ def _build_modal_beam(case: Case) -> ModalBeam:
     mode's second derivatives to machine precision (checked in the unit tests
     against K_ff = EI beta_k^4 L delta_kl and M_ff = mu L I).
     """
+    if case.frame == "mean-axis":
+        return _build_free_beam(case)
     beam, hub, model = case.beam, case.hub, case.model
     n, L = model.modes, beam.length
     mu, EI, rh = beam.line_density, beam.bending_stiffness, hub.radius
@@ -277,6 +285,58 @@ def _build_modal_beam(case: Case) -> ModalBeam:
         D=sym(D),
         G=sym(G),
         d=d,
+    )
+
+
+def _build_free_beam(case: Case) -> ModalBeam:
+    """The modal integrals of a free beam (``joint.kind = "free"``): the frame at the centre of mass G, the
+    free-free modes, the foreshortening measured from its mean (``docs/formulation.md``, *A free-flying beam*).
+
+    With the base b(x) = x - L/2 (the hub radius r_h = -L/2 in the point tables) and Gauss-Legendre quadrature:
+
+        J_G = int mu (x - L/2)^2 dx (= mu L^3 / 12),   D = int mu (x - L/2) H dx = 1/2 int mu x (L - x) Psi'^T Psi' dx,
+        H(x) = int_0^x Psi'^T Psi' dxi - H_bar,   H_bar = (1/L) int (L - x) Psi'^T Psi' dx,
+
+    and the values the modes' orthogonality fixes exactly: m_1 = int mu (x - L/2) = 0, M_ff = mu L I,
+    K_ff = EI L diag(beta^4), s_f = int mu Psi = 0, m_tf = int mu (x - L/2) Psi = 0 (the mean-axis conditions; the
+    unit tests check the quadrature against them), G = int mu H = 0, and no hub (d = 0, J_h = 0).  The zeroth-order
+    model sets D = H = 0.
+    """
+    beam, model = case.beam, case.model
+    n, L = model.modes, beam.length
+    mu, EI = beam.line_density, beam.bending_stiffness
+    shapes = free_free_shapes(n, L)
+    x, w = _gauss(0.0, L, _auto_points(n, model.quadrature_points))
+    b = x - 0.5 * L
+    J0 = nm.fsum(w * mu * (b * b))
+    if model.coupling == "first-order" and n:
+        d1 = shapes(x, 1)
+        D = nm.gram(d1, w * (0.5 * mu * x * (L - x)))
+        H_root = -nm.gram(d1, w * ((L - x) / L))
+    else:
+        D = np.zeros((n, n))
+        H_root = np.zeros((n, n))
+    sym = lambda a: 0.5 * (a + a.T)  # noqa: E731 - remove round-off asymmetry
+    return ModalBeam(
+        n=n,
+        coupling=model.coupling,
+        frame="mean-axis",
+        length=L,
+        line_density=mu,
+        bending_stiffness=EI,
+        hub_radius=-0.5 * L,
+        hub_inertia=0.0,
+        shapes=shapes,
+        J0=J0,
+        m1=0.0,
+        Mff=mu * L * np.eye(n),
+        Kff=EI * L * np.diag(nm.integer_power(shapes.roots / L, 4)),
+        mtf=np.zeros(n),
+        sf=np.zeros(n),
+        D=sym(D),
+        G=np.zeros((n, n)),
+        d=np.zeros(n),
+        H_root=sym(H_root),
     )
 
 

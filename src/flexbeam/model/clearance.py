@@ -6,7 +6,8 @@ centre line of the modal model in the body frame (``docs/formulation.md``),
 
     rho(x) = (r_h + x + u_x(x), Psi(x) q),   u_x(x) = -1/2 q^T H(x) q = -1/2 [r_h (d q)^2 + int_0^x (Psi' q)^2 dxi]
 
-(u_x = 0 in the zeroth-order model), and n(x) = (-sin a, cos a) the section normal turned by the slope a = Psi'(x) q,
+(u_x = 0 in the zeroth-order model; a free beam's frame sits at its centre of mass, r_h = -L/2, and its H starts at
+-H_bar instead of r_h d^T d), and n(x) = (-sin a, cos a) the section normal turned by the slope a = Psi'(x) q,
 as the compiled point kinematics place a surface point (``kernels/src/model.c``, ``fb_point_kinematics``).  Its ends
 are the flat faces at x = 0 and x = L (the tip's end face is where a ``side = "centre"`` contact point at x = L lies).
 For a sphere in the plane of motion the nearest point of a circular cylinder lies in that plane, so this strip is
@@ -73,30 +74,43 @@ def centre_line(beam: ModalBeam, q: np.ndarray, x: np.ndarray) -> tuple[np.ndarr
         slope = (beam.shapes(pts, 1) @ q).reshape(lo.size, _GAUSS_POINTS)
         parts = 0.5 * (hi - lo) * ((slope * slope) @ wi)
         integral = np.concatenate(([0.0], np.cumsum(parts)))
-        u = -0.5 * (beam.hub_radius * float(beam.d @ q) ** 2 + integral)
+        if beam.H_root is None:
+            u = -0.5 * (beam.hub_radius * float(beam.d @ q) ** 2 + integral)
+        else:  # a free beam: H(x) = H(0) + int_0^x Psi'^T Psi', H(0) = -H_bar
+            u = -0.5 * (float(q @ beam.H_root @ q) + integral)
     return base + u, w, a
 
 
-def outline(beam: ModalBeam, surface: float, theta: float, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def outline(
+    beam: ModalBeam, surface: float, theta: float, q: np.ndarray, origin: tuple[float, float] | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(x, lower, upper): the sections' material coordinates and their lower (c below the centre line) and upper
-    ends in the plane of motion (rows of points), for the frame angle ``theta`` and modal coordinates ``q``."""
+    ends in the plane of motion (rows of points), for the frame angle ``theta`` and modal coordinates ``q``; the
+    frame's ``origin`` (a free beam's centre of mass; default: O)."""
     x = stations(beam)
     rx, ry, a = centre_line(beam, q, x)
     nx, ny = -np.sin(a), np.cos(a)
     ct, st = math.cos(theta), math.sin(theta)
 
     def world(bx: np.ndarray, by: np.ndarray) -> np.ndarray:
-        return np.column_stack((ct * bx - st * by, st * bx + ct * by))
+        pts = np.column_stack((ct * bx - st * by, st * bx + ct * by))
+        return pts if origin is None else pts + np.asarray(origin, float)[None, :]
 
     return x, world(rx - surface * nx, ry - surface * ny), world(rx + surface * nx, ry + surface * ny)
 
 
 def penetrations(
-    beam: ModalBeam, surface: float, theta: float, q: np.ndarray, obstacles: tuple[ObstacleGeometry, ...]
+    beam: ModalBeam,
+    surface: float,
+    theta: float,
+    q: np.ndarray,
+    obstacles: tuple[ObstacleGeometry, ...],
+    origin: tuple[float, float] | None = None,
 ) -> list[Penetration]:
     """The deepest penetration of the body (frame angle ``theta``, modal coordinates ``q``, surface offset
-    ``surface``) into each of the ``obstacles`` at their rest positions (see the module docstring)."""
-    x, lower, upper = outline(beam, surface, theta, q)
+    ``surface``, the frame's ``origin``: default O) into each of the ``obstacles`` at their rest positions (see the
+    module docstring)."""
+    x, lower, upper = outline(beam, surface, theta, q, origin)
     return [_penetration(k, ob, x, lower, upper) for k, ob in enumerate(obstacles)]
 
 

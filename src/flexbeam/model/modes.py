@@ -249,6 +249,106 @@ def cantilever_modes(x: np.ndarray, length: float, n: int, derivative: int = 0) 
     return mode_shapes(n, float(length))(x, derivative)
 
 
+def free_free_roots(n: int) -> np.ndarray:
+    """First ``n`` flexible roots beta_k L of cos z cosh z = 1 (the free-free beam: 4.7300, 7.8532, 10.9956, ...).
+
+    The O(1) characteristic function f(z) = cos z (1 + E^2) - 2 E with E = e^-z (cos z cosh z - 1 scaled by
+    2 e^-z) has its k-th root within 0.3 of (k + 1/2) pi, where it is bracketed and refined (Illinois).
+    """
+    out = np.empty(n)
+
+    def f(z: float) -> float:
+        E = nm.exp(-z)
+        return nm.cos(z) * (1.0 + E * E) - 2.0 * E
+
+    for k in range(1, n + 1):
+        lo, hi = (k + 0.5) * math.pi - 0.3, (k + 0.5) * math.pi + 0.3
+        out[k - 1] = _illinois(f, lo, hi, f(lo), f(hi))
+    return out
+
+
+@dataclass(frozen=True)
+class FreeFreeShapes:
+    """``n`` free-free bending eigenfunctions of a uniform beam of ``length`` L (no hub, no joint), in the stable
+    form with xi = x/L, z = beta L, E = e^-z (every exponential with a non-positive argument):
+
+        Psi(xi) = s [cos z xi - sigma sin z xi + 1/2 (1 + sigma) e^(-z xi) + B e^(-z (1 - xi))],
+        sigma = (1 + E^2 - 2 E cos z) / (1 - E^2 - 2 E sin z),   B = (cos z - sin z - E) / (1 - E^2 - 2 E sin z),
+
+    the classical cosh z xi + cos z xi - sigma (sinh z xi + sin z xi) rewritten; s normalises int_0^L Psi^2 dx = L
+    (so |Psi(0)| = |Psi(L)| = 2), with Psi(0) > 0.  They are orthogonal to each other and to the rigid translation
+    and rotation: int Psi dx = int (x - L/2) Psi dx = 0 (the mean-axis conditions of the free beam's frame).
+
+    Attributes
+    ----------
+    length
+        Beam length L [m].
+    roots
+        beta_k L (n), roots of cos z cosh z = 1.
+    sigma, B, scale
+        Constants of the stable form, per mode.
+    """
+
+    length: float
+    roots: np.ndarray
+    sigma: np.ndarray
+    B: np.ndarray
+    scale: np.ndarray
+
+    @property
+    def n(self) -> int:
+        return int(self.roots.size)
+
+    @property
+    def clamped(self) -> bool:
+        return False
+
+    def __call__(self, x: np.ndarray, derivative: int = 0) -> np.ndarray:
+        """Shapes (or their x-derivatives 0..3) at points ``x`` [m]: ``out[i, k] = psi_k^(derivative)(x_i)``."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        if self.n == 0:
+            return np.empty((x.size, 0))
+        xi = (x / self.length)[:, None]
+        z = self.roots[None, :]
+        u = _free_free(z, self.sigma[None, :], self.B[None, :], xi, derivative)
+        return nm.integer_power(z / self.length, derivative) * self.scale[None, :] * u
+
+
+def _free_free(z, sigma, B, xi, derivative: int):
+    """The stable form's bracket (see :class:`FreeFreeShapes`) or its derivative by z xi."""
+    co, si = nm.cos(z * xi), nm.sin(z * xi)
+    e1, e2 = nm.exp(-z * xi), nm.exp(-z * (1.0 - xi))
+    a = 0.5 * (1.0 + sigma)
+    if derivative == 0:
+        return co - sigma * si + a * e1 + B * e2
+    if derivative == 1:
+        return -si - sigma * co - a * e1 + B * e2
+    if derivative == 2:
+        return -co + sigma * si + a * e1 + B * e2
+    if derivative == 3:
+        return si + sigma * co - a * e1 + B * e2
+    raise ValueError("derivative: must be 0, 1, 2 or 3")
+
+
+@functools.cache
+def free_free_shapes(n: int, length: float) -> FreeFreeShapes:
+    """The first ``n`` free-free eigenfunctions of a beam of ``length`` L (:class:`FreeFreeShapes`)."""
+    roots = free_free_roots(n)
+    E = nm.exp(-roots)
+    den = 1.0 - E * E - 2.0 * E * nm.sin(roots)
+    sigma = (1.0 + E * E - 2.0 * E * nm.cos(roots)) / den
+    B = (nm.cos(roots) - nm.sin(roots) - E) / den
+    xs, ws = nm.leggauss(8 * n + 48)
+    xi, wi = 0.5 * (xs + 1.0), 0.5 * ws
+    scale = np.empty(n)
+    for k in range(n):
+        u = _free_free(roots[k], sigma[k], B[k], xi, 0)
+        norm2 = nm.fsum(wi * u * u)  # int_0^1 u^2 dxi
+        root = _free_free(roots[k], sigma[k], B[k], np.zeros(1), 0)[0]
+        scale[k] = (1.0 if root >= 0.0 else -1.0) / math.sqrt(norm2)
+    return FreeFreeShapes(float(length), roots, sigma, B, scale)
+
+
 def pinned_free_roots(n: int) -> np.ndarray:
     """First ``n`` positive roots of tan z = tanh z (the flexible pinned-free modes: 3.9266, 7.0686, ...).
 

@@ -45,7 +45,10 @@ class Case(Section):
 
     @property
     def frame(self) -> str:
-        """The body frame this case uses: ``model.frame`` with ``"auto"`` resolved by the drive kind."""
+        """The body frame this case uses: ``model.frame`` with ``"auto"`` resolved by the drive kind; a free beam's
+        is ``"mean-axis"`` (the frame at its centre of mass, free-free modes)."""
+        if self.joint.kind == "free":
+            return "mean-axis"
         if self.model.frame != "auto":
             return self.model.frame
         return "hub" if self.drive.kind == "prescribed" else "system"
@@ -69,6 +72,20 @@ class Case(Section):
         for i, x in enumerate(self.output.measuring_points):
             if x > L:
                 raise ValueError(f"output.measuring_points[{i}]: must lie on the beam, 0 <= x <= {L:g} m (got {x:g})")
+        init = self.initial
+        for name in ("modal_displacement", "modal_velocity"):
+            values = getattr(init, name)
+            if len(values) > self.model.modes:
+                raise ValueError(f"initial.{name}: {len(values)} values for model.modes = {self.model.modes} modes")
+            if values and init.kind != "state":
+                raise ValueError(f"initial.{name}: only for initial.kind = 'state' (got '{init.kind}')")
+        if self.joint.kind == "free":
+            self._free_beam()
+        elif init.position != (0.0, 0.0) or init.velocity != (0.0, 0.0):
+            name = "position" if init.position != (0.0, 0.0) else "velocity"
+            raise ValueError(
+                f"initial.{name}: only for a free beam (joint.kind = 'free'); a revolute joint holds the beam at O"
+            )
         if self.model.frame == "system" and self.drive.kind == "prescribed":
             raise ValueError(
                 "model.frame: 'system' needs a free or torque-driven joint; with drive.kind = 'prescribed' the "
@@ -106,6 +123,30 @@ class Case(Section):
                     f"is a line contact, not a Hertzian point contact)"
                 )
         return self
+
+    def _free_beam(self) -> None:
+        """What a free beam (``joint.kind = "free"``) does not have, or does not support yet: one line naming the
+        field."""
+        if self.drive.kind != "free":
+            raise ValueError(
+                f"drive.kind: a free beam (joint.kind = 'free') has no joint to drive; got '{self.drive.kind}' "
+                "(leave drive.kind = 'free')"
+            )
+        if self.hub.radius != 0.0 or self.hub.inertia != 0.0:
+            name = "radius" if self.hub.radius != 0.0 else "inertia"
+            raise ValueError(f"hub.{name}: a free beam (joint.kind = 'free') has no hub; leave it 0")
+        if self.model.frame != "auto":
+            raise ValueError(
+                f"model.frame: a free beam (joint.kind = 'free') uses the frame at its centre of mass with the "
+                f"free-free modes; leave model.frame = 'auto' (got '{self.model.frame}')"
+            )
+        if self.model.modes > 62:
+            raise ValueError(f"model.modes: at most 62 for a free beam (joint.kind = 'free'; got {self.model.modes})")
+        if self.initial.kind == "release":
+            raise ValueError(
+                "initial.kind: 'release' needs a joint to hold the beam; a free beam (joint.kind = 'free') starts "
+                "with 'state' or 'impact'"
+            )
 
 
 __all__ = [

@@ -14,9 +14,16 @@ class Joint(Section):
 
     * ``revolute``: a revolute joint at the fixed point O (the origin); the hub of ``[hub]`` turns about it, as
       ``[drive]`` says.
+    * ``free``: no joint, a free-flying beam: its centre of mass (x_G, y_G) and angle theta are free coordinates
+      under gravity, the frame at the centre of mass with the free-free bending modes (``docs/formulation.md``, *A
+      free-flying beam*); no hub and no drive.  Its start: ``[initial]`` ``state`` (``position``, ``velocity``,
+      ``angle``, ``rate``) or ``impact``.
     """
 
-    kind: Literal["revolute"] = Field("revolute", description="joint kind: 'revolute' (a revolute joint at O)")
+    kind: Literal["revolute", "free"] = Field(
+        "revolute",
+        description="joint kind: 'revolute' (a revolute joint at O) or 'free' (no joint: a free-flying beam)",
+    )
 
 
 class Drive(Section):

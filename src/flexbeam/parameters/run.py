@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from .fields import MAX_RATE, Angle, Bounded, NonNegative, Positive, Rate, Section
+from .fields import MAX_RATE, Angle, Bounded, Finite, NonNegative, Positive, Rate, Section
 
 
 class Initial(Section):
@@ -18,7 +18,12 @@ class Initial(Section):
     * ``release``: start from rest, beam straight, at ``release_angle``; if that is
       omitted it is solved for so that P reaches the obstacle at ``impact_velocity``.
     * ``state``: theta = ``angle``, theta' = ``rate``, beam straight and at rest in the
-      floating frame.
+      floating frame (or vibrating: ``modal_displacement``, ``modal_velocity``).
+
+    A free beam (``joint.kind = "free"``) starts with ``state`` -- its centre of mass at ``position`` moving at
+    ``velocity``, its frame at ``angle`` turning at ``rate`` -- or ``impact``: at ``impact_angle``, translating
+    without spin so that P (the first pair's contact point) touches obstacle 0 with the normal velocity
+    ``impact_velocity``.  ``release`` needs a joint to hold the beam.
     """
 
     kind: Literal["impact", "release", "state"] = "impact"
@@ -31,6 +36,20 @@ class Initial(Section):
     release_angle: Angle | None = Field(None, description="release hub angle [rad]")
     angle: Angle = Field(0.0, description="initial hub angle theta_0 [rad] (kind = state)")
     rate: Rate = Field(0.0, description="initial hub rate theta'_0 [rad/s] (kind = state)")
+    position: tuple[Finite, Finite] = Field(
+        (0.0, 0.0), description="initial centre of mass (x_G, y_G) [m] (joint.kind = free, kind = state)"
+    )
+    velocity: tuple[Finite, Finite] = Field(
+        (0.0, 0.0), description="initial velocity of the centre of mass [m/s] (joint.kind = free, kind = state)"
+    )
+    modal_displacement: list[Finite] = Field(
+        default_factory=list,
+        description="initial modal coordinates q_1, q_2, ... [m] (kind = state; the others 0)",
+    )
+    modal_velocity: list[Finite] = Field(
+        default_factory=list,
+        description="initial modal velocities q'_1, q'_2, ... [m/s] (kind = state; the others 0)",
+    )
 
     def impact_rate(self, J_theta: float, velocity: float | None = None) -> float:
         """The hub rate giving P the normal velocity ``velocity`` (default ``impact_velocity``) when P moves

@@ -82,7 +82,7 @@ double fb_node_tip(const fb_phase *ph, const fb_node *nd) {
     double phi, phid, s, c;
     fb_joint(m)->hub(m, &nd->frame, q, qd, &phi, &phid);
     fb_sincos(phi, &s, &c);
-    return -s * tip.r[0] + c * tip.r[1];
+    return -s * (tip.r[0] - nd->frame.R[0]) + c * (tip.r[1] - nd->frame.R[1]);
 }
 
 /* fb_node_energy, and the kinetic energy T (+ the support's) in *kinetic. */

@@ -57,7 +57,7 @@ static double probe_value(const probe_t *p, double t) {
         fb_sincos(phi, &sphi, &cphi);
         fb_kin tip = {.want_acc = 0};
         fb_point_kinematics(p->m, &p->m->points[1], &fr, q, qd, &tip, NULL);
-        return p->sign * (-sphi * tip.r[0] + cphi * tip.r[1]);
+        return p->sign * (-sphi * (tip.r[0] - fr.R[0]) + cphi * (tip.r[1] - fr.R[1]));
     }
     fb_outputs(p->m, &t, y, 1, p->c, cols, mv, pc);
     double v = p->column >= 0 ? cols[p->column] : pc[(-1 - p->column) * FB_PAIR_COLS + 2];

@@ -6,19 +6,22 @@
  * of the generalised forces, the energies, how a point's motion in the frame is placed in the plane, and what the
  * drive does (its torque, the work it does).
  *
- * One kind today: FB_JOINT_REVOLUTE, a revolute joint at a fixed point O (joint_revolute.c: free, torque-driven or
- * with theta(t) prescribed).  joint.c dispatches on m->joint: it is the only place in the kernels that knows the
+ * Two kinds: FB_JOINT_REVOLUTE, a revolute joint at a fixed point O (joint_revolute.c: free, torque-driven or
+ * with theta(t) prescribed), and FB_JOINT_FREE, a free-flying beam whose frame sits at its centre of mass
+ * (joint_free.c).  joint.c dispatches on m->joint: it is the only place in the kernels that knows the
  * kinds.  Adding a kind: its FB_JOINT_* code here, its joint_<kind>.c with the functions of fb_joint_ops, one line
  * in joint.c's table, and the Python side (flexbeam/model/joints/, docs/architecture.md, "Adding a joint kind").
  */
 #ifndef FLEXBEAM_JOINT_H
 #define FLEXBEAM_JOINT_H
 
-enum { FB_JOINT_REVOLUTE = 0, FB_JOINT_KINDS = 1 };
+enum { FB_JOINT_REVOLUTE = 0, FB_JOINT_FREE = 1, FB_JOINT_KINDS = 2 };
 
-/* The floating frame's motion: its angle theta about the fixed axis and its rates. */
+/* The floating frame's motion: its angle theta and its rates; its origin R and the origin's velocity R' in the
+ * plane (zero for a frame turning about the fixed point O; the centre of mass G of a free beam). */
 typedef struct {
     double th, thd, thdd;
+    double R[2], Rd[2];
 } fb_frame;
 
 /* A point's motion relative to the floating frame, in its axes: position rho, velocity rho' and the velocity-product
@@ -83,5 +86,6 @@ typedef struct {
 const fb_joint_ops *fb_joint(const struct fb_model_s *m);
 
 extern const fb_joint_ops fb_joint_revolute;
+extern const fb_joint_ops fb_joint_free;
 
 #endif

@@ -60,6 +60,7 @@ static void rev_motion(const fb_model *m, double t, double *th, double *thd, dou
 
 static void rev_split(const fb_model *m, double t, const double *z, const double *zd, fb_frame *f, const double **q,
                   const double **qd) {
+    f->R[0] = f->R[1] = f->Rd[0] = f->Rd[1] = 0.0; /* the frame turns about O, the origin */
     if (m->ngiven) {
         rev_motion(m, t, &f->th, &f->thd, &f->thdd);
         *q = z;

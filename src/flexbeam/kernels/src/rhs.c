@@ -251,7 +251,7 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
         out[9] = y[size - 2];
         out[10] = y[size - 1];
         out[11] = torque;
-        out[FB_COL_TIP] = e2x * tip.r[0] + e2y * tip.r[1];
+        out[FB_COL_TIP] = e2x * (tip.r[0] - fr.R[0]) + e2y * (tip.r[1] - fr.R[1]);
         out[13] = s;
         out[14] = compliant ? -(o->ks * s + o->cs * sd) : 0.0;
         for (int k = 0; k < S; k++) {

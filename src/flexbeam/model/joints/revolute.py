@@ -34,6 +34,15 @@ DRIVES = {"free": 0, "torque": 1, "prescribed": 2}
 PROFILES = {"constant-rate": 0, "kane-spinup": 1}
 
 
+def initial_modal(case: Case, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """(q, q') of ``initial.modal_displacement`` and ``initial.modal_velocity``, the modes they leave out at 0."""
+    q, qd = np.zeros(n), np.zeros(n)
+    init = case.initial
+    q[: len(init.modal_displacement)] = init.modal_displacement
+    qd[: len(init.modal_velocity)] = init.modal_velocity
+    return q, qd
+
+
 def initial_angle_guess(case: Case) -> float:
     """The hub angle a prescribed drive starts from: the initial state's angle."""
     init = case.initial
@@ -105,7 +114,8 @@ class RevoluteJoint(Joint):
             th, thd, _ = self.drive.motion(0.0)
             return system.state(th, thd), {}
         if init.kind == "state":
-            return system.state(init.angle, init.rate), {}
+            q, qd = initial_modal(case, system.n)
+            return system.state(init.angle, init.rate, q, qd), {}
         if init.kind == "impact":
             y = system.state(init.impact_angle, 0.0)
             J_theta = system.gap(0.0, y)[3][0]

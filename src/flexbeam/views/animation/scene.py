@@ -91,6 +91,11 @@ class Scene:
         t = history.time
         if t.size < 2:
             raise ParameterError("result: fewer than two samples, nothing to animate")
+        if history.case.joint.kind != "revolute":
+            raise ModelError(
+                f"joint.kind: the animation draws a beam on a revolute joint, not {history.case.joint.kind!r} (a free "
+                "beam's animation is not implemented yet)"
+            )
         system = BeamSystem.from_case(history.case)
         beam = system.beam
         if history.q.shape[1] != beam.n:
