@@ -56,13 +56,14 @@ def _run_progress(t_end: float, label: str) -> StderrProgress:
     return StderrProgress(label, "s", total=t_end)
 
 
-def _simulate(case, method: str, outputs: bool = False):
-    """Run a case (``outputs``: its output samples will be written or drawn, so the memory estimate counts them)."""
+def _simulate(case, method: str, outputs: bool = False, stream: Path | None = None):
+    """Run a case (``outputs``: its output samples will be written or drawn, so the memory estimate counts them;
+    ``stream``: the result file it writes as it goes)."""
     from .simulation import simulate
 
     progress = _run_progress(case.solver.t_end, f"{case.name} [{method}]")
     try:
-        return simulate(case, method, progress=progress, outputs=outputs)
+        return simulate(case, method, progress=progress, outputs=outputs, stream=stream)
     finally:
         progress.close()
 
@@ -74,10 +75,19 @@ def run(
     set_: SetOpt = None,
     out: OutOpt = None,
     json_: JsonOpt = False,
+    stream: Annotated[
+        bool,
+        typer.Option(
+            "--stream",
+            help="write OUT/result.nc while the run goes on, in a memory that does not grow with the run (needs --out)",
+        ),
+    ] = False,
 ) -> None:
     """Simulate one case and print its metrics."""
+    if stream and out is None:
+        raise ParameterError("--stream: needs --out DIR, where the run writes DIR/result.nc as it goes")
     c = _load(case, set_)
-    sol = _simulate(c, method, outputs=out is not None)
+    sol = _simulate(c, method, outputs=out is not None, stream=out / "result.nc" if stream and out else None)
     metrics = sol.metrics()
     if out is not None:
         from .views.report import write_run_outputs

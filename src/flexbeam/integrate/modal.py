@@ -39,6 +39,11 @@ _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 
 #: floats at the end of a step record that summarise the step (FB_RECORD_SUMMARY in kernels/src/phase.h): the total
 #: and kinetic energy at its end, the tip deflection at its FB_P Gauss nodes
 SUMMARY = 6
+#: the largest block of step records the kernel fills in one call (the blocks grow from 64 by doubling); a stepper
+#: that hands on (a streamed run) hands a phase on in parts of at least this many records (13 MB for the seed case).
+#: The kernel resumes a phase from its state buffer after each block: CCFM and IMM take the steps of one long call,
+#: CCM's do not quite (its constraint scaling restarts), so every run caps its blocks alike
+BLOCK_RECORDS = 16384
 
 
 @dataclass(frozen=True)
@@ -211,6 +216,9 @@ class ModalStepper:
         self.omega_rigid = self.basis.omega_rigid
         self.psi = np.diag(self.basis.Psi).copy() if self.basis.diagonal else None
         self.to_m = np.diag(self.basis.toM).copy() if self.basis.diagonal else None
+        #: set by a streamed run's loop: called with each finished part of a long phase (t0, y0, t1, y1, dense,
+        #: opens), which is then dropped (:func:`flexbeam.integrate.loop.run_phases`)
+        self.hand_on = None
 
     # state conversion between the reference layout [z, z', (s, s'), E_d, W] and modal (eta, v)
     def to_modal(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -250,16 +258,27 @@ class ModalStepper:
             event_bits=sum(_EVENT_BITS[e] for e in phase.events), contacts=phase.buffer,
         )  # fmt: skip
         info = np.zeros(_INFO_SIZE)
-        chunks = []
+        chunks: list[np.ndarray] = []
+        held = 0
+        start: tuple[float, np.ndarray] | None = None  # where the held records start, once a part was handed on
         capacity = 64
         while True:
             records = np.empty((capacity, self.record_size))
             code, nrec = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info)
             if nrec:
                 chunks.append(records[:nrec])
+                held += nrec
             if code != _ADV_FULL:
                 break
-            capacity *= 2
+            if self.hand_on is not None and held >= BLOCK_RECORDS:  # the kernel resumes from `state` as before
+                t_b = float(state[0])
+                y_b = self.from_modal(state[5 : 5 + N], state[5 + N : 5 + 2 * N], state[2], state[3])
+                t_a, y_a = start if start is not None else (float(t), np.asarray(y, float).copy())
+                part = ModalDense(self, np.ascontiguousarray(np.concatenate(chunks)))
+                chunks, held = [], 0
+                self.hand_on(t_a, y_a, t_b, y_b, part, start is None)
+                start = (t_b, y_b)
+            capacity = min(2 * capacity, BLOCK_RECORDS)
         t1 = float(state[0])
         self.h = float(state[1])
         y1 = self.from_modal(state[5 : 5 + N], state[5 + N : 5 + 2 * N], state[2], state[3])
@@ -272,4 +291,7 @@ class ModalStepper:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_STALLED:
             failure = stalled_message(phase.name, t1, float(state[1]), info)
-        return PhaseRun(t1, y1, event, dense, int(info[1]), int(info[3]), failure, int(info[4]))
+        run = PhaseRun(t1, y1, event, dense, int(info[1]), int(info[3]), failure, int(info[4]))
+        if start is not None:
+            run.t0, run.y0 = start
+        return run

@@ -90,7 +90,7 @@ class RunSource:
         sysm = self.system
         n, nz = sysm.n, sysm.nz
         counts = {True: 0, False: 0}  # on the contact spacing or not
-        fine = sysm.case.solver.contact_sample_step
+        fine = sysm.case.sample_steps()[1]
         for seg in self.segments:
             counts[seg.phase.sample_step == fine] += sample_count(seg.t0, seg.t1, seg.phase.sample_step)
         check_samples(sysm.case, sysm.pairs, counts[False], counts[True])  # the exact count, before evaluating
