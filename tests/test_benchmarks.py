@@ -77,3 +77,20 @@ def test_obstacles_benchmark_quick_prints_a_row_per_case_and_method():
     for row in rows:
         assert row["status"] == "success" and row["steps"] > 0 and row["us/step"] > 0.0
     assert all(row["x seed"] == 1.0 for row in rows if row["case"] == "seed-experiment")
+
+
+def test_long_run_benchmark_quick_streams_two_lengths():
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "long_run.py"), "--quick", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        cwd=ROOT,
+    )
+    assert r.returncode == 0, r.stderr
+    rows = json.loads(r.stdout)["rows"]
+    assert [row["t_end [s]"] for row in rows] == [0.5, 1.0]
+    for row in rows:
+        assert row["status"] == "success" and row["steps"] > 0 and row["peak RSS [MB]"] > 0
+        assert row["samples"] > row["t_end [s]"] / 1e-3  # the 1 ms grid and every phase's ends
+        assert row["file [MB]"] > 0.0 and row["estimate [MB]"] < 1000

@@ -71,6 +71,11 @@ SET_CASES = [
     ("obstacle.radius=0", "obstacle.radius", "> 0"),  # a point obstacle's gap never closes
     ("solver.sample_step=0", "solver.sample_step", "greater than 0"),
     ("solver.contact_sample_step=0", "solver.contact_sample_step", "greater than 0"),
+    # the output interval: in (0, solver.t_end]
+    ("output.interval=0", "output.interval", "must be in 0 < output.interval <= solver.t_end"),
+    ("output.interval=-1e-3", "output.interval", "must be in 0 < output.interval <= solver.t_end"),
+    ("output.interval=inf", "output.interval", "finite"),
+    ("output.interval=0.5", "output.interval", "allowed: 0 < output.interval <= solver.t_end = 0.1 s"),
     ("solver.max_step=0", "solver.max_step", "greater than 0"),
     ("solver.rtol=0", "solver.rtol", "greater than 0"),
     ("solver.fast_atol=0", "solver.fast_atol", "greater than 0"),

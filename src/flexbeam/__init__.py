@@ -34,17 +34,20 @@ from .version import __version__
 from .views import accessor as _views  # noqa: F401 - registers Solution.plot, .animate and the notebook display
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     import xarray as xr
 
     from .calibrate import Calibration
     from .results.solution import Solution
 
 
-def simulate(case: Case | str, method: str = "ccfm", **overrides: Any) -> Solution:
+def simulate(case: Case | str, method: str = "ccfm", stream: str | Path | None = None, **overrides: Any) -> Solution:
     """Simulate a case with an impact method (``"ccfm"``, ``"ccm"``, ``"imm"``).
 
     Keyword overrides use double underscores for dots:
-    ``simulate("seed-experiment", model__modes=4)``.
+    ``simulate("seed-experiment", model__modes=4)``.  ``stream``: a result file the run writes as it goes, in a
+    memory that does not grow with the run (:func:`flexbeam.simulation.simulate`).
     """
     from .simulation import simulate as _simulate
 
@@ -52,7 +55,7 @@ def simulate(case: Case | str, method: str = "ccfm", **overrides: Any) -> Soluti
         case = load_case(case, {k.replace("__", "."): v for k, v in overrides.items()})
     elif not isinstance(case, Case):
         case = load_case(case)
-    return _simulate(case, method)
+    return _simulate(case, method, stream=stream)
 
 
 def sweep(case: Case | str, **kwargs: Any) -> xr.Dataset:

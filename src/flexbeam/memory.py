@@ -37,9 +37,17 @@ The output samples are counted twice.  Before the run, the samples every run has
 of the two spacings (how long the beam stays in contact, where the fine spacing applies, only the run tells; the
 seed's 2 s hold 7.1 million samples, 5.9 GB at peak, 99 % of them in its 1.4 s of contact).  After the run, before
 they are evaluated, their exact number (:func:`check_samples`, from the phases' lengths): a run whose samples
-would not fit is refused then, naming the sample step, before anything is written.  Output intervals and
-streaming to disk, when they come, enter :func:`estimate` and :func:`check_samples`: they change the samples a run
-holds.
+would not fit is refused then, naming the sample step, before anything is written.  ``output.interval`` spaces the
+samples evenly in every phase.
+
+A run streamed to its result file (``stream``; :mod:`flexbeam.results.stream`) holds neither: the compiled
+integrator hands a long phase on in blocks of :data:`~flexbeam.integrate.modal.BLOCK_RECORDS` steps, the stream keeps
+the steps an open contact record may still need (at most :data:`~flexbeam.results.stream.WINDOW_RECORDS`, then the
+record is completed stretch by stretch) and two chunks of samples (:data:`~flexbeam.results.export.TIME_CHUNK` each)
+with one batch being evaluated.  Its estimate does not grow with ``solver.t_end``: 0.22 GB for the seed case, whose
+process peaks at 0.20, 0.26 and 0.27 GB for 10, 100 and 1000 s, ~0.11 GB of it the interpreter and its libraries
+(``benchmarks/long_run.py``).  scipy's DOP853 (the reference integrator) hands on whole phases only: a streamed run
+on it is estimated as one that is not.
 """
 
 from __future__ import annotations
@@ -71,6 +79,8 @@ SEGMENT_BYTES = 8192.0
 FE_STEP_BYTES, FE_PAIR_STEP_BYTES = 1200.0, 700.0
 #: the tolerance scaling of the step rates: (rtol_default / rtol) ** RATE_EXPONENT (measured 0.19 - 0.31)
 RATE_EXPONENT = 1.0 / 3.0
+#: a streamed run: blocks of steps held besides the kept ones (the stepper's, under 2 blocks, and the part handed on)
+STREAM_BLOCKS = 3
 
 
 @dataclass(frozen=True)
@@ -86,6 +96,8 @@ class MemoryEstimate:
     limit: float
     limit_source: str
     max_step_bound: bool = False  #: ``solver.max_step`` sets the step count
+    streamed: bool = False  #: streamed to disk: the estimate does not grow with ``t_end``
+    sample_field: str = "solver.sample_step"  #: the case field that spaces the samples counted
 
     @property
     def total(self) -> float:
@@ -93,7 +105,10 @@ class MemoryEstimate:
 
     @property
     def max_t_end(self) -> float:
-        """The ``solver.t_end`` at which the estimate reaches the limit (it grows in proportion to t_end)."""
+        """The ``solver.t_end`` at which the estimate reaches the limit (it grows in proportion to t_end; a
+        streamed run's does not)."""
+        if self.streamed:
+            return math.inf if self.total <= self.limit else 0.0
         rate = (self.records + self.samples) / self.t_end
         return max(0.0, (self.limit - self.segments) / rate) if rate > 0.0 else math.inf
 
@@ -102,11 +117,17 @@ class MemoryEstimate:
         parts = f"dense output {_size(self.records)}, phases {_size(self.segments)}"
         if self.samples:
             parts += f", output samples {_size(self.samples)}"
+        if self.streamed:
+            return (
+                f"solver.memory_limit: a streamed run holds about {_size(self.total)} in memory ({parts}) whatever "
+                f"its length, more than the limit of {_size(self.limit)} ({self.limit_source}); raise "
+                f"solver.memory_limit [B]"
+            )
         way = f"allowed here: solver.t_end <= {self.max_t_end:.3g} s"
         if self.max_step_bound:
             way += ", or a larger solver.max_step"
         if self.samples > self.records:
-            way += ", or a coarser solver.sample_step"
+            way += f", or a coarser {self.sample_field}"
         return (
             f"solver.t_end: a run of {self.t_end:g} s would hold about {_size(self.total)} in memory ({parts}), more "
             f"than the limit of {_size(self.limit)} ({self.limit_source}); {way}, or raise solver.memory_limit [B]"
@@ -132,9 +153,10 @@ def reachable(case: Case, contact: ContactSetup | None = None) -> bool:
     return False
 
 
-def estimate(case: Case, method: str = "ccfm", outputs: bool = False) -> MemoryEstimate:
+def estimate(case: Case, method: str = "ccfm", outputs: bool = False, stream: bool = False) -> MemoryEstimate:
     """The memory a run of ``case`` with ``method`` will hold (see the module docstring); with ``outputs`` its
-    output samples too (arrays, NetCDF, figures, animations).
+    output samples too (arrays, NetCDF, figures, animations); ``stream``: streamed to its result file, what the
+    stream keeps.
 
     Parameters
     ----------
@@ -145,6 +167,8 @@ def estimate(case: Case, method: str = "ccfm", outputs: bool = False) -> MemoryE
         ``"ccfm"``, ``"ccm"``, ``"imm"`` or ``"fem"``.
     outputs
         Whether the output samples will be evaluated.
+    stream
+        Whether the run is streamed to its result file (:func:`flexbeam.simulation.simulate`'s ``stream``).
 
     Returns
     -------
@@ -178,9 +202,19 @@ def estimate(case: Case, method: str = "ccfm", outputs: bool = False) -> MemoryE
     steps = rate * t_end
     phases = min(4.0 * (s.max_contacts + 1), 2.0 * steps + 4.0)
     samples = 0.0
+    if stream:  # two chunks of samples and a batch being evaluated; the steps kept for the open contacts
+        from .integrate.modal import BLOCK_RECORDS
+        from .results.export import TIME_CHUNK
+        from .results.stream import WINDOW_RECORDS
+
+        samples = sample_bytes(case, pairs, 3 * TIME_CHUNK)
+        if exponential:
+            steps = min(steps, WINDOW_RECORDS + STREAM_BLOCKS * BLOCK_RECORDS)
+        return MemoryEstimate(t_end, steps * record, phases * SEGMENT_BYTES, samples, limit, source, bound, True)
     if outputs:  # the samples every run has: no instant is sampled more sparsely than this
-        samples = sample_bytes(case, pairs, t_end / max(s.sample_step, s.contact_sample_step))
-    return MemoryEstimate(t_end, steps * record, phases * SEGMENT_BYTES, samples, limit, source, bound)
+        samples = sample_bytes(case, pairs, t_end / max(case.sample_steps()))
+    field = case.sample_step_field(case.sample_steps()[1] > case.sample_steps()[0])
+    return MemoryEstimate(t_end, steps * record, phases * SEGMENT_BYTES, samples, limit, source, bound, False, field)
 
 
 def _fe_step(case: Case, contact: ContactSetup, touching: bool) -> float:
@@ -214,9 +248,9 @@ def _fe_step(case: Case, contact: ContactSetup, touching: bool) -> float:
     return min(h, case.solver.t_end / 20.0)
 
 
-def check(case: Case, method: str = "ccfm", outputs: bool = False) -> MemoryEstimate:
+def check(case: Case, method: str = "ccfm", outputs: bool = False, stream: bool = False) -> MemoryEstimate:
     """:func:`estimate`, and a one-line :class:`~flexbeam.errors.ParameterError` when it exceeds the limit."""
-    est = estimate(case, method, outputs)
+    est = estimate(case, method, outputs, stream)
     if est.total > est.limit:
         raise ParameterError(est.message())
     return est

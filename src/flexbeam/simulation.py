@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import platform
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 
@@ -97,16 +98,28 @@ def simulate(
     method: str = "ccfm",
     progress: Callable[[float], None] | None = None,
     outputs: bool = False,
+    stream: str | Path | None = None,
 ) -> Solution:
     """Run ``case`` with an impact method and return the :class:`Solution`.
 
     Before it starts, the memory the run will hold is estimated (:func:`flexbeam.memory.estimate`; with
     ``outputs``, its output samples included, for a caller that will write or plot them) and a run above
     ``solver.memory_limit`` is refused with a :class:`~flexbeam.errors.ParameterError`.
+
+    With ``stream`` (a path) the run writes its result file as it goes (:mod:`flexbeam.results.stream`): the output
+    samples go to the file in chunks, each finished stretch of dense output is dropped once its samples are written
+    and its contact records completed, and the memory held does not grow with ``solver.t_end``.  The Solution keeps
+    the contact records and the metrics; its arrays are read from the file when asked for.  Not for the
+    finite-element reference (``method = "fem"``).
     """
     check_method(method)  # an unknown method is named before anything else
+    if stream is not None and method == "fem":
+        raise ParameterError(
+            "--stream: the finite-element reference (method 'fem') keeps its outputs in memory; run it without "
+            "streaming, or stream a modal method (ccfm, ccm, imm)"
+        )
     check_joint_method(case, method)
-    check_memory(case, method, outputs)
+    check_memory(case, method, outputs, stream=stream is not None)
     if method == "fem":
         if case.obstacle.support.compliant:
             raise ParameterError(
@@ -122,6 +135,8 @@ def simulate(
     y0, info = initial_state(system, case)
     impact = cls(system, case)
     stepper = make_stepper(case, method, system)
+    if stream is not None:
+        return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
     run = run_phases(impact, stepper, y0, case.solver.t_end, progress)
     return collect(run, impact, system, case, info, stepper)
 
@@ -135,6 +150,22 @@ def check_joint_method(case: Case, method: str) -> None:
         raise ModelError(
             f"joint.kind: method '{method}' does not model a {kind!r} joint yet; use one of {', '.join(allowed)}"
         )
+
+
+def _streamed(
+    path: Path, impact: ImpactMethod, stepper, y0, system: BeamSystem, case: Case, info, progress
+) -> Solution:
+    """A run streamed to ``path`` (:class:`~flexbeam.results.stream.RunStream`); nothing is left there if it is
+    interrupted."""
+    from .results.stream import RunStream
+
+    sink = RunStream(path, system, case, impact.contacts, provenance(stepper.name, impact, system, case, info, stepper))
+    try:
+        run = run_phases(impact, stepper, y0, case.solver.t_end, progress, sink=sink)
+        return sink.finish(run, {"steps": run.steps, "nfev": run.nfev, "wall_time": run.wall_time})
+    except BaseException:
+        sink.abort()
+        raise
 
 
 def make_stepper(case: Case, method: str, system: BeamSystem):
@@ -167,14 +198,30 @@ def collect(
 ) -> Solution:
     """The Solution of a run: the contact log is completed and the outputs evaluated on demand, from the dense
     output (:class:`~flexbeam.results.arrays.RunSource`)."""
+    return Solution(
+        contacts=method.contacts,
+        status=run.status,
+        message=run.message,
+        stats={"steps": run.steps, "nfev": run.nfev, "wall_time": run.wall_time},
+        provenance=provenance(run.integrator, method, system, case, info, stepper),
+        measuring_points=np.asarray(case.output.measuring_points, float),
+        source=RunSource(run, system),
+    )
+
+
+def provenance(
+    integrator: str, method: ImpactMethod, system: BeamSystem, case: Case, info: dict[str, float], stepper=None
+) -> dict:
+    """Version, case (its TOML text when first read), method, integrator, tolerances, contact law and pairs, and the
+    derived start values ``info``."""
     exponential = isinstance(stepper, ModalStepper)
-    provenance = {
+    return {
         "flexbeam_version": __version__,
         "python": platform.python_version(),
         "case_name": case.name,
         "case_toml": lambda: dump_case(case),
         "method": method.name,
-        "integrator": run.integrator,
+        "integrator": integrator,
         "frame": system.beam.frame,
         "rtol": case.solver.fast_rtol if exponential else case.solver.rtol,
         "atol": case.solver.fast_atol if exponential else case.solver.atol,
@@ -185,15 +232,6 @@ def collect(
         "contact_pairs": [p.label for p in system.contact.pairs],
         **info,
     }
-    return Solution(
-        contacts=method.contacts,
-        status=run.status,
-        message=run.message,
-        stats={"steps": run.steps, "nfev": run.nfev, "wall_time": run.wall_time},
-        provenance=provenance,
-        measuring_points=np.asarray(case.output.measuring_points, float),
-        source=RunSource(run, system),
-    )
 
 
 __all__ = [

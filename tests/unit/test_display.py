@@ -80,14 +80,17 @@ def test_calibration_repr_shows_fitted_values_and_peak_force():
     assert f"{fit.solution.metrics()['peak_force']:.4g}" in text
 
 
-def test_netcdf_is_compressed_chunked_along_time_and_lossless(ccfm, tmp_path):
-    path = ccfm.to_netcdf(tmp_path / "result.nc", time_chunk=256)
+def test_netcdf_is_compressed_chunked_along_time_and_lossless_on_request(ccfm, tmp_path):
+    """Chunks of ``time_chunk`` samples, one column each; ``quantize=False``: every value exact (by default the
+    outputs of the state are rounded to the integrator's precision: tests/test_netcdf_roundtrip.py)."""
+    path = ccfm.to_netcdf(tmp_path / "result.nc", time_chunk=256, quantize=False)
     raw = sum(np.asarray(a).nbytes for a in ccfm.arrays.values()) + ccfm.time.nbytes
     assert path.stat().st_size < raw  # deflated (the uncompressed file is larger than the raw arrays)
     with xr.open_dataset(path) as ds:
         enc = ds["q"].encoding
         assert enc["zlib"] and enc["shuffle"]
-        assert enc["chunksizes"] == (256, ds.sizes["mode"])
+        assert enc["chunksizes"] == (256, 1)
+        assert "quantization" not in ds["q"].attrs
         np.testing.assert_array_equal(ds["time"].values, ccfm.time)
         for name, arr in ccfm.arrays.items():
             np.testing.assert_array_equal(ds[name].values, arr)

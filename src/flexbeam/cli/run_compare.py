@@ -21,10 +21,19 @@ def run(
     set_: SetOpt = None,
     out: OutOpt = None,
     json_: JsonOpt = False,
+    stream: Annotated[
+        bool,
+        typer.Option(
+            "--stream",
+            help="write OUT/result.nc while the run goes on, in a memory that does not grow with the run (needs --out)",
+        ),
+    ] = False,
 ) -> None:
     """Simulate one case and print its metrics."""
+    if stream and out is None:
+        raise ParameterError("--stream: needs --out DIR, where the run writes DIR/result.nc as it goes")
     c = load(case, set_)
-    sol = simulate(c, method, outputs=out is not None)
+    sol = simulate(c, method, outputs=out is not None, stream=out / "result.nc" if stream and out else None)
     metrics = sol.metrics()
     if out is not None:
         from ..views.report import write_run_outputs

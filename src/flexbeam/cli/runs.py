@@ -4,6 +4,7 @@ of a run, and exit code 1 for a run that ended before ``solver.t_end``."""
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 from typing import Any
 
 from ..progress import StderrProgress
@@ -22,13 +23,14 @@ def run_progress(t_end: float, label: str) -> StderrProgress:
     return StderrProgress(label, "s", total=t_end)
 
 
-def simulate(case, method: str, outputs: bool = False):
-    """Run a case (``outputs``: its output samples will be written or drawn, so the memory estimate counts them)."""
+def simulate(case, method: str, outputs: bool = False, stream: Path | None = None):
+    """Run a case (``outputs``: its output samples will be written or drawn, so the memory estimate counts them;
+    ``stream``: the result file it writes as it goes)."""
     from ..simulation import simulate
 
     progress = run_progress(case.solver.t_end, f"{case.name} [{method}]")
     try:
-        return simulate(case, method, progress=progress, outputs=outputs)
+        return simulate(case, method, progress=progress, outputs=outputs, stream=stream)
     finally:
         progress.close()
 

@@ -6,6 +6,11 @@ An integrator (a *stepper*: :class:`~flexbeam.integrate.modal.ModalStepper`, com
 event the impact method decides the next phase and may make the velocities jump.  Every phase, and every jump,
 starts a new :class:`Segment`.  A numerical failure ends the run with ``status = "failed"`` and a message with
 the time and the cause; what was computed is kept.
+
+A run streamed to disk (``sink``: :class:`flexbeam.results.stream.RunStream`) hands each segment on as it is made
+instead of keeping it; a stepper with a ``hand_on`` hook (the compiled one) hands a long phase on in parts of one or
+two :data:`~flexbeam.integrate.modal.BLOCK_RECORDS` steps while it runs, so that no phase's dense output grows with
+the run.
 """
 
 from __future__ import annotations
@@ -33,7 +38,10 @@ class DenseOutput(Protocol):
 
 @dataclass
 class Segment:
-    """One phase interval: its start and end states and its dense output (None for a zero-length phase)."""
+    """One phase interval: its start and end states and its dense output (None for a zero-length phase).
+
+    A phase handed on in parts (a streamed run) gives several segments: ``opens`` is False for all but its first,
+    ``closes`` False for all but its last (their ends are step boundaries inside the phase)."""
 
     phase: Phase
     t0: float
@@ -41,6 +49,8 @@ class Segment:
     y0: np.ndarray
     y1: np.ndarray
     dense: DenseOutput | None = None
+    opens: bool = True
+    closes: bool = True
 
     def states(self, times: np.ndarray) -> np.ndarray:
         """States at ``times`` (in [t0, t1]); the ends are the exact start and end states."""
@@ -73,6 +83,9 @@ class PhaseRun:
     nfev: int = 0
     failure: str = ""
     pair: int = 0  #: the contact pair the event belongs to
+    #: where ``dense`` starts (time, state) when the phase's earlier steps were handed on in parts (``hand_on``)
+    t0: float | None = None
+    y0: np.ndarray | None = None
 
 
 class Stepper(Protocol):
@@ -121,17 +134,27 @@ class RunResult:
 
 
 def run_phases(
-    method: PhaseMethod, stepper: Stepper, y0: np.ndarray, t_end: float, progress: Callable[[float], None] | None = None
+    method: PhaseMethod,
+    stepper: Stepper,
+    y0: np.ndarray,
+    t_end: float,
+    progress: Callable[[float], None] | None = None,
+    sink: Callable[[Segment], None] | None = None,
 ) -> RunResult:
     """Integrate from t = 0 to ``t_end``, switching phases at events as ``method`` decides.
 
     A floating-point overflow, division by zero or invalid operation outside the compiled kernels (in the impulse
     map, an event's root, a state scaled beyond double precision) ends the run with ``status = "failed"`` at its
     time, keeping what was computed, instead of a RuntimeWarning and NaN states.
+
+    With a ``sink`` every segment goes to it, in time order, and none is kept (``RunResult.segments`` is empty); a
+    stepper with a ``hand_on`` attribute hands its long phases to the sink in parts.
     """
     wall0 = time.perf_counter()
     y0 = np.asarray(y0, float)
     segments: list[Segment] = []
+    keep = segments.append if sink is None else sink
+    parts = sink is not None and hasattr(stepper, "hand_on")
     steps = nfev = events = 0
     phase_steps: list[tuple[str, int]] = []
     status, message = "success", "integration reached t_end"
@@ -141,16 +164,21 @@ def run_phases(
     except Stop as stop:
         return RunResult([], stop.status, stop.message, 0.0, 0.0, 0, 0, stepper.name)
     if not np.array_equal(y, y0):  # a jump at the start: keep the state before it
-        segments.append(Segment(method.free_phase(), 0.0, 0.0, y0.copy(), y0.copy()))
+        keep(Segment(method.free_phase(), 0.0, 0.0, y0.copy(), y0.copy()))
     stalled = 0
     with np.errstate(over="raise", invalid="raise", divide="raise"):
         try:
             while t < t_end:
+                if parts:
+                    stepper.hand_on = _hand_on(sink, phase, progress)
                 run = stepper.advance(phase, t, y, t_end)
                 steps += run.steps
                 nfev += run.nfev
                 phase_steps.append((phase.name, run.steps))
-                segments.append(Segment(phase, t, run.t1, y.copy(), run.y1.copy(), run.dense))
+                if run.t0 is None:
+                    keep(Segment(phase, t, run.t1, y.copy(), run.y1.copy(), run.dense))
+                else:  # the rest of a phase handed on in parts
+                    keep(Segment(phase, run.t0, run.t1, run.y0, run.y1.copy(), run.dense, opens=False))
                 stalled = stalled + 1 if run.t1 == t else 0
                 t, y = run.t1, run.y1
                 if progress is not None:
@@ -174,5 +202,20 @@ def run_phases(
                     break
         except (FloatingPointError, OverflowError, ZeroDivisionError) as exc:
             status, message = "failed", f"floating-point failure at t = {t:.9g} s: {exc}"
+        finally:
+            if parts:
+                stepper.hand_on = None
     wall = time.perf_counter() - wall0
     return RunResult(segments, status, message, t, wall, steps, nfev, stepper.name, events, phase_steps)
+
+
+def _hand_on(sink: Callable[[Segment], None], phase: Phase, progress: Callable[[float], None] | None):
+    """A stepper's ``hand_on`` for one phase: its finished part (t0, y0, t1, y1, dense; ``opens`` for the phase's
+    first) to the sink as a segment that does not close the phase; the progress moves on to its end."""
+
+    def hand_on(t0: float, y0: np.ndarray, t1: float, y1: np.ndarray, dense: DenseOutput, opens: bool) -> None:
+        sink(Segment(phase, t0, t1, y0, y1, dense, opens=opens, closes=False))
+        if progress is not None:
+            progress(t1)
+
+    return hand_on

@@ -39,6 +39,11 @@ _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 
 #: floats at the end of a step record that summarise the step (FB_RECORD_SUMMARY in kernels/src/phase.h): the total
 #: and kinetic energy at its end, the tip deflection at its FB_P Gauss nodes
 SUMMARY = 6
+#: the largest block of step records the kernel fills in one call (the blocks grow from 64 by doubling); a stepper
+#: that hands on (a streamed run) hands a phase on in parts of at least this many records (13 MB for the seed case).
+#: The kernel resumes a phase from its state buffer after each block: CCFM and IMM take the steps of one long call,
+#: CCM's do not quite (its constraint scaling restarts), so every run caps its blocks alike
+BLOCK_RECORDS = 16384
 
 
 @dataclass(frozen=True)
@@ -234,6 +239,9 @@ class ModalStepper:
         self.omega_rigid = self.basis.omega_rigid
         self.psi = np.diag(self.basis.Psi).copy() if self.basis.diagonal else None
         self.to_m = np.diag(self.basis.toM).copy() if self.basis.diagonal else None
+        #: set by a streamed run's loop: called with each finished part of a long phase (t0, y0, t1, y1, dense,
+        #: opens), which is then dropped (:func:`flexbeam.integrate.loop.run_phases`)
+        self.hand_on = None
 
     # state conversion between the reference layout [z, z', (s, s'), E_d, W] and modal (eta, v)
     def to_modal(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -274,7 +282,9 @@ class ModalStepper:
         legs = [(min(self.max_step, phase.max_step), min(until, t_end) if t < until < t_end else t_end)]
         if legs[0][1] < t_end:
             legs.append((self.max_step, t_end))
-        chunks, steps, nfev = [], 0, 0
+        chunks: list[np.ndarray] = []
+        handed = _Handed(float(t), np.asarray(y, float).copy())
+        steps, nfev = 0, 0
         for hmax, leg_end in legs:
             ctrl = pack_controls(
                 rtol=self.rtol, atol=self.atol, max_step=hmax, omega_rigid=self.omega_rigid,
@@ -282,7 +292,7 @@ class ModalStepper:
             )  # fmt: skip
             info = np.zeros(_INFO_SIZE)
             info[_INFO_T0] = state[0]  # the kernel sets it only at the phase's start (its effort budget)
-            code = self._run(ctrl, state, leg_end, info, chunks)
+            code = self._run(ctrl, state, leg_end, info, chunks, handed)
             steps, nfev = steps + int(info[1]), nfev + int(info[3])
             if code != _ADV_END:
                 break
@@ -298,17 +308,50 @@ class ModalStepper:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_STALLED:
             failure = stalled_message(phase.name, t1, float(state[1]), info)
-        return PhaseRun(t1, y1, event, dense, steps, nfev, failure, int(info[4]))
+        run = PhaseRun(t1, y1, event, dense, steps, nfev, failure, int(info[4]))
+        if handed.start is not None:
+            run.t0, run.y0 = handed.start
+        return run
 
-    def _run(self, ctrl: np.ndarray, state: np.ndarray, t_end: float, info: np.ndarray, chunks: list) -> int:
-        """The kernel's step loop from ``state`` to ``t_end`` or an event (``fb_advance``), its step records
-        appended to ``chunks``; returns its code."""
+    def _run(
+        self, ctrl: np.ndarray, state: np.ndarray, t_end: float, info: np.ndarray, chunks: list, handed: _Handed
+    ) -> int:
+        """The kernel's step loop from ``state`` to ``t_end`` or an event (``fb_advance``) in blocks of at most
+        BLOCK_RECORDS step records, appended to ``chunks``; a stepper that hands on passes each BLOCK_RECORDS of
+        them on (:meth:`_hand_on`). Returns the kernel's code."""
         capacity = 64
         while True:
             records = np.empty((capacity, self.record_size))
             code, nrec = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info)
             if nrec:
                 chunks.append(records[:nrec])
+                handed.held += nrec
             if code != _ADV_FULL:
                 return code
-            capacity *= 2
+            if self.hand_on is not None and handed.held >= BLOCK_RECORDS:  # the kernel resumes from `state`
+                self._hand_on(state, chunks, handed)
+            capacity = min(2 * capacity, BLOCK_RECORDS)
+
+    def _hand_on(self, state: np.ndarray, chunks: list, handed: _Handed) -> None:
+        """Pass the held records of a long phase on as one part (from where the last part ended, or the phase's
+        start, to the state now), and drop them."""
+        N = self.basis.N
+        t_b = float(state[0])
+        y_b = self.from_modal(state[5 : 5 + N], state[5 + N : 5 + 2 * N], state[2], state[3])
+        t_a, y_a = handed.start if handed.start is not None else (handed.t, handed.y)
+        part = ModalDense(self, np.ascontiguousarray(np.concatenate(chunks)))
+        chunks.clear()
+        handed.held = 0
+        self.hand_on(t_a, y_a, t_b, y_b, part, handed.start is None)
+        handed.start = (t_b, y_b)
+
+
+@dataclass
+class _Handed:
+    """A phase's parts passed on so far: its start (t, y), the records held since the last part, and where that
+    part ended (None before the first)."""
+
+    t: float
+    y: np.ndarray
+    held: int = 0
+    start: tuple[float, np.ndarray] | None = None

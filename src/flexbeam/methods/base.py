@@ -66,7 +66,7 @@ class ImpactMethod:
     def free_phase(self) -> Phase:
         """Unimpact motion until a gap closes."""
         S = self.system.pairs
-        return Phase("free", (ContactMode.NONE,) * S, ALL_EVENTS, self.case.solver.sample_step, np.zeros((S, 4)),
+        return Phase("free", (ContactMode.NONE,) * S, ALL_EVENTS, self.case.sample_steps()[0], np.zeros((S, 4)),
                      (None,) * S, self.baumgarte)  # fmt: skip
 
     def phase(self, modes, parameters: np.ndarray, records) -> Phase:
@@ -84,10 +84,10 @@ class ImpactMethod:
         modes = tuple(ContactMode(m) for m in modes)
         if all(m == ContactMode.NONE for m in modes):
             return self.free_phase()
-        s = self.case.solver
         force = any(m == ContactMode.FORCE for m in modes)
         name = "contact" if force else self.held_name
-        sample = s.contact_sample_step if force or name == "constrained" else s.sample_step
+        free_step, contact_step = self.case.sample_steps()
+        sample = contact_step if force or name == "constrained" else free_step
         young = [r for m, r in zip(modes, records) if m == ContactMode.FORCE and r]
         steps = [r.time_scale / CONTACT_STEPS for r in young]
         until = max((r.onset + RESTING_DURATIONS * r.time_scale for r in young), default=math.inf)

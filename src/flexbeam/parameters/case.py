@@ -53,6 +53,19 @@ class Case(Section):
             return self.model.frame
         return "hub" if self.drive.kind == "prescribed" else "system"
 
+    def sample_steps(self) -> tuple[float, float]:
+        """The spacing of the output samples [s] in free flight and in contact: ``output.interval`` for both when
+        given, else ``solver.sample_step`` and ``solver.contact_sample_step``."""
+        if self.output.interval is not None:
+            return self.output.interval, self.output.interval
+        return self.solver.sample_step, self.solver.contact_sample_step
+
+    def sample_step_field(self, contact: bool) -> str:
+        """The case field that sets the sample spacing of free flight (or of contact: ``contact``)."""
+        if self.output.interval is not None:
+            return "output.interval"
+        return "solver.contact_sample_step" if contact else "solver.sample_step"
+
     @model_validator(mode="after")
     def _consistent(self) -> Case:
         L = self.beam.length
@@ -100,6 +113,12 @@ class Case(Section):
             raise ValueError(
                 f"contact.restitution: must be in (0, 1] for contact.law = "
                 f"'{self.contact.law}' (its damping is infinite at e = 0)"
+            )
+        interval = self.output.interval
+        if interval is not None and not interval <= self.solver.t_end:
+            raise ValueError(
+                f"output.interval: {interval:g} s is longer than the run; allowed: 0 < output.interval <= "
+                f"solver.t_end = {self.solver.t_end:g} s"
             )
         if len(self.obstacles) > 7:
             raise ValueError(f"obstacles: at most 7 more obstacles (got {len(self.obstacles)})")

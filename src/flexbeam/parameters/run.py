@@ -5,9 +5,21 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import Field, model_validator
+from pydantic import BeforeValidator, Field, model_validator
 
-from .fields import MAX_RATE, Angle, Bounded, Finite, NonNegative, Positive, Rate, Section
+from .fields import MAX_RATE, Angle, Bounded, Finite, NonNegative, Positive, Rate, Section, _finite_first
+
+
+def _interval_range(value: object) -> object:
+    """A zero or negative output interval is named with the whole range it must lie in (its upper end,
+    ``solver.t_end``, is checked with the case: :class:`~flexbeam.parameters.case.Case`)."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and value <= 0:
+        raise ValueError("must be in 0 < output.interval <= solver.t_end [s]")
+    return value
+
+
+#: a spacing of the output samples [s]: finite and > 0
+Interval = Annotated[float, BeforeValidator(_interval_range), BeforeValidator(_finite_first), Field(gt=0)]
 
 
 class Initial(Section):
@@ -103,8 +115,12 @@ class Solver(Section):
     rtol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-9, description="relative tolerance")
     atol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-12, description="absolute tolerance")
     max_step: Positive | None = Field(None, description="largest step [s] (omitted = automatic)")
-    sample_step: Positive = Field(1e-5, description="output spacing outside contact [s]")
-    contact_sample_step: Positive = Field(2e-7, description="output spacing in contact [s]")
+    sample_step: Positive = Field(
+        1e-5, description="output spacing outside contact [s] (output.interval, when given, replaces it)"
+    )
+    contact_sample_step: Positive = Field(
+        2e-7, description="output spacing in contact [s] (output.interval, when given, replaces it)"
+    )
     max_contacts: Annotated[int, Field(ge=1)] = Field(
         1000, description="stop with a status after this many contacts (Zeno guard)"
     )
@@ -120,11 +136,22 @@ class Solver(Section):
 
 
 class Output(Section):
-    """What to record besides the contact point."""
+    """What to record besides the contact point, and how often.
+
+    ``interval`` is the spacing of the stored output samples in every phase; omitted, the samples lie on the grids
+    of ``solver.sample_step`` in free flight and ``solver.contact_sample_step`` in contact (the same samples: an
+    interval replaces both spacings).  Every phase's ends are samples too.  The finite-element reference
+    (``--method fem``) stores its own steps.
+    """
 
     measuring_points: list[NonNegative] = Field(
         default_factory=list,
         description="material coordinates of measuring points on the beam [m]",
+    )
+    interval: Interval | None = Field(
+        None,
+        description="spacing of the output samples in every phase [s], at most solver.t_end (omitted = "
+        "solver.sample_step in free flight, solver.contact_sample_step in contact)",
     )
 
 

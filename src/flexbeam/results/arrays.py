@@ -90,7 +90,7 @@ class RunSource:
         sysm = self.system
         n, nz = sysm.n, sysm.nz
         counts = {True: 0, False: 0}  # on the contact spacing or not
-        fine = sysm.case.solver.contact_sample_step
+        fine = sysm.case.sample_steps()[1]
         for seg in self.segments:
             counts[seg.phase.sample_step == fine] += sample_count(seg.t0, seg.t1, seg.phase.sample_step)
         check_samples(sysm.case, sysm.pairs, counts[False], counts[True])  # the exact count, before evaluating
@@ -341,6 +341,17 @@ class RunSource:
         return seg.dense.column_max(
             seg.y0, seg.y1, seg.t0, seg.t1, seg.phase.buffer, column, sign, lo, hi, PEAK_XTOL, reach, floor
         )
+
+    def refine_pair_max(self, pair: int, t_guess: float, h: float, lo: float, hi: float) -> tuple[float, float]:
+        """(time, force) of the largest contact force of ``pair`` within ``h`` of ``t_guess`` in [lo, hi]: in the
+        kernels when one compiled phase holds the bracket (:meth:`pair_max`), else zoomed on the dense output."""
+        from .peaks import PEAK_XTOL, zoom_max
+
+        a, b = max(lo, t_guess - h), min(hi, t_guess + h)
+        if b <= a:
+            return t_guess, float(self.force_many(np.array([t_guess]), pair)[0])
+        found = self.pair_max(pair, a, b)
+        return found if found is not None else zoom_max(lambda t: self.force_many(t, pair), a, b, xtol=PEAK_XTOL)
 
     def pair_max(self, pair: int, a: float, b: float) -> tuple[float, float] | None:
         """(time, force) of the largest contact force of ``pair`` in [a, b] when one compiled contact phase holds

@@ -63,12 +63,12 @@ def anywhere(case: Case) -> bool:
 
 def check_samples(case: Case, pairs: int, free: int, contact: int) -> None:
     """Refuse to evaluate the output samples of a finished run -- ``free`` on the ``solver.sample_step`` grid,
-    ``contact`` on the ``solver.contact_sample_step`` one -- when they would exceed the memory limit: one line
-    naming the sample step that gives most of them."""
+    ``contact`` on the ``solver.contact_sample_step`` one (both on ``output.interval`` when given) -- when they
+    would exceed the memory limit: one line naming the sample step that gives most of them."""
     need = sample_bytes(case, pairs, free + contact)
     limit, source = memory_limit(case)
     if need > limit:
-        field = "solver.contact_sample_step" if contact > free else "solver.sample_step"
+        field = case.sample_step_field(contact > free)
         raise ParameterError(
             f"{field}: the {free + contact} output samples of this run ({contact} in contact) would hold about "
             f"{size_text(need)}, more than the limit of {size_text(limit)} ({source}); allowed here: a {field} "

@@ -20,7 +20,7 @@ import numpy as np
 
 from . import export, summary
 from .counts import ContactCounts
-from .peaks import PEAK_XTOL, golden_max, interior_maxima, zoom_max
+from .peaks import PEAK_XTOL, golden_max, interior_maxima
 from .records import ContactEvent
 
 if TYPE_CHECKING:
@@ -49,11 +49,14 @@ class Solution:
     provenance
         Version, case (TOML), method, tolerances, derived parameters.
 
-    The arrays are given (the finite-element reference) or evaluated on first use from the run's dense output
-    (``source``, a :class:`~flexbeam.results.arrays.RunSource`): the metrics do not need them.  With given arrays,
-    ``force_at(t, pair)`` -- a contact pair's force F_k(t) [N] on a dense output, 0 outside its contact phases --
-    refines each contact's force peaks between the samples (the samples' maximum without it); with a ``source``
-    its own :meth:`~flexbeam.results.arrays.RunSource.force_at` is used.
+    The arrays are given (the finite-element reference), evaluated on first use from the run's dense output
+    (``source``, a :class:`~flexbeam.results.arrays.RunSource`): the metrics do not need them, or read on first use
+    from the result ``file`` a streamed run wrote (:mod:`flexbeam.results.stream`; each variable when it is asked
+    for), whose ``summaries`` -- ``energy_drift`` (end, max), ``tip_deflection`` (min, max), ``sensor_pulse`` (peaks,
+    duration) -- the stream computed while the run went on.  With given arrays, ``force_at(t, pair)`` -- a contact
+    pair's force F_k(t) [N] on a dense output, 0 outside its contact phases -- refines each contact's force peaks
+    between the samples (the samples' maximum without it); with a ``source`` its own
+    :meth:`~flexbeam.results.arrays.RunSource.force_at` is used.
     """
 
     def __init__(
@@ -69,10 +72,15 @@ class Solution:
         measuring_points: np.ndarray | None = None,
         force_at: Callable[[float, int], float] | None = None,
         source: RunSource | None = None,
+        file: str | Path | None = None,
+        summaries: dict[str, Any] | None = None,
     ) -> None:
-        if source is None and (time is None or phase is None or arrays is None):
-            raise ValueError("Solution: give time, phase and arrays, or a source")
-        self._samples = None if source is not None else (np.asarray(time), np.asarray(phase), arrays)
+        if source is None and file is None and (time is None or phase is None or arrays is None):
+            raise ValueError("Solution: give time, phase and arrays, a source or a file")
+        self.file = None if file is None else Path(file)
+        self.summaries = dict(summaries or {})
+        given = source is None and file is None
+        self._samples = (np.asarray(time), np.asarray(phase), arrays) if given else None
         self._contacts = list(contacts or [])
         self._completed: set[int] = set()
         self.status, self.message = status, message
@@ -86,8 +94,11 @@ class Solution:
     # ----------------------------------------------------------------- samples
     def _loaded(self) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
         if self._samples is None:
-            assert self.source is not None
-            self._samples = self.source.samples
+            if self.source is not None:
+                self._samples = self.source.samples
+            else:
+                assert self.file is not None
+                self._samples = export.read_samples(self.file)
         return self._samples
 
     @property
@@ -206,12 +217,7 @@ class Solution:
     # ----------------------------------------------------------------- force peaks
     def _refine_max(self, t_guess: float, h: float, lo: float, hi: float, pair: int = 0) -> tuple[float, float]:
         if self.source is not None:
-            a, b = max(lo, t_guess - h), min(hi, t_guess + h)
-            force = lambda t: self.source.force_many(t, pair)  # noqa: E731
-            if b <= a:
-                return t_guess, float(force(np.array([t_guess]))[0])
-            found = self.source.pair_max(pair, a, b)
-            return found if found is not None else zoom_max(force, a, b, xtol=PEAK_XTOL)
+            return self.source.refine_pair_max(pair, t_guess, h, lo, hi)
         if self._force_at is None:
             i = int(np.argmin(np.abs(self.time - t_guess)))
             return float(self.time[i]), float(self.arrays["contact_force"][i])
@@ -282,12 +288,18 @@ class Solution:
 
     # ----------------------------------------------------------------- export (flexbeam.results.export)
     def to_xarray(self) -> xr.Dataset:
-        """:class:`xarray.Dataset` with dims time, mode, point, contact (:func:`~flexbeam.results.export.to_xarray`)."""
+        """:class:`xarray.Dataset` with dims time, mode, point, contact (:func:`~flexbeam.results.export.to_xarray`;
+        a streamed run's: its file, opened lazily)."""
+        if self.file is not None:
+            import xarray as xr
+
+            return xr.open_dataset(self.file)
         return export.to_xarray(self)
 
-    def to_netcdf(self, path: str | Path, time_chunk: int = 4096) -> Path:
-        """Write :meth:`to_xarray` to NetCDF-4 atomically (:func:`~flexbeam.results.export.to_netcdf`)."""
-        return export.to_netcdf(self, path, time_chunk)
+    def to_netcdf(self, path: str | Path, time_chunk: int = export.TIME_CHUNK, quantize: bool = True) -> Path:
+        """Write :meth:`to_xarray` to NetCDF-4 atomically, the outputs of the integrated state rounded to the
+        integrator's precision unless ``quantize`` is False (:func:`~flexbeam.results.export.to_netcdf`)."""
+        return export.to_netcdf(self, path, time_chunk, quantize)
 
     # ----------------------------------------------------------------- views (flexbeam.views, registered)
     #: the views' accessor class, registered by :mod:`flexbeam.views.accessor` when flexbeam is imported

@@ -12,11 +12,13 @@ from ..results.solution import Solution
 
 
 def write_run_outputs(sol: Solution, case: Case, out: str | Path) -> dict[str, Path]:
-    """Write ``result.nc``, ``summary.json``, ``contact_force.png`` and ``normal_velocity.png``."""
+    """Write ``result.nc`` (a streamed run wrote it already), ``summary.json``, ``contact_force.png`` and
+    ``normal_velocity.png``."""
     from .plotting import plot_contact_force, plot_normal_velocity
 
     out = Path(out)
-    _ = sol.time  # the output samples first: too many for the memory limit, they are refused before any file
+    if sol.file is None:  # the output samples first: too many for the memory limit, they are refused before any file
+        _ = sol.time
     out.mkdir(parents=True, exist_ok=True)
     reference = reference_data(case.name)
     summary = {

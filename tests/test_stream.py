@@ -1,0 +1,230 @@
+"""Runs streamed to their result file (``flexbeam run CASE --stream``, ``simulate(..., stream=path)``).
+
+A streamed run must write what the same run held in memory writes -- the same samples bit for bit, the same contact
+records and metrics -- while the memory it holds does not grow with its length.  The long-run paths (a phase handed
+on in parts, a contact completed stretch by stretch) are reached in a short run by making their thresholds small:
+in-memory and streamed runs share the stepper's block size, so they take the same steps.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+import tracemalloc
+
+import numpy as np
+import pytest
+
+import flexbeam as fb
+from flexbeam import memory
+from flexbeam.integrate import modal
+from flexbeam.results import stream
+from tests.conftest import seed
+
+COMPLIANT = {"obstacle__support__stiffness": 3e7, "obstacle__support__mass": 0.02, "obstacle__support__damping": 50.0}
+
+
+def read(path):
+    import xarray as xr
+
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+def same_value(a, b, rel: float = 0.0) -> bool:
+    if isinstance(a, float) and isinstance(b, float):
+        return a == b or (math.isnan(a) and math.isnan(b)) or math.isclose(a, b, rel_tol=rel, abs_tol=0.0)
+    return a == b
+
+
+def assert_same_records(streamed, in_memory, rel: float = 0.0):
+    """The contact records equal (``rel``: the impulse of a record completed stretch by stretch, summed part by
+    part, to round-off)."""
+    assert len(streamed.contacts) == len(in_memory.contacts)
+    for a, b in zip(streamed.contacts, in_memory.contacts, strict=True):
+        for key, value in vars(b).items():
+            assert same_value(getattr(a, key), value, rel if key == "impulse" else 0.0), (b.index, key, value)
+
+
+def assert_same_metrics(got, want, key="", rel: float = 0.0):
+    """Equal metrics but the wall time (``rel``: impulses to round-off)."""
+    if isinstance(want, dict):
+        assert set(got) == set(want), key
+        for k in want:
+            if k != "wall_time":
+                assert_same_metrics(got[k], want[k], f"{key}.{k}", rel)
+    elif isinstance(want, list):
+        assert len(got) == len(want), key
+        for g, w in zip(got, want, strict=True):
+            assert_same_metrics(g, w, key, rel)
+    else:
+        assert same_value(got, want, rel if key.endswith(".impulse") else 0.0), (key, got, want)
+
+
+def assert_same_files(streamed, in_memory, rel: float = 0.0):
+    """Every variable of the in-memory run's file in the streamed one, equal bit for bit (NaN where NaN; ``rel``:
+    ``contact_impulse`` to round-off)."""
+    a, b = read(streamed), read(in_memory)
+    assert set(a.variables) == set(b.variables)
+    for name in b.variables:
+        assert a[name].dims == b[name].dims, name
+        assert a[name].attrs == b[name].attrs, name
+        if name == "contact_impulse" and rel:
+            np.testing.assert_allclose(a[name].values, b[name].values, rtol=rel, atol=0.0, err_msg=name)
+        elif b[name].dtype.kind == "f":
+            np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
+        else:
+            assert np.array_equal(a[name].values, b[name].values), name
+    for key in ("status", "message", "method", "case_toml"):
+        assert a.attrs[key] == b.attrs[key], key
+
+
+@pytest.mark.parametrize(
+    ("name", "method", "overrides"),
+    [
+        ("seed-experiment", "ccfm", {"solver__t_end": 0.1}),
+        ("seed-experiment", "imm", {"solver__t_end": 0.05, "model__modes": 4}),
+        ("seed-experiment", "ccfm", {"solver__t_end": 0.03, **COMPLIANT}),  # the sensor pulse
+        ("two-stops", "ccfm", {"solver__t_end": 0.1, "model__modes": 4}),  # per-pair variables
+    ],
+    ids=["seed", "imm", "compliant", "two-stops"],
+)
+def test_a_streamed_run_writes_what_the_run_in_memory_writes(tmp_path, name, method, overrides):
+    case = fb.load_case(name, {k.replace("__", "."): v for k, v in overrides.items()})
+    in_memory = fb.simulate(case, method)
+    metrics = in_memory.metrics()
+    streamed = fb.simulate(case, method, stream=tmp_path / "streamed.nc")
+    assert streamed.file == tmp_path / "streamed.nc" and streamed.source is None
+    assert [p.name for p in tmp_path.iterdir()] == ["streamed.nc"]  # no temporary file left
+    assert_same_files(streamed.file, in_memory.to_netcdf(tmp_path / "memory.nc"))
+    assert_same_records(streamed, in_memory)
+    assert_same_metrics(streamed.metrics(), metrics)
+    assert json.loads(read(streamed.file).attrs["metrics"])["contact_records"] == metrics["contact_records"]
+    # the Solution reads its samples from the file: the in-memory samples within the file's rounding
+    np.testing.assert_array_equal(streamed.time, in_memory.time)
+    np.testing.assert_array_equal(streamed.phase.astype(str), in_memory.phase.astype(str))
+    np.testing.assert_allclose(streamed["contact_force"], in_memory["contact_force"], rtol=2**-24, atol=0.0)
+
+
+def test_long_phases_in_parts_and_a_long_contact_stretch_by_stretch(tmp_path, monkeypatch):
+    """1.2 s of the seed case: the beam rests on its stop from 0.71 s, one contact record to the end.  With blocks
+    of 256 steps and 1024 steps kept, that phase is handed on in parts and the open record completed stretch by
+    stretch: the same samples, records and metrics as in memory (taking the same steps: the block size is the
+    stepper's in both), but for the open record's impulse, summed part by part (~1e-16 relative)."""
+    monkeypatch.setattr(modal, "BLOCK_RECORDS", 256)
+    monkeypatch.setattr(stream, "WINDOW_RECORDS", 1024)
+    made, parts = [], []
+    init, call = stream.LongContact.__init__, stream.RunStream.__call__
+
+    def long_contact(self, s, i, src):
+        made.append(i)
+        init(self, s, i, src)
+
+    def segment(self, seg):
+        parts.append(seg.closes)
+        call(self, seg)
+
+    monkeypatch.setattr(stream.LongContact, "__init__", long_contact)
+    monkeypatch.setattr(stream.RunStream, "__call__", segment)
+    case = seed(solver__t_end=1.2, output__interval=1e-4)
+    in_memory = fb.simulate(case)
+    metrics = in_memory.metrics()
+    streamed = fb.simulate(case, stream=tmp_path / "streamed.nc")
+    assert made and parts.count(False) > 10  # both paths were taken
+    assert_same_files(streamed.file, in_memory.to_netcdf(tmp_path / "memory.nc"), rel=1e-14)
+    assert_same_records(streamed, in_memory, rel=1e-14)
+    assert_same_metrics(streamed.metrics(), metrics, rel=1e-14)
+
+
+def _peak(case, path) -> int:
+    tracemalloc.start()
+    try:
+        fb.simulate(case, stream=path)
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_the_memory_of_a_streamed_run_does_not_grow_with_its_length(tmp_path, monkeypatch):
+    """tracemalloc's peak over 1.5 s and 4.5 s of the seed case (blocks of 1024 steps, 4096 kept, chunks of 2048
+    samples): the longer run holds 2.6x the steps of the shorter in memory, streamed the same peak.  (In memory its
+    step records alone are more than twice the streamed peak; 5x before the resting contact's step cap was lifted
+    after 20 contact durations, which cut its steps 2.5x.)"""
+    monkeypatch.setattr(modal, "BLOCK_RECORDS", 1024)
+    monkeypatch.setattr(stream, "WINDOW_RECORDS", 4096)
+    monkeypatch.setattr(stream, "BATCH", 2048)
+    monkeypatch.setattr(stream.export, "TIME_CHUNK", 2048)
+    fb.simulate(seed(solver__t_end=0.01), stream=tmp_path / "warm.nc")  # imports and caches
+    short = _peak(seed(solver__t_end=1.5, output__interval=1e-4), tmp_path / "short.nc")
+    long = _peak(seed(solver__t_end=4.5, output__interval=1e-4), tmp_path / "long.nc")
+    run = fb.simulate(seed(solver__t_end=4.5)).source.run  # in memory
+    records = sum(s.dense.records.nbytes for s in run.segments if s.dense is not None)
+    assert records > 2 * short, (records, short)
+    assert long < 1.1 * short, (short, long)
+
+
+def test_the_estimate_of_a_streamed_run_does_not_grow_with_its_length():
+    cases = [fb.load_case("seed-experiment", {"solver.t_end": t, "output.interval": 1e-3}) for t in (100, 1e3, 1e6)]
+    est = [memory.estimate(case, stream=True) for case in cases]
+    assert est[0].total == est[1].total == est[2].total < 0.5e9
+    assert est[0].streamed and est[0].max_t_end == math.inf
+    assert memory.estimate(cases[1]).total > 10e9  # in memory: the run's dense output
+
+
+def test_a_streamed_run_over_the_limit_is_refused_naming_the_limit():
+    case = fb.load_case("seed-experiment", {"solver.t_end": 1e6, "solver.memory_limit": 1e6})
+    with pytest.raises(fb.ParameterError, match=r"^solver\.memory_limit: a streamed run holds about .* whatever"):
+        fb.simulate(case, stream="unused.nc")
+
+
+def test_the_finite_element_reference_is_not_streamed(tmp_path):
+    with pytest.raises(fb.ParameterError, match=r"^--stream: the finite-element reference"):
+        fb.simulate(seed(solver__t_end=1e-3), "fem", stream=tmp_path / "r.nc")
+    assert not any(tmp_path.iterdir())
+
+
+def test_an_interrupted_streamed_run_leaves_no_file(tmp_path, monkeypatch):
+    def stop(self, seg):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(stream.RunStream, "_tally", stop)
+    with pytest.raises(KeyboardInterrupt):
+        fb.simulate(seed(solver__t_end=0.01), stream=tmp_path / "r.nc")
+    assert not any(tmp_path.iterdir())
+
+
+def flexbeam(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True, timeout=600)
+
+
+def test_cli_stream_writes_the_outputs_and_the_same_metrics(tmp_path):
+    sets = ("--set", "solver.t_end=0.05", "--set", "output.interval=1e-5")
+    r = flexbeam("run", "seed-experiment", "--json", "--stream", "--out", str(tmp_path / "out"), *sets)
+    assert r.returncode == 0, r.stderr
+    out = tmp_path / "out"
+    assert sorted(p.name for p in out.iterdir()) == [
+        "contact_force.png", "normal_velocity.png", "result.nc", "summary.json",
+    ]  # fmt: skip
+    metrics = json.loads(r.stdout)
+    want = json.loads(flexbeam("run", "seed-experiment", "--json", *sets).stdout)
+    assert_same_metrics(metrics, want)
+    ds = read(out / "result.nc")
+    assert ds.sizes["time"] == len(fb.simulate(seed(solver__t_end=0.05, output__interval=1e-5)).time)
+
+
+@pytest.mark.parametrize(
+    ("args", "field", "fragment"),
+    [
+        (("--stream",), "--stream", "needs --out DIR"),
+        (("--stream", "--out", "OUT", "--method", "fem"), "--stream", "finite-element reference"),
+    ],
+)
+def test_cli_stream_bad_use(tmp_path, args, field, fragment):
+    args = tuple(str(tmp_path / "out") if a == "OUT" else a for a in args)
+    r = flexbeam("run", "seed-experiment", "--json", *args)
+    assert r.returncode == 2 and r.stdout == ""
+    assert r.stderr.splitlines() == [r.stderr.strip()] and r.stderr.startswith(f"error: {field}"), r.stderr
+    assert fragment in r.stderr
+    assert not (tmp_path / "out").exists()
