@@ -128,6 +128,7 @@ class MemoryEstimate:
             way += ", or a larger solver.max_step"
         if self.samples > self.records:
             way += f", or a coarser {self.sample_field}"
+        way += ", or stream the run to its file (flexbeam run --stream --out DIR; simulate(case, stream=path))"
         return (
             f"solver.t_end: a run of {self.t_end:g} s would hold about {_size(self.total)} in memory ({parts}), more "
             f"than the limit of {_size(self.limit)} ({self.limit_source}); {way}, or raise solver.memory_limit [B]"

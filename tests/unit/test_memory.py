@@ -96,6 +96,7 @@ def test_the_issue_run_is_refused_before_it_starts(monkeypatch):
     assert msg.startswith("solver.t_end: a run of 1e+09 s would hold about ")
     assert "more than the limit of 8 GB (solver.memory_limit)" in msg
     assert "allowed here: solver.t_end <= " in msg and "or raise solver.memory_limit" in msg
+    assert "--stream" in msg  # the way out for a run of any length
     assert "\n" not in msg
 
 
