@@ -77,3 +77,20 @@ def test_obstacles_benchmark_quick_prints_a_row_per_case_and_method():
     for row in rows:
         assert row["status"] == "success" and row["steps"] > 0 and row["us/step"] > 0.0
     assert all(row["x seed"] == 1.0 for row in rows if row["case"] == "seed-experiment")
+
+
+def test_sweep_benchmark_quick_prints_a_row_per_set_up():
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "sweep.py"), "--quick", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        cwd=ROOT,
+    )
+    assert r.returncode == 0, r.stderr
+    data = json.loads(r.stdout)
+    rows = {row["set-up"]: row for row in data["rows"]}
+    assert len(rows) == 5 and data["cases"] == 8
+    assert rows["one task per case, a cluster per sweep (before)"]["x before"] == 1.0
+    for row in rows.values():
+        assert row["runs"] == 1 and row["cases/s"] > 0 and row["CPU/case [ms]"] > 0

@@ -59,10 +59,12 @@ def _run_progress(t_end: float, label: str) -> StderrProgress:
 def _simulate(case, method: str, outputs: bool = False):
     """Run a case (``outputs``: its output samples will be written or drawn, so the memory estimate counts them)."""
     from .simulation import simulate
+    from .threads import single_threaded_blas
 
     progress = _run_progress(case.solver.t_end, f"{case.name} [{method}]")
     try:
-        return simulate(case, method, progress=progress, outputs=outputs)
+        with single_threaded_blas():  # small linear algebra: a BLAS thread pool only adds threads
+            return simulate(case, method, progress=progress, outputs=outputs)
     finally:
         progress.close()
 
@@ -264,6 +266,12 @@ def sweep(
     histories: Annotated[
         bool, typer.Option("--histories", help="also keep each case's history (cases/KEY.nc)")
     ] = False,
+    batch_size: Annotated[
+        int | None,
+        typer.Option(
+            "--batch-size", help="cases per Dask task (default: sized as the sweep goes, ~0.5 s of work per task)"
+        ),
+    ] = None,
     set_: SetOpt = None,
     json_: Annotated[bool, typer.Option("--json", help="print the summary as one JSON object")] = False,
 ) -> None:
@@ -292,6 +300,7 @@ def sweep(
             out=out,
             histories=histories,
             progress=progress,
+            batch_size=batch_size,
         )
     except KeyboardInterrupt:
         progress.close()
