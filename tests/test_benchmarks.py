@@ -94,3 +94,20 @@ def test_long_run_benchmark_quick_streams_two_lengths():
         assert row["status"] == "success" and row["steps"] > 0 and row["peak RSS [MB]"] > 0
         assert row["samples"] > row["t_end [s]"] / 1e-3  # the 1 ms grid and every phase's ends
         assert row["file [MB]"] > 0.0 and row["estimate [MB]"] < 1000
+
+
+def test_sweep_benchmark_quick_prints_a_row_per_set_up():
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "sweep.py"), "--quick", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        cwd=ROOT,
+    )
+    assert r.returncode == 0, r.stderr
+    data = json.loads(r.stdout)
+    rows = {row["set-up"]: row for row in data["rows"]}
+    assert len(rows) == 5 and data["cases"] == 8
+    assert rows["one task per case, a cluster per sweep (before)"]["x before"] == 1.0
+    for row in rows.values():
+        assert row["runs"] == 1 and row["cases/s"] > 0 and row["CPU/case [ms]"] > 0

@@ -211,3 +211,40 @@ def test_sweep_with_missing_cases_exits_1(tmp_path):
 
     with xr.open_dataset(store / "result.nc") as ds:
         assert str(ds["status"].sel({"contact.restitution": 0.6}).values) == "missing"
+
+
+def test_a_case_that_kills_its_worker_inside_a_batch_loses_no_other_case(tmp_path):
+    # the batch of three dies with its worker on 0.6 (no retry); its cases run again one at a time: 0.5 and 0.7
+    # are stored, 0.6 (which kills the worker again) is missing
+    preload = tmp_path / "killer.py"
+    preload.write_text(KILLER)
+    env = {
+        **os.environ,
+        "DASK_DISTRIBUTED__WORKER__PRELOAD": json.dumps([str(preload)]),
+        "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0",
+    }
+    store = tmp_path / "store"
+    r = flexbeam(
+        "sweep",
+        "seed-experiment",
+        *sets(SHORT),
+        "--grid",
+        "contact.restitution=0.5,0.6,0.7",
+        "--batch-size",
+        "3",
+        "--workers",
+        "1",
+        "--out",
+        str(store),
+        "--json",
+        env=env,
+        timeout=300,
+    )
+    assert r.returncode == 1, r.stderr
+    info = strict_json(r.stdout)
+    assert info["missing"] == 1 and info["cases"] == 3 and info["failed"] == 0 and info["computed"] == 2
+    import xarray as xr
+
+    with xr.open_dataset(store / "result.nc") as ds:
+        assert ds["status"].values.tolist() == ["success", "missing", "success"]
+    assert len(list((store / "cases").glob("*.json"))) == 2

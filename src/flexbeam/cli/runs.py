@@ -27,10 +27,12 @@ def simulate(case, method: str, outputs: bool = False, stream: Path | None = Non
     """Run a case (``outputs``: its output samples will be written or drawn, so the memory estimate counts them;
     ``stream``: the result file it writes as it goes)."""
     from ..simulation import simulate
+    from ..threads import single_threaded_blas
 
     progress = run_progress(case.solver.t_end, f"{case.name} [{method}]")
     try:
-        return simulate(case, method, progress=progress, outputs=outputs, stream=stream)
+        with single_threaded_blas():  # small linear algebra: a BLAS thread pool only adds threads
+            return simulate(case, method, progress=progress, outputs=outputs, stream=stream)
     finally:
         progress.close()
 

@@ -48,6 +48,12 @@ def sweep(
     histories: Annotated[
         bool, typer.Option("--histories", help="also keep each case's history (cases/KEY.nc)")
     ] = False,
+    batch_size: Annotated[
+        int | None,
+        typer.Option(
+            "--batch-size", help="cases per Dask task (default: sized as the sweep goes, ~0.5 s of work per task)"
+        ),
+    ] = None,
     set_: SetOpt = None,
     json_: Annotated[bool, typer.Option("--json", help="print the summary as one JSON object")] = False,
 ) -> None:
@@ -76,6 +82,7 @@ def sweep(
             out=out,
             histories=histories,
             progress=progress,
+            batch_size=batch_size,
         )
     except KeyboardInterrupt:
         progress.close()

@@ -11,7 +11,11 @@ dimension per swept field (grid) or a ``case`` dimension (samples)::
 
 The cases run on a :mod:`dask.distributed` cluster: a ``LocalCluster`` with one
 single-threaded worker process per core unless a scheduler address (or a
-``Client``) is given.
+``Client``) is given.  The local cluster is started by the first sweep of a process and
+reused by the next ones (:func:`local_client`; closed at exit or by
+:func:`close_local_cluster`).  A task runs a batch of cases (:func:`run_batch`), so the
+cost of a task is paid per batch: batches are sized as the sweep goes, about half a
+second of work each (``batch_size`` fixes it), and BLAS runs on one thread in them.
 
 The store
 ---------
@@ -30,13 +34,15 @@ own and completely or not at all, from whichever process sees it finish::
 impact method, so a case is recognised whatever sweep it came from.  Each file is
 written to a temporary name and renamed (atomic on POSIX): a case is finished if and
 only if its JSON exists, and its history is written before it.  The client writes
-the files as the results arrive, so a remote cluster needs no shared file system,
-and an interrupted client (Ctrl-C) or a killed worker loses only the cases that were
-still running.  Running the same sweep again computes only the cases whose JSON is
-missing.  A case whose simulation raises or ends with ``status == "failed"`` is a
-finished case: it is recorded with its error and is not retried.  A case lost with
-its worker (``KilledWorker`` after Dask's retries) is not recorded and is computed
-by the next run.
+the files as the results arrive (every case of a batch when the batch returns), so a
+remote cluster needs no shared file system, and an interrupted client (Ctrl-C) or a
+killed worker loses only the batches that were still running (about half a second of
+work each; a case of half a second or more is a batch of its own).  Running the same sweep
+again computes only the cases whose JSON is missing.  A case whose simulation raises or
+ends with ``status == "failed"`` is a finished case: it is recorded with its error and is
+not retried, and the other cases of its batch run on.  A batch lost with its worker
+(``KilledWorker`` after Dask's retries) runs again one case at a time; a case lost so is
+not recorded and is computed by the next run.
 
 Library imports stay light here: Dask and xarray are imported when a sweep runs.  The
 local cluster starts its workers as new processes without running the calling script
@@ -48,7 +54,8 @@ Modules
 * :mod:`~flexbeam.sweep.spec` -- grids and :class:`Distribution` (parsing the command line);
 * :mod:`~flexbeam.sweep.planning` -- :func:`plan`: the cases and their :func:`case_key`;
 * :mod:`~flexbeam.sweep.store` -- :class:`Store`, the resumable directory;
-* :mod:`~flexbeam.sweep.cluster` -- :func:`run_case` on a Dask worker and the cluster;
+* :mod:`~flexbeam.sweep.cluster` -- :func:`run_case` and :func:`run_batch` on a Dask worker,
+  the batches, the cluster;
 * :mod:`~flexbeam.sweep.dataset` -- the result Dataset, :func:`load`, :func:`summary`,
   :func:`open_history`;
 * :mod:`~flexbeam.sweep.runner` -- :func:`sweep`.
@@ -57,7 +64,7 @@ Modules
 from __future__ import annotations
 
 from .._namespace import public_dir
-from .cluster import ProgressFn, run_case
+from .cluster import ProgressFn, close_local_cluster, local_client, run_batch, run_case
 from .dataset import METRICS, load, open_history, summary
 from .planning import Plan, Point, case_key, plan
 from .runner import sweep
@@ -73,11 +80,14 @@ __all__ = [
     "ProgressFn",
     "Store",
     "case_key",
+    "close_local_cluster",
     "load",
+    "local_client",
     "open_history",
     "parse_grid",
     "parse_samples",
     "plan",
+    "run_batch",
     "run_case",
     "summary",
     "sweep",

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..errors import ParameterError
 from ..parameters.case import Case
 from ..parameters.io import load_case
 from .cluster import ProgressFn, cluster_client, compute
@@ -37,6 +38,7 @@ def sweep(
     histories: bool = False,
     overrides: Mapping[str, Any] | None = None,
     progress: ProgressFn | None = None,
+    batch_size: int | None = None,
 ) -> xr.Dataset:
     """Run a parameter sweep on Dask and return its metrics as an :class:`xarray.Dataset`.
 
@@ -53,9 +55,10 @@ def sweep(
     method
         Impact method of every case.
     scheduler
-        ``None``: a local cluster of ``workers`` (default: all cores) single-threaded
-        worker processes; a scheduler address (``"tcp://host:8786"``); or a
-        :class:`dask.distributed.Client`.
+        ``None``: the process's local cluster of ``workers`` (default: all cores) single-threaded
+        worker processes, started by the first sweep and reused by the next ones
+        (:func:`~flexbeam.sweep.cluster.local_client`, closed at exit); a scheduler address
+        (``"tcp://host:8786"``); or a :class:`dask.distributed.Client`.
     out
         Store directory (see the module docstring); ``None`` keeps nothing on disk and
         cannot resume.
@@ -65,6 +68,10 @@ def sweep(
         Dotted overrides applied to the base case first.
     progress
         Called as ``progress(done, total)`` after each computed case.
+    batch_size
+        Cases per Dask task.  ``None``: sized as the sweep goes, about half a second of
+        work per task (:func:`~flexbeam.sweep.cluster.batch_size`); 1: one task per case.
+        A batch's cases are stored as its results arrive.
 
     Returns
     -------
@@ -77,6 +84,8 @@ def sweep(
     from ..registry import check_method
 
     check_method(method)
+    if batch_size is not None and (isinstance(batch_size, bool) or not isinstance(batch_size, int) or batch_size < 1):
+        raise ParameterError(f"batch_size: must be an integer >= 1 (got {batch_size!r})")
     base = load_case(case, dict(overrides) if overrides else None)
     pl = plan(base, grid, samples, n, seed, method)
     store = Store(out) if out is not None else None
@@ -90,7 +99,7 @@ def sweep(
     try:
         if cases.todo:
             with cluster_client(scheduler, workers) as client:
-                compute(client, cases.todo, method, histories, store, cases.records, lost, progress)
+                compute(client, cases.todo, method, histories, store, cases.records, lost, progress, batch_size)
     finally:
         ds = _result(spec, pl, cases, lost, store)
     return ds
