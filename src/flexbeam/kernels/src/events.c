@@ -1,5 +1,5 @@
 /* Event search on a step's exact dense output: the gap closing (impact) or opening (separation), and the
- * collocated multiplier turning tensile (release).
+ * collocated multiplier turning tensile (release, in release.c).
  *
  * A step is declared free of a gap event only on a guarantee: either the obstacle is out of reach (the gap
  * at the step start exceeds twice the largest distance P can travel, bounded mode by mode), or the gap,
@@ -278,24 +278,45 @@ static double fast_part(const fb_dense *d, const double *jm, const double *eta, 
     return acc;
 }
 
+/* What a level of samples must show for its search to end there (fb_find_gap_event): the gap clear of zero by
+ * more than the fast modes' bound B and the curvature term at every sample (-sign (g_i - fast_i) - B - curve > 0),
+ * or B = 0 (the scan).  With B != 0 a single sample that fails the first test, with the curvature term at its
+ * least (curve0: no velocity-product acceleration, the bound rounds monotonically in it), settles that the level
+ * cannot end the search: its further samples are not needed, but at the last level for the first sample beyond
+ * the surface (where the step is cut).  NULL: sample every point. */
+typedef struct {
+    double sign, B, curve0;
+    int leaving, need_beyond;
+} hopeless_test;
+
+static int hopeless_at(const hopeless_test *ht, const fb_gap *g, const double *fast, int i, int *fail, int *beyond) {
+    if (!*fail && (-ht->sign * (g[i].delta - fast[i]) - ht->B) - ht->curve0 <= 0.0) *fail = 1;
+    if (i > 0 && !*beyond && -ht->sign * g[i].delta <= 0.0) *beyond = 1;
+    return *fail && (*beyond || !ht->need_beyond);
+}
+
 /* The gap at the points i / m of the step by exact hops between consecutive points, and the fast modes' part of
- * it at each (``fast``, for samples spaced by h / m). */
-static void sample_hops(const fb_dense *d, const double *A, const double *jm, int m, double *x, fb_gap *g,
-                        double *fast) {
+ * it at each (``fast``, for samples spaced by h / m).  Returns the last point sampled: m, or fewer when ``ht``
+ * says the rest cannot change the search's outcome. */
+static int sample_hops(const fb_dense *d, const double *A, const double *jm, int m, double *x, fb_gap *g,
+                       double *fast, const hopeless_test *ht) {
     const fb_basis *b = d->ph->b;
-    int N = b->N;
-    fb_hop H[FB_MAXN];
-    for (int k = 0; k < N; k++) fb_hop_weights(b->omega[k], d->h / m, &H[k]);
+    int N = b->N, fail = ht && !ht->leaving, beyond = 0;
+    fb_hops H;
+    fb_hops_fill(b, d->h / m, &H);
     double eta[FB_MAXN], v[FB_MAXN];
     memcpy(eta, d->eta0, sizeof(double) * N);
     memcpy(v, d->v0, sizeof(double) * N);
     fast[0] = fast_part(d, jm, eta, d->h / m);
+    if (ht && hopeless_at(ht, g, fast, 0, &fail, &beyond)) return 0;
     for (int i = 1; i <= m; i++) {
-        fb_hop_advance(b, H, A, (double)(i - 1) / m, 1.0 / m, eta, v);
+        fb_hop_advance(b, &H, A, (double)(i - 1) / m, 1.0 / m, eta, v);
         x[i] = (double)i / m;
         g[i] = fb_gap_at(d->ph, d->pair, d->t0 + x[i] * d->h, eta, v);
         fast[i] = fast_part(d, jm, eta, d->h / m);
+        if (ht && hopeless_at(ht, g, fast, i, &fail, &beyond)) return i;
     }
+    return m;
 }
 
 /* First crossing of the gap in ``direction`` (-1: closing, +1: opening) inside the step, as a fraction of it:
@@ -326,24 +347,27 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
         if (i) dx = fmax(dx, x[i] - x[i - 1]);
     }
     for (int i = 0; i <= m; i++) fast[i] = fast_part(d, jm, eta_known + (size_t)i * N, dx * d->h);
+    int last = m, hopeless = 0; /* the last point sampled; the level cannot end the search (sample_hops) */
     for (;;) {
-        double worst = INFINITY, gam = 0.0;
-        for (int i = 0; i <= m; i++) {
-            gv[i] = g[i].delta;
-            r[i] = g[i].rate * d->h;
-            gam = fmax(gam, fabs(g[i].gamma));
-            if (i) worst = fmin(worst, fmin(-sign * (gv[i - 1] - fast[i - 1]), -sign * (gv[i] - fast[i])));
+        if (!hopeless) {
+            double worst = INFINITY, gam = 0.0;
+            for (int i = 0; i <= m; i++) {
+                gv[i] = g[i].delta;
+                r[i] = g[i].rate * d->h;
+                gam = fmax(gam, fabs(g[i].gamma));
+                if (i) worst = fmin(worst, fmin(-sign * (gv[i - 1] - fast[i - 1]), -sign * (gv[i] - fast[i])));
+            }
+            double B, curve = bounds(d, jb, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
+            if (dx <= safe) {
+                if (leaving && worst - B - curve > 0.0) return FB_NO_EVENT;
+                if (B == 0.0) return scan(d, x, gv, r, m, sign);
+            }
+            while (level < 3 && 1.0 / levels[level] > fmin(dx, safe) * (1.0 - 1e-12) && levels[level] <= m) level++;
         }
-        double B, curve = bounds(d, jb, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
-        if (dx <= safe) {
-            if (leaving && worst - B - curve > 0.0) return FB_NO_EVENT;
-            if (B == 0.0) return scan(d, x, gv, r, m, sign);
-        }
-        while (level < 3 && 1.0 / levels[level] > fmin(dx, safe) * (1.0 - 1e-12) && levels[level] <= m) level++;
         if (level == 3) {
             *beyond = 1.0;
-            for (int i = 1; i <= m; i++)
-                if (-sign * gv[i] <= 0.0) {
+            for (int i = 1; i <= last; i++)
+                if (-sign * g[i].delta <= 0.0) {
                     *beyond = x[i];
                     break;
                 }
@@ -354,32 +378,9 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
         dx = 1.0 / m;
         x[0] = 0.0;
         g[0] = known[0];
-        sample_hops(d, A, jm, m, x, g, fast);
+        hopeless_test ht = {sign, 0.0, 0.0, leaving, level == 3};
+        ht.curve0 = bounds(d, jb, 0.0, dx, &ht.B);
+        last = sample_hops(d, A, jm, m, x, g, fast, ht.B != 0.0 ? &ht : NULL);
+        hopeless = last < m;
     }
-}
-
-/* Fraction of the step where the collocated multiplier lambda(s) (interpolant of the nodal values) turns
- * tensile, or FB_NO_EVENT. */
-double fb_find_release(const double *lam) {
-    double prev = 0.0;
-    for (int j = 0; j < FB_P; j++) prev += lam[j] * fb_lagrange(j, 0.0);
-    for (int i = 1; i <= 32; i++) {
-        double x = i / 32.0, val = 0.0;
-        for (int j = 0; j < FB_P; j++) val += lam[j] * fb_lagrange(j, x);
-        if (prev >= 0.0 && val < 0.0) {
-            if (prev == 0.0) return (i - 1) / 32.0;
-            double lo = (i - 1) / 32.0, hi = x;
-            for (int it = 0; it < 60; it++) {
-                double mid = 0.5 * (lo + hi), vm = 0.0;
-                for (int j = 0; j < FB_P; j++) vm += lam[j] * fb_lagrange(j, mid);
-                if (vm >= 0.0)
-                    lo = mid;
-                else
-                    hi = mid;
-            }
-            return hi;
-        }
-        prev = val;
-    }
-    return FB_NO_EVENT;
 }

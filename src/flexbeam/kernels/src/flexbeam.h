@@ -187,7 +187,6 @@ typedef struct {
 
 void fb_hop_weights(double w, double T, fb_hop *out);
 void fb_monomial(const double *f, int N, double *A);
-void fb_hop_advance(const fb_basis *b, const fb_hop *H, const double *A, double sa, double L, double *eta, double *v);
 void fb_propagate(const fb_basis *b, const fb_weight *W, int stride, const double *eta0, const double *v0,
                   const double *f, double *eta, double *v);
 double fb_lagrange_integral(int j, double s);

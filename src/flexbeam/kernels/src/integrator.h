@@ -6,6 +6,14 @@
 
 #define FB_MAXN 66 /* modal coordinates: n <= 64 modes, theta, a support coordinate */
 
+typedef struct { /* the hop weights of every mode, mode-innermost */
+    double C[FB_MAXN], SW[FB_MAXN], WS[FB_MAXN], pe[FB_P][FB_MAXN], pv[FB_P][FB_MAXN];
+} fb_hops;
+
+void fb_hops_fill(const fb_basis *b, double T, fb_hops *H);
+void fb_hop_advance(const fb_basis *b, const fb_hops *H, const double *A, double sa, double L, double *eta,
+                    double *v);
+
 /* What a phase integrates: the model in its modal basis and how each contact pair acts. */
 typedef struct {
     const fb_model *m;

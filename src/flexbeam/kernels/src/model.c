@@ -117,14 +117,44 @@ void fb_state_split(const fb_model *m, double t, const double *y, fb_frame *f, c
     fb_joint(m)->split(m, t, y, y + fb_nz(m), f, q, qd);
 }
 
-/* out = A x for a symmetric A, by column sweeps (out_i accumulates A_ji x_j over j in order): the inner loop runs
- * over contiguous memory and independent outputs, so it vectorises without reassociating any sum -- the result is
- * the row-by-row dot product's, bit for bit, at any vector width. */
+/* out = A x for a symmetric A, by column sweeps: out_i accumulates A_ji x_j over j in order, from 0.0 (the row-by-row
+ * dot product's order, bit for bit, whatever the vectorisation).  The outputs are taken in blocks of 8 (then 4, then
+ * one) whose partial sums stay in registers over the whole sweep: the same sums in the same order, without storing
+ * and reloading out at every column (issue 25: this is the kernel's hottest loop, the point kinematics' q^T H q,
+ * the coupling's Mc q and G q). */
 void fb_symv(const double *A, const double *x, int n, double *out) {
-    for (int i = 0; i < n; i++) out[i] = 0.0;
-    for (int j = 0; j < n; j++) {
-        const double xj = x[j], *Aj = A + (size_t)j * n;
-        for (int i = 0; i < n; i++) out[i] += Aj[i] * xj;
+    int i0 = 0;
+    for (; i0 + 8 <= n; i0 += 8) {
+        double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0, a4 = 0.0, a5 = 0.0, a6 = 0.0, a7 = 0.0;
+        for (int j = 0; j < n; j++) {
+            const double xj = x[j], *Aj = A + (size_t)j * n + i0;
+            a0 += Aj[0] * xj;
+            a1 += Aj[1] * xj;
+            a2 += Aj[2] * xj;
+            a3 += Aj[3] * xj;
+            a4 += Aj[4] * xj;
+            a5 += Aj[5] * xj;
+            a6 += Aj[6] * xj;
+            a7 += Aj[7] * xj;
+        }
+        out[i0] = a0, out[i0 + 1] = a1, out[i0 + 2] = a2, out[i0 + 3] = a3;
+        out[i0 + 4] = a4, out[i0 + 5] = a5, out[i0 + 6] = a6, out[i0 + 7] = a7;
+    }
+    for (; i0 + 4 <= n; i0 += 4) {
+        double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
+        for (int j = 0; j < n; j++) {
+            const double xj = x[j], *Aj = A + (size_t)j * n + i0;
+            a0 += Aj[0] * xj;
+            a1 += Aj[1] * xj;
+            a2 += Aj[2] * xj;
+            a3 += Aj[3] * xj;
+        }
+        out[i0] = a0, out[i0 + 1] = a1, out[i0 + 2] = a2, out[i0 + 3] = a3;
+    }
+    for (; i0 < n; i0++) {
+        double a = 0.0;
+        for (int j = 0; j < n; j++) a += A[(size_t)j * n + i0] * x[j];
+        out[i0] = a;
     }
 }
 

@@ -12,7 +12,7 @@
  */
 #include <string.h>
 
-#include "flexbeam.h"
+#include "integrator.h"
 
 #define MOMENT_SERIES 1.0 /* below this th: power series and downward recurrence (else upward) */
 
@@ -146,26 +146,46 @@ void fb_monomial(const double *f, int N, double *A) {
         }
 }
 
+/* The hop weights of every mode, stored mode-innermost (fb_hops) for fb_hop_advance. */
+void fb_hops_fill(const fb_basis *b, double T, fb_hops *H) {
+    for (int k = 0; k < b->N; k++) {
+        fb_hop one;
+        fb_hop_weights(b->omega[k], T, &one);
+        H->C[k] = one.C;
+        H->SW[k] = one.SW;
+        H->WS[k] = one.WS;
+        for (int m = 0; m < FB_P; m++) {
+            H->pe[m][k] = one.pe[m];
+            H->pv[m][k] = one.pv[m];
+        }
+    }
+}
+
 /* Advance (eta, v) in place from the step fraction sa by the fraction L with the hop weights H (of length L h):
  * the forcing, a polynomial in the step fraction with monomial coefficients A, is Taylor-shifted to the hop's
- * own variable u = (s - sa) / L, so the propagation stays exact. */
-void fb_hop_advance(const fb_basis *b, const fb_hop *H, const double *A, double sa, double L, double *eta, double *v) {
+ * own variable u = (s - sa) / L, so the propagation stays exact.  Each mode's arithmetic is its own and in a fixed
+ * order; the loops run over the modes innermost (contiguous, independent: vectorised without reassociation). */
+void fb_hop_advance(const fb_basis *b, const fb_hops *H, const double *A, double sa, double L, double *eta,
+                    double *v) {
     int N = b->N;
-    for (int k = 0; k < N; k++) {
-        double c[FB_P];
-        for (int m = 0; m < FB_P; m++) c[m] = A[m * N + k];
-        if (sa != 0.0)
-            for (int i = 0; i < FB_P - 1; i++)
-                for (int j = FB_P - 2; j >= i; j--) c[j] += sa * c[j + 1];
-        double sc = 1.0, fe = 0.0, fv = 0.0;
-        for (int m = 0; m < FB_P; m++) {
-            fe += H[k].pe[m] * c[m] * sc;
-            fv += H[k].pv[m] * c[m] * sc;
-            sc *= L;
+    double c[FB_P][FB_MAXN], fe[FB_MAXN], fv[FB_MAXN], sc[FB_P];
+    for (int m = 0; m < FB_P; m++) memcpy(c[m], A + (size_t)m * N, sizeof(double) * N);
+    if (sa != 0.0)
+        for (int i = 0; i < FB_P - 1; i++)
+            for (int j = FB_P - 2; j >= i; j--)
+                for (int k = 0; k < N; k++) c[j][k] += sa * c[j + 1][k];
+    sc[0] = 1.0;
+    for (int m = 1; m < FB_P; m++) sc[m] = sc[m - 1] * L;
+    for (int k = 0; k < N; k++) fe[k] = fv[k] = 0.0;
+    for (int m = 0; m < FB_P; m++)
+        for (int k = 0; k < N; k++) {
+            fe[k] += H->pe[m][k] * c[m][k] * sc[m];
+            fv[k] += H->pv[m][k] * c[m][k] * sc[m];
         }
+    for (int k = 0; k < N; k++) {
         double e0 = eta[k], v0 = v[k];
-        eta[k] = H[k].C * e0 + H[k].SW * v0 + fe;
-        v[k] = -H[k].WS * e0 + H[k].C * v0 + fv;
+        eta[k] = H->C[k] * e0 + H->SW[k] * v0 + fe[k];
+        v[k] = -H->WS[k] * e0 + H->C[k] * v0 + fv[k];
     }
 }
 

@@ -1,0 +1,28 @@
+/* Event search for a held constraint (events.c does the gaps): the collocated multiplier turning tensile. */
+#include "integrator.h"
+
+/* Fraction of the step where the collocated multiplier lambda(s) (interpolant of the nodal values) turns
+ * tensile, or FB_NO_EVENT. */
+double fb_find_release(const double *lam) {
+    double prev = 0.0;
+    for (int j = 0; j < FB_P; j++) prev += lam[j] * fb_lagrange(j, 0.0);
+    for (int i = 1; i <= 32; i++) {
+        double x = i / 32.0, val = 0.0;
+        for (int j = 0; j < FB_P; j++) val += lam[j] * fb_lagrange(j, x);
+        if (prev >= 0.0 && val < 0.0) {
+            if (prev == 0.0) return (i - 1) / 32.0;
+            double lo = (i - 1) / 32.0, hi = x;
+            for (int it = 0; it < 60; it++) {
+                double mid = 0.5 * (lo + hi), vm = 0.0;
+                for (int j = 0; j < FB_P; j++) vm += lam[j] * fb_lagrange(j, mid);
+                if (vm >= 0.0)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            return hi;
+        }
+        prev = val;
+    }
+    return FB_NO_EVENT;
+}
