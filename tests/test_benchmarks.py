@@ -111,3 +111,20 @@ def test_sweep_benchmark_quick_prints_a_row_per_set_up():
     assert rows["one task per case, a cluster per sweep (before)"]["x before"] == 1.0
     for row in rows.values():
         assert row["runs"] == 1 and row["cases/s"] > 0 and row["CPU/case [ms]"] > 0
+
+
+def test_free_beam_benchmark_quick_prints_a_row_per_case_and_method():
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "free_beam.py"), "--quick", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        cwd=ROOT,
+    )
+    assert r.returncode == 0, r.stderr
+    rows = json.loads(r.stdout)["rows"]
+    assert len(rows) == 4 * 2
+    assert {row["case"] for row in rows} == {"seed-experiment", "seed anywhere", "free-bar-drop", "free-bar-drop fixed"}
+    for row in rows:
+        assert row["status"] == "success" and row["steps"] > 0 and row["us/step"] > 0.0 and row["n"] == 4
+    assert all(row["x seed"] == 1.0 for row in rows if row["case"] == "seed-experiment")

@@ -12,7 +12,7 @@ from jsonschema import Draft202012Validator
 
 import flexbeam as fb
 from flexbeam.cli import main
-from flexbeam.results.metrics import METRICS
+from flexbeam.results.metrics import METRICS, OPTIONAL_SCOPES
 from flexbeam.schemas import run_schema
 
 COUNTS = ("contacts", "contact_records", "micro_impacts", "chatter_episodes")
@@ -103,7 +103,7 @@ def test_schema_lists_every_metric_with_the_type_of_its_kind():
     schema = run_schema()
     props, defs = schema["properties"], schema["$defs"]
     assert set(props) == set(METRICS)
-    assert set(schema["required"]) == {k for k, m in METRICS.items() if m.scope != "sensor"}
+    assert set(schema["required"]) == {k for k, m in METRICS.items() if m.scope not in OPTIONAL_SCOPES}
     assert schema["additionalProperties"] is False
     expected = {
         "count": {"$ref": "#/$defs/count"},
@@ -114,11 +114,38 @@ def test_schema_lists_every_metric_with_the_type_of_its_kind():
     for name, metric in METRICS.items():
         spec = {k: v for k, v in props[name].items() if k != "description"}
         if metric.kind == "records":
-            assert spec["type"] == "array" and spec["items"]["$ref"] in ("#/$defs/pair", "#/$defs/event"), name
+            refs = ("#/$defs/pair", "#/$defs/event", "#/$defs/episode")
+            assert spec["type"] == "array" and spec["items"]["$ref"] in refs, name
         else:
             assert spec == expected[metric.kind], name
     assert defs["count"] == {"type": "integer", "minimum": 0}
     assert defs["number"] == {"type": ["number", "null"]}
-    for record in ("pair", "event"):
+    for record in ("pair", "event", "episode"):
         assert set(defs[record]["required"]) == set(defs[record]["properties"])
         assert defs[record]["additionalProperties"] is False
+
+
+@pytest.mark.parametrize("method", ["ccfm", "imm"])
+def test_a_free_beam_adds_its_collision_episodes(capsys, validator, method):
+    """The free bar drop (tests/validation/data): the schema holds with the episode keys, every record is in exactly
+    one episode (in the order of onsets) and each episode's counts are those of its events; a revolute case has
+    none of the episode keys."""
+    from pathlib import Path
+
+    case = Path(__file__).parent / "validation" / "data" / "free-bar-drop.toml"
+    data = run_json(capsys, str(case), "--method", method)
+    validator.validate(data)
+    assert_consistent(data)
+    episodes, events = data["episodes"], data["events"]
+    assert data["collision_episodes"] == len(episodes) >= 1
+    assert [i for ep in episodes for i in ep["records"]] == list(range(len(events)))
+    for ep in episodes:
+        kinds = [events[i]["kind"] for i in ep["records"]]
+        assert ep["contacts"] == kinds.count("contact") and ep["micro_impacts"] == kinds.count("micro-impact")
+        assert ep["onset"] == events[ep["records"][0]]["onset"]
+    first = episodes[0]
+    assert data["episode_contacts"] == first["contacts"]
+    for key in ("restitution_newton", "restitution_poisson", "restitution_energetic"):
+        assert data[key] == first[key] and 0.0 < data[key] < 1.0
+    revolute = run_json(capsys, "tip-wall", "--method", method, "--set", "solver.t_end=0.01")
+    assert not {k for k, m in METRICS.items() if m.scope == "free"} & set(revolute)

@@ -26,7 +26,7 @@ def print_metrics(metrics: dict[str, Any], title: str) -> None:
                 text = contacts_text(p) + ", first peak " + ("-" if math.isnan(peak) else f"{peak:.6g} N")
                 table.add_row(f"pair {p['pair']} ({p['obstacle']})", text)
             continue
-        if key == "events":  # one per contact record: in --json only (their counts are rows)
+        if key in ("events", "episodes"):  # one per contact record / collision episode: in --json only
             continue
         if isinstance(value, float):
             text = "-" if math.isnan(value) else f"{value:.6g}"

@@ -4,7 +4,9 @@ read.  The names are a contract users script against: add, never rename.
 Each metric has its units, a long name, a kind (``number``, ``count``, ``numbers`` for a list, ``text``,
 ``records`` for a list of dicts: per pair, per contact record) and a
 scope: ``first contact`` (computed from the first contact alone; a calibration of such features may stop the run
-after it), ``sensor`` (the first sensor pulse of a compliant obstacle support: present only with one), ``run``.
+after it), ``sensor`` (the first sensor pulse of a compliant obstacle support: present only with one), ``free``
+(the collision episodes of a free beam, :mod:`flexbeam.results.episodes`: present only for ``joint.kind =
+"free"``), ``run``.
 ``fittable`` metrics can be calibration features; ``second_peak`` ones read 0 in a fit when a trial's force has a
 single peak (the limit of a vanishing shoulder).
 
@@ -75,8 +77,39 @@ METRICS: dict[str, Metric] = {
     "tip_deflection_max": Metric("m", "Largest tip deflection", scope="run"),
     "pairs": Metric("", "Per contact pair: its counts and its first contact's metrics", "records", "run", False),
     "events": Metric("", "Per contact record: times, peak force, velocities, impulse, kind", "records", "run", False),
+    # a free beam's collision episodes (docs/free-beam.md, *Collision episodes*)
+    "collision_episodes": Metric("1", "Number of collision episodes (free beam)", "count", "free", False),
+    "episode_contacts": Metric("1", "Contacts in the first collision episode", "count", "free", False),
+    "episode_micro_impacts": Metric("1", "Micro-impacts in the first collision episode", "count", "free", False),
+    "restitution_newton": Metric(
+        "1",
+        "Apparent restitution of the first episode, Newton's (rigid-body normal velocities)",
+        scope="free",
+        fittable=False,
+    ),
+    "restitution_poisson": Metric(
+        "1",
+        "Apparent restitution of the first episode, Poisson's (restitution / compression impulse)",
+        scope="free",
+        fittable=False,
+    ),
+    "restitution_energetic": Metric(
+        "1",
+        "Apparent restitution of the first episode, Stronge's energetic (sqrt(-W_r / W_c))",
+        scope="free",
+        fittable=False,
+    ),
+    "episodes": Metric(
+        "",
+        "Per collision episode of a free beam: G's velocity and spin before and after, counts, restitution",
+        "records",
+        "free",
+        False,
+    ),
 }
 
+#: scopes of metrics present only for some runs (a compliant obstacle support, a free beam)
+OPTIONAL_SCOPES = ("sensor", "free")
 #: metrics that are plain numbers (variables of a sweep's Dataset)
 SCALARS = tuple(k for k, m in METRICS.items() if m.kind in ("number", "count"))
 #: metrics a calibration can fit as features

@@ -20,6 +20,7 @@ import numpy as np
 
 from . import export, summary
 from .counts import ContactCounts
+from .episodes import Episode, find_episodes, is_free
 from .peaks import PEAK_XTOL, golden_max, interior_maxima
 from .records import ContactEvent
 
@@ -281,6 +282,17 @@ class Solution:
     def events(self, counts: ContactCounts | None = None) -> list[dict[str, Any]]:
         """One dict per contact record (:func:`~flexbeam.results.summary.events`)."""
         return summary.events(self, counts)
+
+    @property
+    def is_free(self) -> bool:
+        """Is the beam a free one (``joint.kind = "free"``), which has collision episodes?"""
+        return is_free(self)
+
+    def episodes(self, gap: float | None = None) -> list[Episode]:
+        """A free beam's collision episodes: G's velocity and spin before and after, their counts and apparent
+        restitution (:func:`~flexbeam.results.episodes.find_episodes`; ``gap``: the free flight that ends an
+        episode [s], default one period of the first free-free bending mode); [] for a beam on a joint."""
+        return find_episodes(self, self.contact_counts(), gap)
 
     def metrics(self) -> dict[str, Any]:
         """The run's summary numbers, the ``--json`` contract (:func:`~flexbeam.results.summary.run_metrics`)."""

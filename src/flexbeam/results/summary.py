@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .counts import ContactCounts, classify_contacts
-from .metrics import METRICS
+from .episodes import find_episodes
+from .metrics import METRICS, OPTIONAL_SCOPES
 from .peaks import interior_maxima
 
 if TYPE_CHECKING:
@@ -171,13 +172,16 @@ def run_metrics(sol: Solution) -> dict[str, Any]:
     keys for every pair, NaN and empty lists for a pair that never touched); ``events`` lists every record
     (:func:`events`); with a compliant obstacle support also ``sensor_peak_force``,
     ``sensor_second_peak_force`` [N] and ``sensor_duration`` [s] of the first sensor-force pulse
-    (:func:`sensor_pulse`).
+    (:func:`sensor_pulse`); for a free beam (``joint.kind = "free"``) also ``episodes``, one record per
+    collision episode (:func:`flexbeam.results.episodes.find_episodes`), their number ``collision_episodes`` and the
+    first one's ``episode_contacts``, ``episode_micro_impacts`` and apparent restitution ``restitution_newton``,
+    ``restitution_poisson``, ``restitution_energetic`` (NaN without an episode).
     """
     drift, drift_max = energy_drift(sol)
     out: dict[str, Any] = {
         name: ([] if m.kind in ("numbers", "records") else math.nan)
         for name, m in METRICS.items()
-        if m.scope != "sensor"
+        if m.scope not in OPTIONAL_SCOPES
     }
     counts = contact_counts(sol)
     out.update(
@@ -206,6 +210,8 @@ def run_metrics(sol: Solution) -> dict[str, Any]:
         out["sensor_peak_force"] = ranked[0] if ranked else math.nan
         out["sensor_second_peak_force"] = ranked[1] if len(ranked) > 1 else math.nan
         out["sensor_duration"] = duration
+    if sol.is_free:
+        out.update(episode_metrics(sol, counts))
     if "tip_deflection" in sol.summaries:
         out["tip_deflection_min"], out["tip_deflection_max"] = sol.summaries["tip_deflection"]
     elif sol.source is not None:
@@ -214,3 +220,20 @@ def run_metrics(sol: Solution) -> dict[str, Any]:
         out["tip_deflection_min"] = float(np.min(sol.arrays["tip_deflection"]))
         out["tip_deflection_max"] = float(np.max(sol.arrays["tip_deflection"]))
     return out
+
+
+def episode_metrics(sol: Solution, counts: ContactCounts | None = None) -> dict[str, Any]:
+    """The metrics of a free beam's collision episodes (scope ``free`` of the registry): ``collision_episodes``,
+    the first episode's counts and apparent restitution (NaN without one) and ``episodes``, one dict per episode
+    (:meth:`flexbeam.results.episodes.Episode.record`)."""
+    found = find_episodes(sol, contact_counts(sol) if counts is None else counts)
+    first = found[0] if found else None
+    return {
+        "collision_episodes": len(found),
+        "episode_contacts": first.contacts if first else 0,
+        "episode_micro_impacts": first.micro_impacts if first else 0,
+        "restitution_newton": first.restitution_newton if first else math.nan,
+        "restitution_poisson": first.restitution_poisson if first else math.nan,
+        "restitution_energetic": first.restitution_energetic if first else math.nan,
+        "episodes": [ep.record(sol.pair_labels) for ep in found],
+    }

@@ -1,0 +1,201 @@
+"""Collision episodes of a free beam (``joint.kind = "free"``): which contact records make one collision, and what
+the collision did to the beam's rigid-body motion (docs/free-beam.md, *Collision episodes*).
+
+An **episode** is a maximal group of contact records -- micro-impacts included (:mod:`flexbeam.results.counts`) --
+in which each record begins less than ``gap`` of free flight after the end of every record before it in the group.
+The default gap is one period T_1 of the beam's first free-free bending mode (:func:`default_gap`): a bar whose
+vibration brings a struck end back to the ground does so within the period of its slowest mode, while the next
+collision of a bouncing bar comes after a flight of order (rebound speed) / g, hundreds of T_1 later.
+
+Per episode: the velocity of G and the spin before (at the first record's onset, before any jump) and after (at the
+last record's end); and the apparent coefficients of restitution of Newton, Poisson and Stronge
+(:mod:`flexbeam.results.restitution`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .restitution import RigidMotion, apparent_restitution
+
+if TYPE_CHECKING:
+    from ..model.beam import ModalBeam
+    from .counts import ContactCounts
+    from .solution import Solution
+
+#: beta_1 L of the first free-free bending mode, the first root of cos z cosh z = 1
+FREE_FREE_ROOT = 4.730040744862704
+#: the default gap of free flight that ends an episode, in periods of the first free-free bending mode
+GAP_PERIODS = 1.0
+#: the apparent coefficients are given when every record of an episode strikes within this share of L of the first
+#: record's contact point on the same pair (else null: no one point of the rigid body describes the collision)
+SAME_POINT = 0.1
+
+
+def first_free_free_period(beam: ModalBeam) -> float:
+    """T_1 = 2 pi / ((beta_1 L)^2 sqrt(EI / (mu L^4))) [s]: the continuum's first free-free bending period, whatever
+    ``model.modes`` is (so that a rigid model and a flexible one of the same bar group their records alike)."""
+    L = beam.length
+    return 2.0 * math.pi / (FREE_FREE_ROOT**2 * math.sqrt(beam.bending_stiffness / (beam.line_density * L**4)))
+
+
+def default_gap(beam: ModalBeam) -> float:
+    """The default gap of free flight that separates two episodes: :data:`GAP_PERIODS` x T_1 [s]."""
+    return GAP_PERIODS * first_free_free_period(beam)
+
+
+def group_episodes(onsets: Sequence[float], ends: Sequence[float], gap: float) -> list[list[int]]:
+    """Group records (in the order of their onsets) into episodes: record i joins the open episode when its onset
+    is less than ``gap`` after the latest end of that episode's records (an end that is NaN -- the run ended during
+    the contact -- never closes it)."""
+    groups: list[list[int]] = []
+    latest = -math.inf
+    for i, (t0, t1) in enumerate(zip(onsets, ends)):
+        if groups and t0 - latest < gap:
+            groups[-1].append(i)
+        else:
+            groups.append([i])
+            latest = -math.inf
+        latest = max(latest, t1 if math.isfinite(t1) else math.inf, t0)
+    return groups
+
+
+@dataclass(frozen=True)
+class Episode:
+    """One collision episode of a free beam (SI units; see the module docstring and
+    :mod:`flexbeam.results.restitution`).
+
+    ``records``: indices in :attr:`Solution.contacts <flexbeam.results.solution.Solution.contacts>`;
+    ``velocity_before``/``velocity_after``: G's (x, y) velocity; ``spin_*``: p_theta / J_G, the spin of the rigid
+    body with the beam's angular momentum about G; ``normal_velocity_*``: the striking point's normal velocity in
+    that rigid-body motion, the contact forces' share alone (gravity's m g t taken out); ``compression_end``: when it
+    reached zero (NaN: never); impulses [N s] and works [J] of the striking pair's normal force in compression and
+    restitution.
+    """
+
+    index: int
+    records: tuple[int, ...]
+    pair: int
+    onset: float
+    end: float
+    contacts: int
+    micro_impacts: int
+    velocity_before: tuple[float, float]
+    velocity_after: tuple[float, float]
+    spin_before: float
+    spin_after: float
+    normal_velocity_before: float
+    normal_velocity_after: float
+    compression_end: float
+    compression_impulse: float
+    restitution_impulse: float
+    compression_work: float
+    restitution_work: float
+    restitution_newton: float
+    restitution_poisson: float
+    restitution_energetic: float
+
+    @property
+    def impulse(self) -> float:
+        """The striking pair's whole impulse over the episode [N s]."""
+        return self.compression_impulse + self.restitution_impulse
+
+    def record(self, labels: Sequence[str]) -> dict[str, Any]:
+        """The episode as one entry of the metrics' ``episodes`` (``obstacle``: the pair's label)."""
+        return {
+            "index": self.index,
+            "records": list(self.records),
+            "pair": self.pair,
+            "obstacle": labels[self.pair],
+            "onset": self.onset,
+            "end": self.end,
+            "duration": self.end - self.onset,
+            "contact_records": len(self.records),
+            "contacts": self.contacts,
+            "micro_impacts": self.micro_impacts,
+            "velocity_before": list(self.velocity_before),
+            "velocity_after": list(self.velocity_after),
+            "spin_before": self.spin_before,
+            "spin_after": self.spin_after,
+            "normal_velocity_before": self.normal_velocity_before,
+            "normal_velocity_after": self.normal_velocity_after,
+            "compression_end": self.compression_end,
+            "impulse": self.impulse,
+            "compression_impulse": self.compression_impulse,
+            "restitution_impulse": self.restitution_impulse,
+            "compression_work": self.compression_work,
+            "restitution_work": self.restitution_work,
+            "restitution_newton": self.restitution_newton,
+            "restitution_poisson": self.restitution_poisson,
+            "restitution_energetic": self.restitution_energetic,
+        }
+
+
+def is_free(sol: Solution) -> bool:
+    """Is the run's beam a free one (a run with a dense output and ``joint.kind = "free"``)?"""
+    return sol.source is not None and sol.source.system.joint.kind == "free"
+
+
+def find_episodes(sol: Solution, counts: ContactCounts, gap: float | None = None) -> list[Episode]:
+    """The collision episodes of a free beam's run (:func:`group_episodes` with ``gap``, default
+    :func:`default_gap`) with their rigid-body velocities and apparent restitution; [] for any other run."""
+    if not is_free(sol):
+        return []
+    assert sol.source is not None
+    system = sol.source.system
+    gap = default_gap(system.beam) if gap is None else float(gap)
+    records = sol.contacts
+    ends = [ev.end if math.isfinite(ev.end) else math.nan for ev in records]
+    motion = RigidMotion(sol.source)
+    out = []
+    for k, group in enumerate(group_episodes([ev.onset for ev in records], ends, gap)):
+        first, last = records[group[0]], records[group[-1]]
+        t1 = max((ev.end if math.isfinite(ev.end) else sol.source.run.t_final) for ev in (records[i] for i in group))
+        t1 = max(t1, last.onset)
+        same = _one_point(sol, group)
+        coeffs = apparent_restitution(motion, [records[i] for i in group], first.pair, first.onset, t1, same)
+        before, after = motion.state(first.onset, after=False), motion.state(t1, after=True)
+        micro = sum(counts.micro[i] for i in group)
+        out.append(
+            Episode(
+                index=k,
+                records=tuple(group),
+                pair=first.pair,
+                onset=first.onset,
+                end=t1,
+                contacts=len(group) - micro,
+                micro_impacts=micro,
+                velocity_before=(float(before[0]), float(before[1])),
+                velocity_after=(float(after[0]), float(after[1])),
+                spin_before=float(before[2]),
+                spin_after=float(after[2]),
+                **coeffs,
+            )
+        )
+    return out
+
+
+def _one_point(sol: Solution, group: list[int]) -> bool:
+    """Do all records of the group strike the first one's pair within :data:`SAME_POINT` L of its point?"""
+    src = sol.source
+    assert src is not None
+    records = [sol.contacts[i] for i in group]
+    pair = records[0].pair
+    if any(ev.pair != pair for ev in records):
+        return False
+    L = src.system.beam.length
+    xs = [_contact_position(sol, ev.onset, pair) for ev in records]
+    return all(abs(x - xs[0]) <= SAME_POINT * L for x in xs)
+
+
+def _contact_position(sol: Solution, t: float, pair: int) -> float:
+    """Material coordinate of a pair's contact point at time t (after a jump there)."""
+    src = sol.source
+    assert src is not None
+    seg = [s for s in (src.segments[i] for i in src._around(t, t)) if s.t0 <= t <= s.t1][-1]
+    return float(src.evaluate_pairs(seg, np.array([t]))[2][0, pair, 3])
