@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from .assembly import node_states
-from .element import GAUSS_W, GAUSS_XI, corotational_element, inertia_element, point_on_element
+from .element import corotational_element, inertia_element, point_on_element
 from .jit import fem_jit
 
 
@@ -100,17 +100,5 @@ class BeamOutputs:
 
     def energies(self, z: np.ndarray, zd: np.ndarray) -> tuple[float, float, float]:
         """(kinetic, elastic, gravitational) energy [J]; V_g = g int mu Y dx."""
-        T, Ve, Vg = state_energies(
-            z,
-            zd,
-            self.hub_radius,
-            self.hub_inertia,
-            self.l0,
-            self.mu,
-            self.EA,
-            self.EI,
-            self.gravity,
-            GAUSS_XI,
-            GAUSS_W,
-        )
+        T, Ve, Vg = state_energies(z, zd, *self.model_args())
         return float(T), float(Ve), float(Vg)
