@@ -120,6 +120,10 @@ static double minimise(line_t *ln, int sphere, const double c[2], double a, doub
         if (f < 0.0) a = x;
         else b = x;
         double xn = df > 0.0 ? x - f / df : 0.5 * (a + b);
+        /* a converged Newton step may land on the bracket's end x itself (f = 0 exactly, or a step below the ulp,
+         * as at a straight beam's point abreast of a sphere's centre): that is the root, not a reason to bisect on
+         * down to tol off it */
+        if (df > 0.0 && xn >= a && xn <= b && fabs(xn - x) <= tol) return xn;
         if (!(xn > a && xn < b)) xn = 0.5 * (a + b);
         if (fabs(xn - x) <= tol || b - a <= tol) return xn;
         x = xn;
