@@ -329,3 +329,13 @@ def test_what_a_free_beam_refuses(args, field, fragment):
     yet -- one line naming the field, exit 2."""
     r = flexbeam("run", str(FREE_BAR), "--json", *args)
     assert_one_line_error(r, field, fragment)
+
+
+def test_a_subnormal_sample_step_is_refused_by_the_sample_limit():
+    """Found by the fuzz test: a compliant support's metrics read the output samples (the sensor pulse), and a
+    contact sample step of 5e-324 s made their count overflow a float: one line naming the field, exit 2."""
+    r = flexbeam(
+        "run", "seed-experiment-calibrated", "--json", "--set", "solver.t_end=1e-3",
+        "--set", "solver.contact_sample_step=5e-324",
+    )  # fmt: skip
+    assert_one_line_error(r, "solver.contact_sample_step", "coarser")

@@ -34,11 +34,20 @@ def sample_grid(t0: float, t1: float, step: float) -> np.ndarray:
     return np.concatenate(([t0], grid, [t1]))
 
 
+#: the sample count reported for a grid too fine to count (2^62: more than any machine holds)
+TOO_MANY_SAMPLES = 2**62
+
+
 def sample_count(t0: float, t1: float, step: float) -> int:
-    """The number of samples :func:`sample_grid` gives (or at most 2 more), without building it."""
+    """The number of samples :func:`sample_grid` gives (or at most 2 more), without building it; a step so fine
+    that the count is not a float's integer (a subnormal step) gives :data:`TOO_MANY_SAMPLES`, which every memory
+    limit refuses."""
     if t1 <= t0:
         return 1
-    return max(0, math.floor(t1 / step) - math.floor(t0 / step)) + 2
+    a, b = t0 / step, t1 / step
+    if not (math.isfinite(a) and math.isfinite(b)) or b - a > TOO_MANY_SAMPLES:
+        return TOO_MANY_SAMPLES
+    return max(0, math.floor(b) - math.floor(a)) + 2
 
 
 class RunSource:
