@@ -247,8 +247,13 @@ static double energy_at(const fb_phase *ph, double t, const double *eta, const d
     return fb_node_energy(ph, &n0, scale);
 }
 
-/* The phase ends at an event: its kind and pair in info; returns ADV_EVENT. */
-static int event_code(double *info, int kind, int pair) {
+/* The phase ends at an event at t: its kind and pair in info; returns ADV_EVENT.  The step *h handed on is the next
+ * phase's first guess: the step just taken (cut to the event), unless that is below the underflow limit -- the event
+ * ~1e-15 s into its step, as the second of two separations that nearly coincide -- which would end the next phase
+ * before its first attempt (plan_step); then the step the controller accepted before the cut, ``taken`` (plan_step
+ * bounds it again by the next phase's hmax and t_end). */
+static int event_code(double *info, int kind, int pair, double t, double *h, double taken) {
+    if (*h < H_MIN_REL * fmax(fabs(t), 1.0)) *h = taken;
     info[0] = kind;
     info[4] = pair;
     return ADV_EVENT;
@@ -333,7 +338,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             retry = 1;
             continue;
         }
-        double E1, scale1, T1, dEd, dW, red[FB_P], rwd[FB_P];
+        double E1, scale1, T1, dEd, dW, red[FB_P], rwd[FB_P], h_taken = h; /* h_taken: the step accepted */
         fb_step_books(&ph, w, t, h, eta, v, &st, red, rwd, &dEd, &dW);
         E1 = fb_node_energy_parts(&ph, &w->end, &scale1, &T1);
         if (!have_E0) E0 = energy_at(&ph, t, eta, v, &scale0), have_E0 = 1;
@@ -359,7 +364,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             double scale_x;
             E1 = fb_node_energy_parts(&ph, &w->end, &scale_x, &T1);
         } else if (event && x <= 0.0) {
-            code = event_code(info, kind, pair);
+            code = event_code(info, kind, pair, t, &h, h_taken);
             break;
         }
         /* record the step and move to its end */
@@ -377,7 +382,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             E0 = E1, scale0 = scale1;
         }
         if (event) {
-            code = event_code(info, kind, pair);
+            code = event_code(info, kind, pair, t, &h, h_taken);
             break;
         }
         retry = 0;
