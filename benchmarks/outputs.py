@@ -24,37 +24,19 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
-import os
-import platform
 import statistics
+import sys
 import time
+from pathlib import Path
 from typing import Any
-
-import numpy as np
 
 import flexbeam as fb
 from flexbeam.simulation import simulate
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from seed import environment  # noqa: E402  (the machine and library versions, as every benchmark reports them)
+
 CASE = "seed-experiment"
-
-
-def environment() -> dict[str, Any]:
-    """The machine and library versions the numbers belong to."""
-    cpu = platform.processor() or ""
-    try:
-        with open("/proc/cpuinfo") as f:
-            cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), cpu)
-    except OSError:
-        pass
-    return {
-        "machine": f"{platform.machine()} {cpu}".strip(),
-        "cores": len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count(),
-        "python": platform.python_version(),
-        "flexbeam": fb.__version__,
-        "numpy": np.__version__,
-        "load_average": os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan,
-    }
 
 
 def one_run(t_end: float) -> dict[str, float]:

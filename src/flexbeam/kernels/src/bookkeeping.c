@@ -76,13 +76,7 @@ double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale) {
 double fb_node_tip(const fb_phase *ph, const fb_node *nd) {
     const fb_model *m = ph->m;
     int off = m->nrigid - m->ngiven;
-    const double *q = nd->z + off, *qd = nd->zd + off;
-    fb_kin tip = {.want_acc = 0};
-    fb_point_kinematics(m, &m->points[1], &nd->frame, q, qd, &tip, NULL);
-    double phi, phid, s, c;
-    fb_joint(m)->hub(m, &nd->frame, q, qd, &phi, &phid);
-    fb_sincos(phi, &s, &c);
-    return -s * (tip.r[0] - nd->frame.R[0]) + c * (tip.r[1] - nd->frame.R[1]);
+    return fb_tip_deflection(m, &nd->frame, nd->z + off, nd->zd + off);
 }
 
 /* fb_node_energy, and the kinetic energy T (+ the support's) in *kinetic. */

@@ -22,7 +22,21 @@ typedef struct {
     const double *y0, *y1;
     int column; /* >= 0: an output column (FB_NCOLS); < 0: the contact force of pair -1 - column */
     double sign;
+    double g[FB_MAXN]; /* the tip's deflection per unit of each modal coordinate (tip_gains; the tip column only) */
 } probe_t;
+
+/* The tip's deflection per unit eta_k, sum_j phi_j(tip) Psi_(q_j, k), into p->g (the linear part of the tip's
+ * deflection in the modal coordinates; the same for every step of the phase). */
+static void tip_gains(probe_t *p) {
+    const fb_basis *b = p->b;
+    int N = b->N, n = p->m->n, off = p->m->nrigid - p->m->ngiven;
+    const double *phi = p->m->points[1].phi;
+    for (int k = 0; k < N; k++) {
+        double g = 0.0;
+        for (int j = 0; j < n; j++) g += phi[j] * b->Psi[(off + j) * N + k];
+        p->g[k] = g;
+    }
+}
 
 /* The first step that ends at or after t (the dense output's own choice), by bisection on the step ends. */
 static int step_of(const probe_t *p, double t) {
@@ -48,16 +62,11 @@ static double probe_value(const probe_t *p, double t) {
         memcpy(y, p->y1, sizeof(double) * size);
     else
         fb_dense_eval(p->m, p->b, p->records + (size_t)step_of(p, t) * p->R, 1, &t, 1, y);
-    if (p->column == FB_COL_TIP) { /* the tip alone: fb_outputs' arithmetic for that column */
+    if (p->column == FB_COL_TIP) { /* the tip alone, as fb_outputs computes it */
         fb_frame fr;
         const double *q, *qd;
-        double phi, phid, sphi, cphi;
         fb_state_split(p->m, t, y, &fr, &q, &qd);
-        fb_joint(p->m)->hub(p->m, &fr, q, qd, &phi, &phid);
-        fb_sincos(phi, &sphi, &cphi);
-        fb_kin tip = {.want_acc = 0};
-        fb_point_kinematics(p->m, &p->m->points[1], &fr, q, qd, &tip, NULL);
-        return p->sign * (-sphi * (tip.r[0] - fr.R[0]) + cphi * (tip.r[1] - fr.R[1]));
+        return p->sign * fb_tip_deflection(p->m, &fr, q, qd);
     }
     fb_outputs(p->m, &t, y, 1, p->c, cols, mv, pc);
     double v = p->column >= 0 ? cols[p->column] : pc[(-1 - p->column) * FB_PAIR_COLS + 2];
@@ -123,17 +132,15 @@ static double brent_max(const probe_t *p, double a, double b, double xtol, doubl
  * add up to more than 1e-9 of the sum over all modes; for any other output, the fastest mode. */
 static double fastest_rate(const probe_t *p, int r) {
     const fb_basis *b = p->b;
-    int N = b->N, n = p->m->n, off = p->m->nrigid - p->m->ngiven;
+    int N = b->N;
     double wmax = 0.0;
     for (int k = 0; k < N; k++) wmax = fmax(wmax, b->omega[k]);
     if (p->column != FB_COL_TIP) return wmax;
-    const double *rec = p->records + (size_t)r * p->R, *eta = rec + 4, *v = eta + N, *phi = p->m->points[1].phi;
+    const double *rec = p->records + (size_t)r * p->R, *eta = rec + 4, *v = eta + N;
     double amp[FB_MAXN], total = 0.0;
     for (int k = 0; k < N; k++) {
-        double g = 0.0;
-        for (int j = 0; j < n; j++) g += phi[j] * b->Psi[(off + j) * N + k];
         double w = b->omega[k], a = w > 0.0 ? sqrt(eta[k] * eta[k] + (v[k] / w) * (v[k] / w)) : 0.0;
-        amp[k] = fabs(g) * a;
+        amp[k] = fabs(p->g[k]) * a;
         total += amp[k];
     }
     int used[FB_MAXN] = {0};
@@ -167,7 +174,8 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
                    double t0, double t1, const double *y0, const double *y1, int column, double sign,
                    const double *lo, const double *hi, const double *reach, double floor, int count, double xtol,
                    double *t_out, double *v_out) {
-    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, column, sign};
+    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, column, sign, {0}};
+    if (column == FB_COL_TIP) tip_gains(&p);
     double top = floor;
     for (int k = 0; k < count; k++) {
         if (reach[k] < top) {

@@ -195,6 +195,20 @@ fail:
     return -1;
 }
 
+double fb_tip_deflection_at(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double sphi,
+                            double cphi) {
+    fb_kin tip = {.want_acc = 0};
+    fb_point_kinematics(m, &m->points[1], f, q, qd, &tip, NULL);
+    return -sphi * (tip.r[0] - f->R[0]) + cphi * (tip.r[1] - f->R[1]);
+}
+
+double fb_tip_deflection(const fb_model *m, const fb_frame *f, const double *q, const double *qd) {
+    double phi, phid, sphi, cphi;
+    fb_joint(m)->hub(m, f, q, qd, &phi, &phid);
+    fb_sincos(phi, &sphi, &cphi);
+    return fb_tip_deflection_at(m, f, q, qd, sphi, cphi);
+}
+
 /* Output columns (FB_NCOLS per sample, see flexbeam.kernels.OUTPUT_COLUMNS: gap, normal velocity and contact
  * force are the first pair's, the contact energy all pairs'), the normal velocities of the measuring points
  * (points[2:]) and per pair [gap, rate, force] (pcols, FB_PAIR_COLS x npairs per sample) for reference-layout
@@ -237,8 +251,6 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
         double sphi, cphi;
         fb_sincos(phi, &sphi, &cphi);
         double e2x = -sphi, e2y = cphi; /* the hub's normal */
-        fb_kin tip = {.want_acc = 0};
-        fb_point_kinematics(m, &m->points[1], &fr, q, qd, &tip, NULL);
         out[0] = phi;
         out[1] = phid;
         out[2] = S ? gp[0].delta : INFINITY;
@@ -251,7 +263,7 @@ void fb_outputs(const fb_model *m, const double *T, const double *Y, int count, 
         out[9] = y[size - 2];
         out[10] = y[size - 1];
         out[11] = torque;
-        out[FB_COL_TIP] = e2x * (tip.r[0] - fr.R[0]) + e2y * (tip.r[1] - fr.R[1]);
+        out[FB_COL_TIP] = fb_tip_deflection_at(m, &fr, q, qd, sphi, cphi);
         out[13] = s;
         out[14] = compliant ? -(o->ks * s + o->cs * sd) : 0.0;
         for (int k = 0; k < S; k++) {
