@@ -27,6 +27,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..parameters.io import validate_case
+from .interrupt import ctrl_c_flag
 from .planning import Point
 from .store import Store
 
@@ -348,27 +349,38 @@ def compute(
         if progress is not None:
             progress(done, len(todo))
 
-    try:
+    with ctrl_c_flag() as hit:
+        try:
+            _collect(feed, store, records, lost, tick, hit)
+        finally:
+            feed.cancel()
+
+
+def _collect(feed: _Feed, store: Store | None, records: dict, lost: dict, tick: Callable[[], None], hit: list) -> None:
+    """File each batch's cases as they arrive (see :func:`compute`); a Ctrl-C recorded in ``hit`` is raised as
+    KeyboardInterrupt between batches, and at the end if the sweep finished meanwhile."""
+    feed.fill()
+    for fut, result in feed.ac:
+        _, points, _ = feed.running.pop(fut.key)
+        if fut.status == "finished":
+            for p, (record, history) in zip(points, result):
+                record["case"] = p.data
+                if store is not None:
+                    store.save(record, history)
+                record.pop("case")  # on disk; the result needs status, error and metrics
+                records[p.key] = record
+                feed.ran(record)
+                tick()
+        elif fut.status == "error" and len(points) > 1:  # lost with its worker: each case again, alone
+            feed.alone.extend(points)
+        else:  # lost with its worker (KilledWorker) or cancelled: not recorded, the next run retries
+            exc = fut.exception() if fut.status == "error" else None
+            for p in points:
+                lost[p.key] = f"{type(exc).__name__}: {exc}" if exc is not None else fut.status
+                tick()
+        del fut, result
+        if hit[0]:
+            raise KeyboardInterrupt
         feed.fill()
-        for fut, result in feed.ac:
-            _, points, _ = feed.running.pop(fut.key)
-            if fut.status == "finished":
-                for p, (record, history) in zip(points, result):
-                    record["case"] = p.data
-                    if store is not None:
-                        store.save(record, history)
-                    record.pop("case")  # on disk; the result needs status, error and metrics
-                    records[p.key] = record
-                    feed.ran(record)
-                    tick()
-            elif fut.status == "error" and len(points) > 1:  # lost with its worker: each case again, alone
-                feed.alone.extend(points)
-            else:  # lost with its worker (KilledWorker) or cancelled: not recorded, the next run retries
-                exc = fut.exception() if fut.status == "error" else None
-                for p in points:
-                    lost[p.key] = f"{type(exc).__name__}: {exc}" if exc is not None else fut.status
-                    tick()
-            del fut, result
-            feed.fill()
-    finally:
-        feed.cancel()
+    if hit[0]:
+        raise KeyboardInterrupt
