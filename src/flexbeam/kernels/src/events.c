@@ -236,7 +236,7 @@ int fb_gap_far(const fb_dense *d, const double *jb, double gap0) { return far(d,
  * linear interpolant, (dx h)^2 / 8 max|g''| with |g''| <= sum_k |j_k| (w_k^2 A_k + max|f_k|) + 2 max|gamma|
  * (gamma: the gap's velocity-product acceleration, the curvature of P's path relative to the obstacle, at the
  * samples); max|f_k| is the nodal maximum times the Lebesgue constant of the interpolation. */
-static double bounds(const fb_dense *d, const double *jm, double gamma, double dx, double *fast) {
+double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double dx, double *fast) {
     const fb_basis *b = d->ph->b;
     double B = 0.0, G2 = 2.0 * gamma, T = dx * d->h;
     for (int k = 0; k < b->N; k++) {
@@ -357,7 +357,7 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
                 gam = fmax(gam, fabs(g[i].gamma));
                 if (i) worst = fmin(worst, fmin(-sign * (gv[i - 1] - fast[i - 1]), -sign * (gv[i] - fast[i])));
             }
-            double B, curve = bounds(d, jb, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
+            double B, curve = fb_dense_bounds(d, jb, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
             if (dx <= safe) {
                 if (leaving && worst - B - curve > 0.0) return FB_NO_EVENT;
                 if (B == 0.0) return scan(d, x, gv, r, m, sign);
@@ -379,7 +379,7 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
         x[0] = 0.0;
         g[0] = known[0];
         hopeless_test ht = {sign, 0.0, 0.0, leaving, level == 3};
-        ht.curve0 = bounds(d, jb, 0.0, dx, &ht.B);
+        ht.curve0 = fb_dense_bounds(d, jb, 0.0, dx, &ht.B);
         last = sample_hops(d, A, jm, m, x, g, fast, ht.B != 0.0 ? &ht : NULL);
         hopeless = last < m;
     }

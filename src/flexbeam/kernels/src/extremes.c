@@ -6,6 +6,7 @@
  * evaluation a single point of the step's exact dense output (fb_dense_eval) and of the outputs (fb_outputs), so
  * a peak costs some 50-70 evaluations of a microsecond or two, not a Python round trip each. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "detmath.h"
@@ -25,16 +26,36 @@ typedef struct {
     double g[FB_MAXN]; /* the tip's deflection per unit of each modal coordinate (tip_gains; the tip column only) */
 } probe_t;
 
-/* The tip's deflection per unit eta_k, sum_j phi_j(tip) Psi_(q_j, k), into p->g (the linear part of the tip's
- * deflection in the modal coordinates; the same for every step of the phase). */
+/* The tip's deflection per unit eta_k at the phase's start state y0, into p->g: central differences over a
+ * displacement of the modal coordinate whose largest physical component is 1e-6 (m or rad), velocities zero.  The
+ * deflection from the hub's radial line is sum_j phi_j(tip) q_j less the hub angle's d q times the tip's distance
+ * from the frame's origin, to first order: nearly linear in the modes (its Jacobian varies with the hub angle and
+ * the foreshortening, relatively O(1e-3) for a beam within the model's small deformations). */
 static void tip_gains(probe_t *p) {
     const fb_basis *b = p->b;
-    int N = b->N, n = p->m->n, off = p->m->nrigid - p->m->ngiven;
-    const double *phi = p->m->points[1].phi;
+    const fb_model *m = p->m;
+    int N = b->N, nz = b->nz, size = fb_state_size(m);
+    double y[2 * FB_MAXN + 4];
     for (int k = 0; k < N; k++) {
-        double g = 0.0;
-        for (int j = 0; j < n; j++) g += phi[j] * b->Psi[(off + j) * N + k];
-        p->g[k] = g;
+        double big = 0.0, d[2];
+        for (int i = 0; i < nz; i++) big = fmax(big, fabs(b->Psi[i * N + k]));
+        if (big == 0.0) {
+            p->g[k] = 0.0;
+            continue;
+        }
+        double eps = 1e-6 / big;
+        for (int s = 0; s < 2; s++) {
+            memcpy(y, p->y0, sizeof(double) * size);
+            for (int i = 0; i < nz; i++) {
+                y[i] += (s ? -eps : eps) * b->Psi[i * N + k];
+                y[nz + i] = 0.0;
+            }
+            fb_frame fr;
+            const double *q, *qd;
+            fb_state_split(m, p->t0, y, &fr, &q, &qd);
+            d[s] = fb_tip_deflection(m, &fr, q, qd);
+        }
+        p->g[k] = (d[0] - d[1]) / (2.0 * eps);
     }
 }
 
@@ -165,6 +186,83 @@ static int grid_points(const probe_t *p, double a, double z) {
     return need < 33.0 ? 33 : need > 4097.0 ? 4097 : (int)need;
 }
 
+/* The bound on how far the tip's sign * deflection exceeds the larger of two samples spaced by dt anywhere in [a, z]:
+ * for a deflection linear in the modes (gains p->g), 2 B + C, B bounding the modes too fast for the spacing (their
+ * part of each sample and of the maximum), C the deviation of the others from the linear interpolant, both by the
+ * rules of the event search (fb_dense_bounds) over every step the bracket touches; twice that is returned, for the
+ * deflection's nonlinearity (tip_gains). */
+static double tip_slack(const probe_t *p, const fb_phase *ph, double a, double z, double dt) {
+    int r0 = step_of(p, a), r1 = step_of(p, z), N = p->b->N;
+    double slack = 0.0;
+    for (int r = r0; r <= r1; r++) {
+        const double *rec = p->records + (size_t)r * p->R, *eta0 = rec + 4, *v0 = eta0 + N, *f = v0 + N;
+        fb_dense d = {ph, rec[0], rec[1], eta0, v0, f, 0};
+        double B, C = fb_dense_bounds(&d, p->g, 0.0, dt / rec[1], &B);
+        slack = fmax(slack, 2.0 * (2.0 * B + C));
+    }
+    return slack;
+}
+
+#define OPEN_MAX 8192 /* sub-intervals a pruned search may keep open at one level */
+
+typedef struct { /* the open sub-intervals of a pruned search: left end, sign * deflection at both ends */
+    double t[OPEN_MAX], vl[OPEN_MAX], vr[OPEN_MAX];
+    int count;
+} open_set;
+
+/* The tip's largest sample in [a, z] by branch and bound: 33 samples, then each sub-interval that may hold a value of
+ * at least ``top`` or the best sample yet (its larger end plus tip_slack) split in four, until the spacing is that of
+ * the grid of G points.  Returns 1 with the best sample (*t_best, *v_best) and the final spacing (*dt) when some
+ * sub-interval is still open, 0 when none is (the bracket cannot reach ``top``; *v_best a value the deflection
+ * takes), -1 when too many are open (then search the plain grid). */
+static int pruned_grid_max(const probe_t *p, const fb_phase *ph, open_set *o, double a, double z, int G, double top,
+                           double *t_best, double *v_best, double *dt) {
+    double h = (z - a) / 32.0, v_prev = probe_value(p, a);
+    *t_best = a, *v_best = v_prev;
+    for (int i = 0; i < 32; i++) {
+        double t = i == 31 ? z : a + (i + 1) * h, v = probe_value(p, t);
+        o->t[i] = a + i * h, o->vl[i] = v_prev, o->vr[i] = v;
+        if (v > *v_best) *t_best = t, *v_best = v;
+        v_prev = v;
+    }
+    o->count = 32;
+    for (;;) {
+        double slack = tip_slack(p, ph, a, z, h), ref = fmax(top, *v_best);
+        int kept = 0;
+        for (int i = 0; i < o->count; i++)
+            if (fmax(o->vl[i], o->vr[i]) + slack >= ref) {
+                o->t[kept] = o->t[i], o->vl[kept] = o->vl[i], o->vr[kept] = o->vr[i];
+                kept++;
+            }
+        o->count = kept;
+        *dt = h;
+        if (!kept) return 0;
+        if (h * (G - 1) <= (z - a) * (1.0 + 1e-12)) return 1;
+        if (4 * kept > OPEN_MAX) return -1;
+        h *= 0.25;
+        for (int i = kept - 1; i >= 0; i--) { /* in place, from the last: sub-interval 4 i + j */
+            double t0 = o->t[i], vl = o->vl[i], vr = o->vr[i], v[5] = {vl, 0.0, 0.0, 0.0, vr};
+            for (int j = 1; j < 4; j++) {
+                v[j] = probe_value(p, t0 + j * h);
+                if (v[j] > *v_best) *t_best = t0 + j * h, *v_best = v[j];
+            }
+            for (int j = 0; j < 4; j++) o->t[4 * i + j] = t0 + j * h, o->vl[4 * i + j] = v[j], o->vr[4 * i + j] = v[j + 1];
+        }
+        o->count = 4 * kept;
+    }
+}
+
+/* The largest sample of sign * output on the grid of G points over [a, z], at *t_best, and the spacing *dt. */
+static double grid_max(const probe_t *p, double a, double z, int G, double *t_best, double *dt) {
+    double v_best = -INFINITY;
+    *dt = (z - a) / (G - 1), *t_best = a;
+    for (int i = 0; i < G; i++) {
+        double t = i == G - 1 ? z : a + i * *dt, v = probe_value(p, t);
+        if (v > v_best) *t_best = t, v_best = v;
+    }
+    return v_best;
+}
+
 /* For each bracket [lo[k], hi[k]] (clipped to [t0, t1]) the abscissa and the value of the largest sign * output:
  * the largest value on a grid that resolves the fastest mode (grid_points), then Brent's method between that grid
  * point's neighbours, where the output is unimodal.  A bracket whose bound reach[k] on its maximum is below the
@@ -176,6 +274,12 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
                    double *t_out, double *v_out) {
     probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, column, sign, {0}};
     if (column == FB_COL_TIP) tip_gains(&p);
+    fb_phase ph; /* for the bounds of the tip's pruned search (fb_dense_bounds) */
+    fb_contacts none;
+    memset(&none, 0, sizeof none);
+    none.npairs = m->npairs;
+    fb_phase_init(&ph, m, b, &none, 0.0, 0.0, 0.0);
+    open_set *o = column == FB_COL_TIP ? malloc(sizeof *o) : NULL; /* the tip: a pruned search */
     double top = floor;
     for (int k = 0; k < count; k++) {
         if (reach[k] < top) {
@@ -184,13 +288,11 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
             continue;
         }
         double a = fmax(lo[k], t0), z = fmin(hi[k], t1);
-        int G = grid_points(&p, a, z);
-        double dt = (z - a) / (G - 1), t_best = a, v_best = -INFINITY;
-        for (int i = 0; i < G; i++) {
-            double t = i == G - 1 ? z : a + i * dt, v = probe_value(&p, t);
-            if (v > v_best) t_best = t, v_best = v;
-        }
-        if (z - a > xtol) {
+        int G = grid_points(&p, a, z), open = -1;
+        double dt, t_best, v_best;
+        if (o) open = pruned_grid_max(&p, &ph, o, a, z, G, top, &t_best, &v_best, &dt);
+        if (open < 0) v_best = grid_max(&p, a, z, G, &t_best, &dt);
+        if (open != 0 && z - a > xtol) {
             double best, t = brent_max(&p, fmax(a, t_best - dt), fmin(z, t_best + dt), xtol, &best);
             if (best > v_best) t_best = t, v_best = best;
         }
@@ -198,4 +300,5 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
         v_out[k] = v_best;
         if (v_best > top) top = v_best;
     }
+    free(o);
 }

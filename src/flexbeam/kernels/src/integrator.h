@@ -96,6 +96,9 @@ typedef struct { /* a step's dense output, for the event search of one pair */
 
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v);
 int fb_gap_far(const fb_dense *d, const double *jb, double gap0);
+/* Bounds on sum_k jm_k eta_k (+ a part of curvature <= gamma) between samples spaced by the fraction dx of the step:
+ * returns the resolved modes' deviation from the linear interpolant, *fast the faster modes' amplitude. */
+double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double dx, double *fast);
 double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known,
                          const double *eta_known, const double *jm, const double *jb, double *beyond);
 double fb_find_release(const double *lam);
