@@ -63,8 +63,15 @@ def one_run(angles: np.ndarray, png: Path) -> dict[str, Any]:
         t2 = time.perf_counter()
     _close()
     e = result["restitution_newton"].values
-    return {"sweep": t1 - t0, "figure": t2 - t1, "total": t2 - t0, "cases": int(angles.size),
-            "failed": int(np.sum(~np.isfinite(e))), "e_min": float(np.nanmin(e)), "e_max": float(np.nanmax(e))}  # fmt: skip
+    return {
+        "sweep": t1 - t0,
+        "figure": t2 - t1,
+        "total": t2 - t0,
+        "cases": int(angles.size),
+        "failed": int(np.sum(~np.isfinite(e))),
+        "e_min": float(np.nanmin(e)),
+        "e_max": float(np.nanmax(e)),
+    }
 
 
 def _close() -> None:
