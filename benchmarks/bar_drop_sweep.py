@@ -96,9 +96,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.json:
         print(json.dumps(out, indent=1))
         return 0
-    print(
-        f"machine: {env['machine']}, {env['cores']} cores, python {env['python']}, load average {env['load_average']:.2f}"
-    )
+    print(f"machine: {env['machine']}, {env['cores']} cores, python {env['python']}, load {env['load_average']:.2f}")
     print(f"{args.angles} angles, {args.runs} runs; figure {args.figure}\n")
     print("| run | sweep [s] | figure [s] | total [s] | failed | e_N range |")
     print("|---|---|---|---|---|---|")
