@@ -320,7 +320,6 @@ FREE_BAR = Path(__file__).resolve().parent / "validation" / "data" / "free-bar-d
     [
         (("--set", "drive.kind=torque", "--set", "drive.torque=1"), "drive.kind", "no joint to drive"),
         (("--set", "initial.kind=state", "--set", "initial.position=[0, 0.001]"), "obstacle.centre", "inside"),
-        (("--method", "ccm"), "joint.kind", "'ccm'"),
         (("--method", "fem"), "joint.kind", "'fem'"),
     ],
 )

@@ -237,7 +237,7 @@ def test_what_a_free_beam_does_not_have_is_refused(overrides, field):
         free_case(**{k.replace(".", "__"): v for k, v in overrides.items()})
 
 
-@pytest.mark.parametrize("method", ["ccm", "fem"])
+@pytest.mark.parametrize("method", ["fem"])
 def test_methods_that_do_not_model_a_free_beam_are_refused(method):
     with pytest.raises(ModelError, match=r"^joint\.kind:"):
         fb.simulate(free_case(solver__t_end=1e-3), method)

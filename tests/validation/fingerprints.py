@@ -41,6 +41,7 @@ RUNS: list[tuple[str, str, dict]] = [
     # the free beam (joint.kind = "free"): no preset yet, a case of tests/validation/data
     ("free-bar-drop.toml", "ccfm", {}),
     ("free-bar-drop.toml", "imm", {}),
+    ("free-bar-drop.toml", "ccm", {}),
 ]
 
 #: where a run's case named by a file (not a preset) is

@@ -126,6 +126,11 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
         """
         b = case.beam
         contact = ContactSetup.from_case(case)
+        if case.beam.end_caps == "flat" and any(p.anywhere for p in contact.pairs):
+            raise ModelError(
+                "beam.end_caps: the FE reference finds contact anywhere on the capsule (hemispherical end caps); "
+                "use end_caps = 'hemisphere' or a modal method"
+            )
         if len(contact.pairs) == 1:
             x_nodes = build_mesh(b.length, case.fem.elements, case.contact.position)
         else:

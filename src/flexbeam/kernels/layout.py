@@ -8,7 +8,7 @@ Model buffer (float64; integers stored exactly)::
      Mc (n x n), Mqq (n x n), mtq (n), K (n x n), sf (n), G (n x n), d (n),
      per point:    base, offset, phi (n), dphi (n), H (n x n),
      per obstacle: cx, cy, radius, nx, ny, m_s, k_s, c_s, u_x, u_y,
-     per pair:     point, obstacle, anywhere,
+     per pair:     point, obstacle, anywhere (0 a fixed point, 1 the capsule's nearest point, 2 flat end faces),
      hub radius, nst, surface c, first_order,
      with nst > 0 (contact anywhere): stations x (nst), Psi, Psi', Psi'' (nst x n each), H (nst x n x n),
                    max over the beam of |Psi_k| and |Psi'_k| (n each)]

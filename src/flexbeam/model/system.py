@@ -65,7 +65,9 @@ class BeamSystem:
         """The packed model buffer of the compiled kernels (points: P, tip, measuring points, the other pairs'
         contact points)."""
         points = [self.point, self.beam.point(self.beam.length), *self.measuring, *self.pair_points]
-        pairs = [(self.pair_point(k), p.obstacle, int(p.anywhere)) for k, p in enumerate(self.contact.pairs)]
+        # anywhere: 0 a fixed material point, 1 the capsule's nearest point, 2 with flat end faces (nearest.c)
+        caps = 2 if self.case.beam.end_caps == "flat" else 1
+        pairs = [(self.pair_point(k), p.obstacle, caps * int(p.anywhere)) for k, p in enumerate(self.contact.pairs)]
         stations = None
         if any(p.anywhere for p in self.contact.pairs):
             stations = station_table(self.beam, self.case.beam.surface_offset)

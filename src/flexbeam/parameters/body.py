@@ -33,6 +33,11 @@ class Beam(Section):
     area: Positive | None = Field(None, description="cross-section area S [m^2]")
     second_moment: Positive | None = Field(None, description="second moment of area I [m^4]")
     half_depth: NonNegative | None = Field(None, description="distance from the centre line to the contact surface [m]")
+    end_caps: Literal["hemisphere", "flat"] = Field(
+        "hemisphere",
+        description="the beam's ends for contact anywhere: 'hemisphere' (caps of the surface offset's radius, the "
+        "capsule) or 'flat' (end faces across the section: a corner strikes)",
+    )
 
     @model_validator(mode="after")
     def _section_complete(self) -> Beam:

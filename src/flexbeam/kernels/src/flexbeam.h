@@ -47,7 +47,8 @@ typedef struct {
  * Only obstacle 0 may stand on a compliant support. */
 typedef struct {
     int point, obstacle;
-    int anywhere; /* the contact point is the beam-surface point nearest the obstacle (nearest.c) */
+    int anywhere; /* the contact point is the beam-surface point nearest the obstacle (nearest.c): 1 on the capsule
+                   * (hemispherical end caps), 2 with flat end faces; 0 a fixed material point */
 } fb_pair;
 
 typedef struct fb_model_s {
@@ -130,7 +131,7 @@ typedef struct {
 } fb_surface_point;
 
 void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
-                      fb_surface_point *out);
+                      int flat, fb_surface_point *out);
 void fb_anywhere_bound(const fb_model *m, const double *q, double *env);
 double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd);
 double fb_law_potential(const double *p, double d);

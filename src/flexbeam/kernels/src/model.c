@@ -254,7 +254,7 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double 
     double x;
     if (pr->anywhere) { /* the surface point nearest the obstacle now, as a material point (envelope theorem) */
         fb_surface_point sp;
-        fb_nearest_point(m, o, f, q, s, &sp);
+        fb_nearest_point(m, o, f, q, s, pr->anywhere == 2, &sp);
         fb_point_kinematics(m, &sp.P, f, q, qd, &k, J ? dr : NULL);
         x = sp.x;
     } else {

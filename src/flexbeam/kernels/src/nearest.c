@@ -7,8 +7,11 @@
  * w = Psi(x) q, u_x = -1/2 q^T H(x) q (zero in the zeroth-order model), interpolated between the stations by cubic
  * Hermite polynomials (Psi with Psi', Psi' with Psi'', u_x with u_x' = -1/2 (Psi' q)^2, H with H' = Psi' Psi'^T).
  * The search: a scan of the stations (without u_x, second order), then Newton's method on f = (rho - C) . rho'
- * (sphere) or n_o . rho' (plane), safeguarded by bisection, in the two intervals around the best station.  The
- * result is a material point (x*, offsets along the deformed section's normal and tangent), so that the pair's gap,
+ * (sphere) or n_o . rho' (plane), safeguarded by bisection, in the two intervals around the best station.
+ * With flat end faces (``flat``) instead of the caps, a minimiser at an end is moved to the end face's point nearest
+ * the obstacle: across the section, the corner on the obstacle's side (half-plane) or the face's point nearest the
+ * sphere's centre; the tube between the ends is the same.
+ * The result is a material point (x*, offsets along the deformed section's normal and tangent), so that the pair's gap,
  * rate and Jacobian follow from the point kinematics of model.c: by the envelope theorem the derivative of the
  * minimum over x is the partial derivative at x*.
  */
@@ -132,7 +135,7 @@ static double minimise(line_t *ln, int sphere, const double c[2], double a, doub
 }
 
 void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
-                      fb_surface_point *out) {
+                      int flat, fb_surface_point *out) {
     int n = m->n, M = m->nst;
     double w[M], w1[M], w2[M], u[M];
     double L = m->st_x[M - 1];
@@ -212,6 +215,17 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     out->P.base = ln.rh + x;
     out->P.offset_t = cs * (dir[0] * ca + dir[1] * sa);  /* c u . t */
     out->P.offset = -cs * (-dir[0] * sa + dir[1] * ca);  /* -c u . n */
+    if (flat && (x == m->st_x[0] || x == L)) { /* an end face: its point nearest the obstacle, along the section */
+        double across = -dir[0] * sa + dir[1] * ca, t; /* u . n */
+        if (sphere) {
+            double ex = c[0] - r[0], ey = c[1] - r[1], along = -ex * sa + ey * ca; /* (C - rho) . n */
+            t = along > cs ? cs : (along < -cs ? -cs : along);
+        } else {
+            t = across > 0.0 ? cs : (across < 0.0 ? -cs : 0.0); /* the corner on the obstacle's side */
+        }
+        out->P.offset_t = 0.0;
+        out->P.offset = -t;
+    }
     out->P.phi = out->phi;
     out->P.dphi = out->dphi;
     out->P.H = out->H;

@@ -35,9 +35,9 @@ class FreeJoint(Joint):
     kind = "free"
     code = 1
     coordinates = ("x_G", "y_G", "theta")
-    #: CCM (the unilateral constraint) is not validated on a free beam yet; the FE reference has no free beam
-    #: (flexbeam.fem.beam.JOINT_KINDS)
-    unsupported_methods = ("ccm", "fem")
+    #: the FE reference has no free beam (flexbeam.fem.beam.JOINT_KINDS); CCM runs
+    #: (tests/validation/test_free_beam_ccm.py)
+    unsupported_methods = ("fem",)
 
     @property
     def ngiven(self) -> int:
