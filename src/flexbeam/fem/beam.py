@@ -67,6 +67,8 @@ def joint_drive(case: Case) -> JointDrive:
         the fixed point O.
     """
     joint = joint_of(case)
+    if case.base.moving:
+        raise ModelError("base: the FE reference holds the joint O fixed; run a moving base with a modal method")
     if joint.kind not in JOINT_KINDS:
         raise ModelError(
             f"joint.kind: the FE reference models a {' or '.join(map(repr, JOINT_KINDS))} joint, not {joint.kind!r}"

@@ -19,7 +19,7 @@ from ..contact.laws import NEEDS_RESTITUTION
 from .body import Beam, Hub, Model
 from .contact import SIDES, Contact, ExtraObstacle, Obstacle, PairContact, Support
 from .fields import CONTACT_LAWS, Section
-from .joint import Drive, Joint
+from .joint import Base, Drive, Joint
 from .run import Fem, Initial, Output, Solver
 
 
@@ -33,6 +33,7 @@ class Case(Section):
     model: Model = Field(default_factory=Model)
     joint: Joint = Field(default_factory=Joint)
     drive: Drive = Field(default_factory=Drive)
+    base: Base = Field(default_factory=Base)
     obstacle: Obstacle = Field(default_factory=Obstacle)
     obstacles: list[ExtraObstacle] = Field(
         default_factory=list, description="more obstacles, each with its own contact pair (at most 7)"
@@ -166,9 +167,11 @@ class Case(Section):
                 "initial.kind: 'release' needs a joint to hold the beam; a free beam (joint.kind = 'free') starts "
                 "with 'state' or 'impact'"
             )
+        if self.base.moving:
+            raise ValueError("base: a free beam (joint.kind = 'free') has no joint O to move; leave [base] empty")
 
 
 __all__ = [
-    "CONTACT_LAWS", "SIDES", "Beam", "Case", "Contact", "Drive", "ExtraObstacle", "Fem", "Hub", "Initial", "Joint",
-    "Model", "Obstacle", "Output", "PairContact", "Solver", "Support",
+    "CONTACT_LAWS", "SIDES", "Base", "Beam", "Case", "Contact", "Drive", "ExtraObstacle", "Fem", "Hub", "Initial",
+    "Joint", "Model", "Obstacle", "Output", "PairContact", "Solver", "Support",
 ]  # fmt: skip

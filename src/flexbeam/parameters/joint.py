@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
-from .fields import Finite, Positive, Rate, Section
+from .fields import Bounded, Finite, Positive, Rate, Section
 
 
 class Joint(Section):
@@ -42,3 +42,44 @@ class Drive(Section):
     profile: Literal["constant-rate", "kane-spinup"] = "constant-rate"
     spin_rate: Rate = Field(0.0, description="final spin rate Omega_s [rad/s]")
     spin_up_time: Positive = Field(15.0, description="spin-up time T_s [s] (kane-spinup)")
+
+
+class Harmonic(Section):
+    """One harmonic of the base's motion along an axis: ``amplitude`` sin(2 pi ``order`` f t + ``phase``), f the
+    base's fundamental ``frequency``."""
+
+    axis: Literal["x", "y"] = Field(description="the inertial axis the joint O moves along")
+    amplitude: Bounded(-1e3, 1e3) = Field(description="displacement amplitude [m] (|A| <= 1e3 m)")
+    order: int = Field(1, ge=1, le=1000, description="multiple k of the fundamental frequency (1..1000)")
+    phase: Bounded(-1e3, 1e3) = Field(0.0, description="phase [rad]")
+
+
+class Base(Section):
+    """A moving base: the joint O moves in the plane as prescribed (a cantilever on a shaker).
+
+    ``r_O(t) = sum over harmonics of A_i sin(2 pi k_i f t + phi_i) e_axis + 1/2 acceleration t^2``, the harmonics'
+    fundamental ``frequency`` f [Hz] (the drive's period 1/f is that of its Poincare map).  The equations are
+    written in the base frame (origin at O, axes parallel to the inertial ones), where the base's motion acts as the
+    uniform inertial field g_eff(t) = (0, -g) - a_O(t) on the beam (docs/formulation.md, *A moving base*); the
+    obstacles are carried by the base (they move with O).  No harmonic and no acceleration: a fixed joint, today's
+    model bit for bit.  A revolute joint only.
+    """
+
+    frequency: Positive | None = Field(None, description="fundamental frequency f of the harmonics [Hz]")
+    harmonics: list[Harmonic] = Field(default_factory=list, description="the harmonics of r_O(t) (at most 12)")
+    acceleration: tuple[Bounded(-1e6, 1e6), Bounded(-1e6, 1e6)] = Field(
+        (0.0, 0.0), description="a constant acceleration of O [m/s^2] (|a| <= 1e6 per axis)"
+    )
+
+    @property
+    def moving(self) -> bool:
+        """Does the joint O move (a harmonic of nonzero amplitude, or an acceleration)?"""
+        return any(h.amplitude != 0.0 for h in self.harmonics) or any(a != 0.0 for a in self.acceleration)
+
+    @model_validator(mode="after")
+    def _frequency_given(self) -> Base:
+        if self.harmonics and self.frequency is None:
+            raise ValueError("base.frequency: required with base.harmonics (a frequency > 0 in Hz)")
+        if len(self.harmonics) > 12:
+            raise ValueError(f"base.harmonics: at most 12, not {len(self.harmonics)}")
+        return self

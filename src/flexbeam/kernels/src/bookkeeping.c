@@ -99,15 +99,32 @@ double fb_node_energy_parts(const fb_phase *ph, const fb_node *nd, double *scale
     return E;
 }
 
+/* The boundary term -a_O(t) . A s of a moving base's work (base_motion.c) at the modal state eta at t. */
+static double base_boundary_at(const fb_phase *ph, double t, const double *eta) {
+    double z[FB_MAXN];
+    fb_frame fr;
+    const double *q, *qd;
+    fb_to_physical(ph->b, eta, z);
+    fb_joint(ph->m)->split(ph->m, t, z, z, &fr, &q, &qd); /* the frame's rates are not needed: z for z' */
+    return fb_base_boundary(ph->m, t, &fr, q);
+}
+
 /* The bookkeeping over a step [t, t + h] whose nodes and end are in w and st: the nodal rates of E_d and W (red,
- * rwd) and their increments, E_d by Gauss quadrature, W as documented at the top of this file. */
+ * rwd) and their increments, E_d by Gauss quadrature, W as documented at the top of this file; on a moving base W
+ * also holds the base's work, its integrand j_O . A s in the nodal rates and its boundary term -a_O . A s. */
 void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, const double *eta, const double *v,
                    const fb_step *st, double *red, double *rwd, double *dEd, double *dW) {
     const fb_tables *tb = fb_gauss();
     const fb_model *m = ph->m;
-    double ed = 0.0, wd = 0.0;
+    int moving = fb_base_moving(m), off = m->nrigid - m->ngiven;
+    double ed = 0.0, wd = 0.0, wb = 0.0;
     for (int j = 0; j < FB_P; j++) {
         fb_node_rates(ph, &w->node[j], w->F, w->Fk, j, &red[j], &rwd[j]);
+        if (moving) {
+            double r = fb_base_work_rate(m, t + tb->c[j] * h, &w->node[j].frame, w->node[j].z + off);
+            rwd[j] += r;
+            wb += tb->w[j] * r;
+        }
         ed += tb->w[j] * red[j];
         wd += tb->w[j] * rwd[j];
     }
@@ -119,6 +136,8 @@ void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, con
         *dW = tau * (fb_hub_angle(ph, st->eta1) - fb_hub_angle(ph, eta));
     else
         *dW = 0.0;
+    if (moving)
+        *dW += (m->ngiven ? 0.0 : h * wb) + base_boundary_at(ph, t + h, st->eta1) - base_boundary_at(ph, t, eta);
 }
 
 /* Reference-layout states [z, z', (s, s'), E_d, W] at sorted times from a phase's records (each time inside
@@ -163,8 +182,9 @@ int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, i
         if (m->ngiven) {
             W += fb_boundary_work(&ph, t, v) - fb_boundary_work(&ph, rec[0], v0);
         } else if (tau != 0.0) {
-            W = rec[3] + tau * (fb_hub_angle(&ph, eta) - fb_hub_angle(&ph, eta0));
+            W = (fb_base_moving(m) ? W : rec[3]) + tau * (fb_hub_angle(&ph, eta) - fb_hub_angle(&ph, eta0));
         }
+        if (fb_base_moving(m)) W += base_boundary_at(&ph, t, eta) - base_boundary_at(&ph, rec[0], eta0);
         y[size - 2] = Ed;
         y[size - 1] = W;
     }

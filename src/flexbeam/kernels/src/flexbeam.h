@@ -111,6 +111,13 @@ typedef struct {
 
 /* The frame and the modal coordinates of a reference-layout state y = [z, z', ...] at time t. */
 void fb_state_split(const fb_model *m, double t, const double *y, fb_frame *f, const double **q, const double **qd);
+/* A moving base (base_motion.c) */
+int fb_base_unpack(const fb_model *m);
+int fb_base_moving(const fb_model *m);
+void fb_base_motion(const fb_model *m, double t, double *r, double *v, double *a, double *j);
+void fb_base_field(const fb_model *m, double t, double *field);
+double fb_base_work_rate(const fb_model *m, double t, const fb_frame *f, const double *q);
+double fb_base_boundary(const fb_model *m, double t, const fb_frame *f, const double *q);
 double fb_quad(const double *A, const double *x, int n);
 void fb_symv(const double *A, const double *x, int n, double *out);
 void fb_matvec(const double *A, const double *x, int n, double *out);

@@ -22,6 +22,7 @@ enum { FB_JOINT_REVOLUTE = 0, FB_JOINT_FREE = 1, FB_JOINT_KINDS = 2 };
 typedef struct {
     double th, thd, thdd;
     double R[2], Rd[2];
+    double field[2]; /* the uniform field on the beam in the plane's axes: (0, -g), less a_O(t) on a moving base */
 } fb_frame;
 
 /* A point's motion relative to the floating frame, in its axes: position rho, velocity rho' and the velocity-product

@@ -31,7 +31,6 @@ static int free_unpack(fb_model *m) {
 
 static void free_split(const fb_model *m, double t, const double *z, const double *zd, fb_frame *f, const double **q,
                        const double **qd) {
-    (void)m;
     (void)t;
     f->R[0] = z[0];
     f->R[1] = z[1];
@@ -40,6 +39,8 @@ static void free_split(const fb_model *m, double t, const double *z, const doubl
     f->Rd[1] = zd[1];
     f->thd = zd[2];
     f->thdd = 0.0;
+    f->field[0] = 0.0;
+    f->field[1] = -m->g;
     *q = z + 3;
     *qd = zd + 3;
 }

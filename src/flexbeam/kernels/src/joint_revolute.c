@@ -30,7 +30,7 @@ enum { PROFILE_CONSTANT = 0, PROFILE_KANE = 1 };
 #define THETA0(m) ((m)->jp[5])
 
 static int rev_unpack(fb_model *m) {
-    if (m->njp != 6 || DRIVE(m) < DRIVE_FREE || DRIVE(m) > DRIVE_PRESCRIBED || PROFILE(m) < PROFILE_CONSTANT ||
+    if (m->njp < 6 || fb_base_unpack(m) || DRIVE(m) < DRIVE_FREE || DRIVE(m) > DRIVE_PRESCRIBED || PROFILE(m) < PROFILE_CONSTANT ||
         PROFILE(m) > PROFILE_KANE)
         return -1;
     m->nrigid = 1;
@@ -61,6 +61,12 @@ static void rev_motion(const fb_model *m, double t, double *th, double *thd, dou
 static void rev_split(const fb_model *m, double t, const double *z, const double *zd, fb_frame *f, const double **q,
                   const double **qd) {
     f->R[0] = f->R[1] = f->Rd[0] = f->Rd[1] = 0.0; /* the frame turns about O, the origin */
+    if (fb_base_moving(m)) {
+        fb_base_field(m, t, f->field); /* the base frame: O's acceleration as an inertial field */
+    } else {
+        f->field[0] = 0.0;
+        f->field[1] = -m->g;
+    }
     if (m->ngiven) {
         rev_motion(m, t, &f->th, &f->thd, &f->thdd);
         *q = z;
@@ -89,9 +95,35 @@ static void rev_mass(const fb_model *m, const double *q, double *M) {
     }
 }
 
+/* rev_forces on a moving base: gravity replaced by the uniform field (g_x, g_y) = f->field through its components in
+ * the frame, g1 = g_x cos theta + g_y sin theta, g2 = -g_x sin theta + g_y cos theta (docs/formulation.md, "A moving
+ * base"): Q_theta = tau - 2 theta' q^T Mc q' + g2 s_x - g1 s_y, Q_q = theta'^2 Mc q - g1 G q + g2 s_f + tau d (- K q),
+ * s_x = m1 - 1/2 q^T G q, s_y = s_f q; with (0, -g) these are the fixed joint's terms. */
+static double field_forces(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double tau,
+                           int elastic, double *Q) {
+    int n = m->n;
+    double c, s, thd = f->thd;
+    fb_sincos(f->th, &s, &c);
+    double g1 = f->field[0] * c + f->field[1] * s, g2 = -f->field[0] * s + f->field[1] * c;
+    double qMcqd = 0.0, qMcq = 0.0, qGq = 0.0, sfq = 0.0, mcq[MAXZ], gq[MAXZ], kq[MAXZ];
+    fb_symv(m->Mc, q, n, mcq);
+    fb_symv(m->G, q, n, gq);
+    if (elastic) fb_symv(m->K, q, n, kq);
+    for (int i = 0; i < n; i++) {
+        qMcqd += mcq[i] * qd[i];
+        qMcq += mcq[i] * q[i];
+        qGq += q[i] * gq[i];
+        sfq += m->sf[i] * q[i];
+        Q[i + 1] = thd * thd * mcq[i] + tau * m->d[i] - g1 * gq[i] + g2 * m->sf[i] - (elastic ? kq[i] : 0.0);
+    }
+    Q[0] = tau - 2.0 * thd * qMcqd + g2 * (m->m1 - 0.5 * qGq) - g1 * sfq;
+    return qMcq;
+}
+
 /* Q of the equations (elastic: with the elastic force -K q); returns q^T Mc q (the theta-theta mass change). */
 static double rev_forces(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double tau, int elastic,
                      double *Q) {
+    if (fb_base_moving(m)) return field_forces(m, f, q, qd, tau, elastic, Q);
     int n = m->n;
     double c, s, g = m->g, thd = f->thd;
     fb_sincos(f->th, &s, &c);

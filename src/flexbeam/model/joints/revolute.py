@@ -69,10 +69,19 @@ class RevoluteJoint(Joint):
         return 1 if self.drive.prescribed else 0
 
     def parameters(self) -> list[float]:
-        """[drive, profile, torque, spin rate, spin-up time, theta0] (``joint_revolute.c``)."""
+        """[drive, profile, torque, spin rate, spin-up time, theta0] (``joint_revolute.c``), then with a moving base
+        [count, a_x, a_y, per harmonic: axis (0 x, 1 y), amplitude, 2 pi k f, phase] (``base_motion.c``)."""
         d = self.drive.spec
-        return [float(DRIVES[d.kind]), float(PROFILES[d.profile]), d.torque if d.kind == "torque" else 0.0,
-                d.spin_rate, d.spin_up_time, self.drive.theta0]  # fmt: skip
+        out = [float(DRIVES[d.kind]), float(PROFILES[d.profile]), d.torque if d.kind == "torque" else 0.0,
+               d.spin_rate, d.spin_up_time, self.drive.theta0]  # fmt: skip
+        base = self.case.base
+        if base.moving:
+            moving = [h for h in base.harmonics if h.amplitude != 0.0]
+            out += [float(len(moving)), float(base.acceleration[0]), float(base.acceleration[1])]
+            for h in moving:
+                assert base.frequency is not None  # the Base section requires it with harmonics
+                out += [1.0 if h.axis == "y" else 0.0, h.amplitude, 2.0 * math.pi * h.order * base.frequency, h.phase]
+        return out
 
     def frame(self, t: float, y: np.ndarray, n: int) -> tuple[float, float, np.ndarray, np.ndarray]:
         if self.drive.prescribed:
@@ -110,8 +119,10 @@ class RevoluteJoint(Joint):
     # ------------------------------------------------------------------------------------------ initial states
     def initial_state(self, system: BeamSystem, case: Case, first_impact: Callable[[np.ndarray], float]):
         init = case.initial
-        if self.drive.prescribed:
+        if self.drive.prescribed:  # theta(0), theta'(0) from the profile; the beam as ``state`` sets it
             th, thd, _ = self.drive.motion(0.0)
+            if init.kind == "state":
+                return system.state(th, thd, *initial_modal(case, system.n)), {}
             return system.state(th, thd), {}
         if init.kind == "state":
             q, qd = initial_modal(case, system.n)
