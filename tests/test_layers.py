@@ -29,7 +29,7 @@ LAYERS: list[tuple[str, tuple[str, ...]]] = [
     ("methods", ("flexbeam.methods", "flexbeam.fem")),
     ("simulation", ("flexbeam.simulation", "flexbeam.registry", "flexbeam.memory")),
     ("views", ("flexbeam.views",)),
-    ("applications", ("flexbeam.sweep", "flexbeam.calibrate", "flexbeam.validation")),
+    ("applications", ("flexbeam.sweep", "flexbeam.calibrate", "flexbeam.validation", "flexbeam.bifurcation")),
     ("cli", ("flexbeam.cli",)),
 ]  # fmt: skip
 

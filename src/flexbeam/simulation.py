@@ -99,8 +99,13 @@ def simulate(
     progress: Callable[[float], None] | None = None,
     outputs: bool = False,
     stream: str | Path | None = None,
+    state: np.ndarray | None = None,
 ) -> Solution:
     """Run ``case`` with an impact method and return the :class:`Solution`.
+
+    ``state``: start from this state vector of the case's model (the last state of an earlier run of the same beam:
+    continuation, :mod:`flexbeam.bifurcation`) instead of ``[initial]``; its dissipated energy and work start again
+    at zero, and the start checks of ``[initial]`` are the caller's.
 
     Before it starts, the memory the run will hold is estimated (:func:`flexbeam.memory.estimate`; with
     ``outputs``, its output samples included, for a caller that will write or plot them) and a run above
@@ -137,13 +142,26 @@ def simulate(
         return simulate_fem(case, progress=progress)
     cls = impact_method(method)
     system = BeamSystem.from_case(case)
-    y0, info = initial_state(system, case)
+    if state is None:
+        y0, info = initial_state(system, case)
+    else:
+        y0, info = _continued(system, state), {}
     impact = cls(system, case)
     stepper = make_stepper(case, method, system)
     if stream is not None:
         return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
     run = run_phases(impact, stepper, y0, case.solver.t_end, progress)
     return collect(run, impact, system, case, info, stepper)
+
+
+def _continued(system: BeamSystem, state: np.ndarray) -> np.ndarray:
+    """A copy of ``state`` to start from, its bookkeeping (E_d, W) at zero; a ParameterError if it is not a state of
+    ``system``'s size or not finite."""
+    y = np.array(state, dtype=float).ravel()
+    if y.size != system.size or not np.all(np.isfinite(y)):
+        raise ParameterError(f"state: a finite state of {system.size} values, not {y.size}")
+    y[-2:] = 0.0
+    return y
 
 
 def check_joint_method(case: Case, method: str) -> None:

@@ -13,6 +13,7 @@ line on stderr and an exit code.  The commands are in the submodules:
 - :mod:`~flexbeam.cli.cases` -- ``cases``, ``cases show`` and ``frequencies``;
 - :mod:`~flexbeam.cli.sweep_calibrate` -- ``sweep`` and ``calibrate``;
 - :mod:`~flexbeam.cli.animation` -- ``animate``;
+- :mod:`~flexbeam.cli.bifurcation` -- ``bifurcation``;
 
 with what they share: :mod:`~flexbeam.cli.options` (the common options), :mod:`~flexbeam.cli.runs` (loading and
 running a case, the exit code of early-stopped runs), :mod:`~flexbeam.cli.tables` (the printed tables) and
@@ -34,6 +35,7 @@ except ImportError:  # pragma: no cover - older typer with click as a dependency
 from .._namespace import public_dir
 from ..errors import FlexbeamError, FlexbeamWarning, ParameterError, SolverError
 from .animation import animate
+from .bifurcation import bifurcation
 from .cases import cases_app, frequencies
 from .messages import one_line
 from .run_compare import compare, run
@@ -46,7 +48,7 @@ app = typer.Typer(
     help="flexbeam: impact dynamics of flexible beams with large overall motion.",
 )
 app.add_typer(cases_app, name="cases")
-for _command in (run, compare, frequencies, sweep, calibrate, animate):
+for _command in (run, compare, frequencies, sweep, calibrate, animate, bifurcation):
     app.command()(_command)
 
 

@@ -294,6 +294,12 @@ class Solution:
         episode [s], default one period of the first free-free bending mode); [] for a beam on a joint."""
         return find_episodes(self, self.contact_counts(), gap)
 
+    def poincare(self, phase: float = 0.0, discard: int = 0) -> dict[str, np.ndarray]:
+        """The Poincaré section of a run on a moving base (:func:`~flexbeam.results.poincare.poincare`)."""
+        from .poincare import poincare
+
+        return poincare(self, phase, discard)
+
     def metrics(self) -> dict[str, Any]:
         """The run's summary numbers, the ``--json`` contract (:func:`~flexbeam.results.summary.run_metrics`)."""
         return summary.run_metrics(self)

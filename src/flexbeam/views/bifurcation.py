@@ -1,0 +1,50 @@
+"""The figure of a bifurcation diagram (:func:`flexbeam.bifurcation.bifurcation`): the Poincaré samples of the tip's
+deflection and the impacts' approach velocities against the drive frequency, up and down, and the frequency
+response (the largest tip deflection)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from ..results.files import atomic_path
+
+COLOURS = {"up": "C0", "down": "C3"}
+
+
+def plot_bifurcation(ds: xr.Dataset, path: str | Path) -> Path:
+    """Three panels against the frequency -- the Poincaré samples of the tip deflection [mm], the impacts' approach
+    speeds [m/s], the largest |tip deflection| [mm] -- the branch swept up in blue, down in red; written as a PNG."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    f = ds["frequency"].values
+    fig, axes = plt.subplots(3, 1, figsize=(7.0, 8.0), sharex=True, height_ratios=(2, 2, 1), layout="constrained")
+    for name in ds["branch"].values:
+        b = ds.sel(branch=name)
+        colour, offset = (
+            COLOURS.get(str(name), "k"),
+            (0.0 if name == "up" else 0.15 * (f[1] - f[0] if f.size > 1 else 0)),
+        )
+        tip = b["tip"].values
+        axes[0].plot(
+            np.repeat(f, tip.shape[1]) + offset, 1e3 * tip.ravel(), ".", ms=2, color=colour, label=f"swept {name}"
+        )
+        iv = b["impact_velocity"].values
+        axes[1].plot(np.repeat(f, iv.shape[1]) + offset, -iv.ravel(), ".", ms=2, color=colour)
+        axes[2].plot(f, 1e3 * b["amplitude"].values, ".-", ms=3, color=colour)
+    axes[0].set(ylabel="tip deflection at the\nPoincaré section [mm]",
+                title=f"{ds.attrs.get('case', '')}: {ds.attrs.get('method', '')}, "
+                      f"{ds.attrs.get('periods', '')} periods, {ds.attrs.get('discard', '')} discarded")  # fmt: skip
+    axes[0].legend(markerscale=4, fontsize="small")
+    axes[1].set(ylabel="impact speed [m/s]")
+    axes[2].set(xlabel="drive frequency [Hz]", ylabel="max |tip|\n[mm]")
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110, format="png")
+    plt.close(fig)
+    return path

@@ -1,0 +1,107 @@
+"""Poincaré sections and bifurcation diagrams of a beam on a moving base.
+
+* A non-impacting steady state is one point of the Poincaré map: the base-excited cantilever started on its steady
+  state (test_moving_base.py) shows, at every period, the relative tip deflection (T(beta L) - 1) Y sin(2 pi phase)
+  of the Euler-Bernoulli closed form.
+* ``flexbeam bifurcation``: the store and the diagram of a shaker case with a stop (the assumed case
+  tests/validation/data/shaker-stop.toml), the sweep up and down, resuming from the store, and bad input.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import flexbeam as fb
+from flexbeam.bifurcation import bifurcation
+from flexbeam.model.system import BeamSystem
+from flexbeam.results.poincare import section_times
+
+from .test_moving_base import CANTILEVER, transmissibility
+
+SHAKER = Path(__file__).resolve().parent / "data" / "shaker-stop.toml"
+
+
+@pytest.mark.parametrize(("z", "phase"), [(3.0, 0.25), (6.0, 0.6)])
+def test_a_steady_non_impacting_response_is_one_point(z, phase):
+    """20 periods of the cantilever shaken at beta L = z from its steady state (24 modes): all 20 sections equal
+    (T - 1) Y sin(2 pi phase) to 2e-4 Y (the modal truncation bound of test_moving_base.py)."""
+    Y = 1e-3
+    case = fb.load_case(CANTILEVER, {"model.modes": 24, "model.gravity": 0.0})
+    beam = BeamSystem.from_case(case).beam
+    mu, EI, L = case.beam.line_density, case.beam.youngs_modulus * case.beam.second_moment, case.beam.length
+    w = z * z / L**2 * math.sqrt(EI / mu)
+    amp = np.linalg.solve(np.asarray(beam.Kff) - w * w * np.asarray(beam.Mff), np.asarray(beam.sf) * Y * w * w)
+    case = fb.load_case(case.model_dump(), {
+        "base.frequency": w / (2.0 * math.pi), "base.harmonics": [{"axis": "y", "amplitude": Y}],
+        "initial.modal_velocity": [float(v) for v in w * amp], "solver.t_end": 20 * 2.0 * math.pi / w,
+    })  # fmt: skip
+    sec = fb.simulate(case, "ccfm").poincare(phase)
+    assert sec["period"].tolist() == list(range(20)) or sec["period"].tolist() == list(range(21))
+    expected = (transmissibility(z) - 1.0) * Y * math.sin(2.0 * math.pi * phase)
+    assert np.max(np.abs(sec["tip_deflection"] - expected)) < 2e-4 * Y
+
+
+def test_section_times_are_the_phase_of_every_period():
+    k, t = section_times(0.0, 1.0, 4.0, 0.25)
+    assert k.tolist() == [0, 1, 2, 3] and np.allclose(t, (k + 0.25) / 4.0, rtol=0, atol=1e-15)
+    k, t = section_times(0.3, 1.0, 4.0, 0.0)
+    assert k.tolist() == [2, 3, 4]
+
+
+def test_a_poincare_section_needs_a_shaken_base():
+    sol = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 0.01}), "ccfm")
+    with pytest.raises(ValueError, match="base.frequency"):
+        sol.poincare()
+
+
+def test_bifurcation_store_resumes_and_sweeps_both_ways(tmp_path):
+    """Three frequencies, 8 periods of which 4 discarded: both branches succeed, the Dataset holds 4 sections per point
+    and the up branch at the lowest frequency starts from the case's own start (the down branch arrives there by
+    continuation: their sections differ); a second call finds every point in the store and returns the same values."""
+    case = fb.load_case(SHAKER)
+    ds = bifurcation(case, 12.0, 20.0, 3, periods=8, discard=4, out=tmp_path, workers=1)
+    assert ds["tip"].shape == (2, 3, 4)
+    assert (ds["status"].values == "success").all()
+    assert np.isfinite(ds["tip"].values).all()
+    up, down = ds["tip"].sel(branch="up").values, ds["tip"].sel(branch="down").values
+    assert not np.array_equal(up[0], down[0])
+    stored = json.loads((tmp_path / "branch-up.json").read_text())
+    assert [p["frequency"] for p in stored] == [12.0, 16.0, 20.0]
+    again = bifurcation(case, 12.0, 20.0, 3, periods=8, discard=4, out=tmp_path, workers=1)
+    xr.testing.assert_identical(ds, again)
+    assert (tmp_path / "bifurcation.nc").exists()
+
+
+def flexbeam_cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "flexbeam.cli", *args], capture_output=True, text=True, timeout=600)
+
+
+def test_the_bifurcation_command_writes_the_diagram(tmp_path):
+    r = flexbeam_cli("bifurcation", str(SHAKER), "--param", "base.frequency=12:20:2", "--periods", "6",
+                     "--discard", "3", "-o", str(tmp_path), "--workers", "1", "--json")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    info = json.loads(r.stdout)
+    assert info["points"] == 4 and info["success"] == 4
+    assert (tmp_path / "bifurcation.png").stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(
+    ("args", "field"),
+    [
+        (("--param", "base.frequency=12:20:2", "--periods", "5", "--discard", "5"), "--discard"),
+        (("--param", "base.frequency=0:20:2", "--periods", "5", "--discard", "1"), "--param"),
+        (("--param", "contact.stiffness=1:2:3", "--periods", "5", "--discard", "1"), "--param"),
+    ],
+)
+def test_bad_bifurcation_input_is_one_line(tmp_path, args, field):
+    r = flexbeam_cli("bifurcation", str(SHAKER), *args, "-o", str(tmp_path))
+    assert r.returncode == 2 and r.stdout == ""
+    assert len(r.stderr.strip().splitlines()) == 1 and r.stderr.startswith(f"error: {field}"), r.stderr
