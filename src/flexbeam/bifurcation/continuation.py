@@ -36,7 +36,7 @@ class Point:
     #: the contact records after the transient: approach velocity [m/s] (negative approaching) and phase of the drive
     impact_velocity: np.ndarray = field(default_factory=lambda: np.zeros(0))
     impact_phase: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    #: the largest |tip deflection| after the transient (frequency response) [m]
+    #: the largest absolute tip deflection after the transient (the frequency response) [m]
     amplitude: float = math.nan
     #: the state the next frequency starts from (None: the branch cannot continue)
     state: np.ndarray | None = None

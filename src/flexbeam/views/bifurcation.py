@@ -16,7 +16,8 @@ COLOURS = {"up": "C0", "down": "C3"}
 
 def plot_bifurcation(ds: xr.Dataset, path: str | Path) -> Path:
     """Three panels against the frequency -- the Poincaré samples of the tip deflection [mm], the impacts' approach
-    speeds [m/s], the largest |tip deflection| [mm] -- the branch swept up in blue, down in red; written as a PNG."""
+    speeds [m/s], the largest absolute tip deflection [mm] -- the branch swept up in blue, down in red; written as a
+    PNG."""
     import matplotlib
 
     matplotlib.use("Agg")
