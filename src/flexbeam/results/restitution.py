@@ -54,6 +54,7 @@ class RigidMotion:
         system = source.system
         self.n, self.nz = system.n, system.nz
         self.JG, self.Mc, self.g = system.beam.Jc, system.beam.Mc, system.g
+        self.beam = system.beam
         self.normal, self.lever, self.t0 = np.array([0.0, 1.0]), 0.0, 0.0
 
     def segment(self, t: float, after: bool) -> Segment:
@@ -67,8 +68,19 @@ class RigidMotion:
         Y = np.atleast_2d(Y)
         nz = self.nz
         q = Y[:, 3:nz]
+        if self.beam.axial is not None:
+            return np.column_stack((Y[:, nz], Y[:, nz + 1], self._axial_spin(Y)))
         pq = np.einsum("ij,jk,ik->i", q, self.Mc, q) if self.n else np.zeros(Y.shape[0])
         return np.column_stack((Y[:, nz], Y[:, nz + 1], Y[:, nz + 2] * (1.0 + pq / self.JG)))
+
+    def _axial_spin(self, Y: np.ndarray) -> np.ndarray:
+        """p_theta / J_G with axial modes: theta' (J_G + q^T Mc q + 2 m_ta p + p^T M_aa p) + p^T S q' - q^T S^T p'."""
+        nz, nb, ax = self.nz, self.beam.n, self.beam.axial
+        q, p = Y[:, 3 : 3 + nb], Y[:, 3 + nb : nz]
+        qd, pd = Y[:, nz + 3 : nz + 3 + nb], Y[:, nz + 3 + nb : 2 * nz]
+        J = self.JG + np.einsum("ij,jk,ik->i", q, self.Mc, q) + p @ (2.0 * ax.mta) + (p * p) @ ax.Maa
+        h = np.einsum("ik,kj,ij->i", p, ax.S, qd) - np.einsum("ik,kj,ij->i", pd, ax.S, q)
+        return (Y[:, nz + 2] * J + h) / self.JG
 
     def state(self, t: float, after: bool) -> np.ndarray:
         """(v_Gx, v_Gy, Omega) at time t."""

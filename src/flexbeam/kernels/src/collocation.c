@@ -64,7 +64,8 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
     out->t = t;
     double Q[FB_MAXN], R[FB_MAXN];
     double ds = jt->forces(m, &out->frame, q, qd, jt->torque(m, t), 0, Q); /* no elastic force */
-    double c = jt->remainder(m, b, ph->row0_q, &out->frame, q, Q, ds, R);
+    fb_update up;
+    jt->remainder(m, b, ph->row0_q, &out->frame, q, Q, ds, &up, R);
     double s = 0.0, sd = 0.0;
     if (compliant) {
         const fb_obstacle *o = &m->obstacles[0];
@@ -94,8 +95,8 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
             for (int i = 0; i < N; i++) out->jb[k][i] = fabs(out->jm[k][i]);
         }
         if (!active) continue;
-        if (c != 0.0) {
-            jt->correct(m, b, c, Jx);
+        if (up.active) {
+            jt->correct(m, b, &up, Jx);
             fb_project(b, Jx, out->b[k]);
         } else {
             memcpy(out->b[k], out->jm[k], sizeof(double) * N);

@@ -28,7 +28,7 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
 
 void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P], const double Fk[][FB_P], int j,
                    double *ed, double *wd);
-double fb_boundary_work(const fb_phase *ph, double t, const double *v);
+double fb_boundary_work(const fb_phase *ph, double t, const double *eta, const double *v);
 double fb_hub_angle(const fb_phase *ph, const double *eta);
 double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale);
 double fb_node_energy_parts(const fb_phase *ph, const fb_node *nd, double *scale, double *kinetic);
