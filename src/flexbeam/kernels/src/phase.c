@@ -35,7 +35,7 @@ enum { EV_IMPACT = 1, EV_SEPARATION = 2, EV_RELEASE = 4 };
 
 int fb_record_size(int N, int S) { return 4 + 2 * N + FB_P * N + S * FB_P + 2 * FB_P + FB_RECORD_SUMMARY; }
 
-int fb_state_buffer_size(int N, int S) { return 5 + 2 * N + FB_P * N + S * FB_P; }
+int fb_state_buffer_size(int N, int S) { return 5 + 2 * N + FB_P * N + S * FB_P + 1; }
 
 /* The step's energy-balance residual r = E(t + h) - E(t) + dE_d - dW against BALANCE_SHARE of the energy error the
  * state tolerance admits: a state error e in the energy norm (|x|^2 = 2 (T + V_e) = 2 scale) moves the energy by
@@ -308,14 +308,16 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
     double t = state[0], h = state[1], Ed = state[2], W = state[3];
     double *eta = state + 5, *v = eta + N, *f = v + N;
     double(*F)[FB_P] = (double(*)[FB_P])(f + FB_P * N);
+    double *lambda_scale = f + FB_P * N + S * FB_P; /* kept in the state: a resumed phase goes on with its scale */
     fb_work *w = malloc(sizeof(fb_work));
     if (!w) return ADV_NONFINITE;
     w->h = -1.0;
-    w->lambda_scale = 0.0;
     if (state[4] == 0.0) { /* the phase starts */
         start_guess(&ph, t, eta, v, f, F);
         info[FB_INFO_T0] = t;
+        *lambda_scale = 0.0;
     }
+    w->lambda_scale = *lambda_scale;
     state[4] = 1.0;
     *nrec = 0;
     int code = ADV_END, have_gap0 = 0, retry = 0; /* retry: the step was just cut, it may not stretch to t_end */
@@ -394,6 +396,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
     state[1] = h;
     state[2] = Ed;
     state[3] = W;
+    *lambda_scale = w->lambda_scale;
     free(w);
     return code;
 }
