@@ -335,3 +335,22 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
     }
     return 0;
 }
+
+/* Values at the next step's nodes (1 + ratio c_i) of the interpolant through the nodal rows of f (N per node)
+ * and of each pair's F. */
+void fb_extrapolate(int N, int S, double ratio, double *f, double F[][FB_P]) {
+    const fb_tables *tb = fb_gauss();
+    double L[FB_P][FB_P], g[FB_P * FB_MAXN], G[FB_MAX_PAIRS][FB_P];
+    for (int i = 0; i < FB_P; i++)
+        for (int j = 0; j < FB_P; j++) L[i][j] = fb_lagrange(j, 1.0 + ratio * tb->c[i]);
+    for (int i = 0; i < FB_P; i++) {
+        for (int k = 0; k < S; k++) G[k][i] = 0.0;
+        for (int q = 0; q < N; q++) g[i * N + q] = 0.0;
+        for (int j = 0; j < FB_P; j++) {
+            for (int k = 0; k < S; k++) G[k][i] += L[i][j] * F[k][j];
+            for (int q = 0; q < N; q++) g[i * N + q] += L[i][j] * f[j * N + q];
+        }
+    }
+    memcpy(f, g, sizeof(double) * FB_P * N);
+    for (int k = 0; k < S; k++) memcpy(F[k], G[k], sizeof(double) * FB_P);
+}

@@ -6,7 +6,7 @@
 
 /* record row: [t0, h, Ed0, W0, eta0 (N), v0 (N), f (P x N), F (S x P), Ed rates (P), W rates (P)], S pairs */
 int fb_record_size(int N, int S);
-/* state buffer: [t, h, Ed, W, have_guess, eta (N), v (N), f (P x N), F (S x P)] */
+/* state buffer: [t, h, Ed, W, have_guess, eta (N), v (N), f (P x N), F (S x P), the largest multiplier so far] */
 int fb_state_buffer_size(int N, int S);
 /* control buffer: [rtol, atol, hmax, omega_rigid, events (bits), contacts (fb_contacts_unpack)] */
 #define FB_CTRL_HEAD 5
