@@ -35,9 +35,9 @@ class FreeJoint(Joint):
     kind = "free"
     code = 1
     coordinates = ("x_G", "y_G", "theta")
-    #: CCM (the unilateral constraint) is not validated on a free beam yet; the FE reference has no free beam
-    #: (flexbeam.fem.beam.JOINT_KINDS)
-    unsupported_methods = ("ccm", "fem")
+    #: CCM (the unilateral constraint) is not validated on a free beam yet (the FE reference's free beam:
+    #: flexbeam.fem.free)
+    unsupported_methods = ("ccm",)
 
     @property
     def ngiven(self) -> int:
