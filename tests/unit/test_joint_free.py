@@ -237,8 +237,9 @@ def test_what_a_free_beam_does_not_have_is_refused(overrides, field):
         free_case(**{k.replace(".", "__"): v for k, v in overrides.items()})
 
 
-@pytest.mark.parametrize("method", ["ccm", "fem"])
+@pytest.mark.parametrize("method", ["ccm"])
 def test_methods_that_do_not_model_a_free_beam_are_refused(method):
+    """CCM; the FE reference models a free beam (tests/fem/test_free.py)."""
     with pytest.raises(ModelError, match=r"^joint\.kind:"):
         fb.simulate(free_case(solver__t_end=1e-3), method)
 
