@@ -35,9 +35,9 @@ class FreeJoint(Joint):
     kind = "free"
     code = 1
     coordinates = ("x_G", "y_G", "theta")
-    #: the FE reference has no free beam (flexbeam.fem.beam.JOINT_KINDS); CCM runs
-    #: (tests/validation/test_free_beam_ccm.py)
-    unsupported_methods = ("fem",)
+    #: every method runs a free beam: CCM (tests/validation/test_free_beam_ccm.py), the FE reference
+    #: (flexbeam.fem.free)
+    unsupported_methods: tuple[str, ...] = ()
 
     @property
     def ngiven(self) -> int:
