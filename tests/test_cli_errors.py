@@ -96,7 +96,29 @@ SET_CASES = [
     ("initial.angle=1e300", "initial.angle", "less than or equal to 1000"),
     ("initial.impact_velocity=nan", "initial.impact_velocity", "finite"),
     ("contact.position=5e-324", "initial.impact_velocity", "needs a hub rate above 10000 rad/s"),
+    # the axial modes
+    ("model.axial_modes=-1", "model.axial_modes", "greater than or equal to 0"),
+    ("model.axial_modes=53", "model.axial_modes", "model.modes + model.axial_modes must be at most 64"),
+    ("initial.axial_displacement=[1e-6]", "initial.axial_displacement", "1 values for model.axial_modes = 0"),
 ]
+
+
+@pytest.mark.parametrize(
+    ("case", "assignments", "field", "allowed"),
+    [
+        ("seed-experiment", ["model.axial_modes=4", "model.coupling=zeroth-order"], "model.axial_modes",
+         "need model.coupling = 'first-order'"),
+        ("rod-end", ["model.axial_modes=61"], "model.axial_modes", "at most 62 for a free beam"),
+        ("spinning-stop", ["model.axial_modes=4"], "model.axial_modes", "contact anywhere"),
+        ("rod-end", ["initial.kind=impact", "initial.axial_velocity=[0.1]"], "initial.axial_velocity",
+         "only for initial.kind = 'state'"),
+    ],
+)  # fmt: skip
+def test_bad_axial_modes(case, assignments, field, allowed):
+    """The axial modes with the zeroth-order model, too many of them, with contact anywhere, or an axial initial
+    value without ``initial.kind = "state"``: one line naming the field, exit 2."""
+    args = [a for x in assignments for a in ("--set", x)]
+    assert_one_line_error(flexbeam("run", case, "--json", *args), field, allowed)
 
 
 @pytest.mark.parametrize(("assignment", "field", "allowed"), SET_CASES, ids=[c[0] for c in SET_CASES])
@@ -320,12 +342,16 @@ FREE_BAR = Path(__file__).resolve().parent / "validation" / "data" / "free-bar-d
     [
         (("--set", "drive.kind=torque", "--set", "drive.torque=1"), "drive.kind", "no joint to drive"),
         (("--set", "initial.kind=state", "--set", "initial.position=[0, 0.001]"), "obstacle.centre", "inside"),
-        (("--method", "fem"), "joint.kind", "'fem'"),
+        (
+            ("--method", "fem", "--set", "initial.kind=state", "--set", "initial.position=[0, 0.2]",
+             "--set", "initial.modal_displacement=[1e-4]"),
+            "initial.modal_displacement", "no modes",
+        ),
     ],
-)
+)  # fmt: skip
 def test_what_a_free_beam_refuses(args, field, fragment):
-    """A free beam (joint.kind = "free"): a drive torque, a start inside the floor, the methods that do not model it
-    yet -- one line naming the field, exit 2."""
+    """A free beam (joint.kind = "free"): a drive torque, a start inside the floor, the method that does not model it
+    yet (CCM), a modal start for the FE reference (which has no modes) -- one line naming the field, exit 2."""
     r = flexbeam("run", str(FREE_BAR), "--json", *args)
     assert_one_line_error(r, field, fragment)
 

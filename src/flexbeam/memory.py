@@ -77,6 +77,9 @@ RECORD_OVERHEAD = 48.0
 SEGMENT_BYTES = 8192.0
 #: FE reference: bytes per step (one output row, peak while the Solution is built; more with per-pair rows)
 FE_STEP_BYTES, FE_PAIR_STEP_BYTES = 1200.0, 700.0
+#: steps per contact a run may take whatever its length (measured: rod-end 189 steps in its one contact, IMM's
+#: 1000 micro-impacts there 1978): a floor of the estimate
+CONTACT_STEPS = 4.0
 #: the tolerance scaling of the step rates: (rtol_default / rtol) ** RATE_EXPONENT (measured 0.19 - 0.31)
 RATE_EXPONENT = 1.0 / 3.0
 #: a streamed run: blocks of steps held besides the kept ones (the stepper's, under 2 blocks, and the part handed on)
@@ -184,10 +187,10 @@ def estimate(case: Case, method: str = "ccfm", outputs: bool = False, stream: bo
         steps = t_end / _fe_step(case, contact, touching)
         per_step = FE_STEP_BYTES + (FE_PAIR_STEP_BYTES if pairs > 1 or any(p.anywhere for p in contact.pairs) else 0)
         return MemoryEstimate(t_end, steps * per_step, 0.0, 0.0, limit, source)
-    n = case.model.modes
+    n = case.model.modes + case.model.axial_modes
     prescribed = case.drive.kind == "prescribed"
     compliant = case.obstacle.support.compliant
-    nz = n if prescribed else n + 1
+    nz = n if prescribed else n + (3 if case.joint.kind == "free" else 1)
     size = 2 * nz + (2 if compliant else 0) + 2
     exponential = s.integrator == "exponential" and (not compliant or (method == "ccfm" and not prescribed))
     if exponential:
@@ -201,6 +204,8 @@ def estimate(case: Case, method: str = "ccfm", outputs: bool = False, stream: bo
     if bound:
         rate = 1.0 / s.max_step
     steps = rate * t_end
+    if touching:  # a short run of stiff contacts (the rod-end's axial wave: ~2e6 steps/s) is bounded by its contacts
+        steps = max(steps, CONTACT_STEPS * (s.max_contacts + 1))
     phases = min(4.0 * (s.max_contacts + 1), 2.0 * steps + 4.0)
     samples = 0.0
     if stream:  # two chunks of samples and a batch being evaluated; the steps kept for the open contacts

@@ -42,6 +42,11 @@ RUNS: list[tuple[str, str, dict]] = [
     ("free-bar-drop.toml", "ccfm", {}),
     ("free-bar-drop.toml", "imm", {}),
     ("free-bar-drop.toml", "ccm", {}),
+    # the axial modes (model.axial_modes): Saint-Venant's rod (a free beam) and the tip wall's revolute beam
+    ("rod-end", "ccfm", {}),
+    ("tip-wall", "ccfm", {"model.axial_modes": 8}),
+    ("tip-wall", "ccm", {"model.axial_modes": 8}),
+    ("tip-wall", "imm", {"model.axial_modes": 8}),
 ]
 
 #: where a run's case named by a file (not a preset) is

@@ -143,3 +143,8 @@ def test_the_fe_reference_and_a_free_beam_refuse_a_moving_base():
         fb.simulate(fb.load_case("seed-experiment", moving), "fem")
     with pytest.raises(ValueError, match=r"base: a free beam"):
         fb.load_case("seed-experiment", {**moving, "joint.kind": "free", "hub.radius": 0.0, "hub.inertia": 0.0})
+
+
+def test_axial_modes_on_a_moving_base_are_refused():
+    with pytest.raises(ValueError, match=r"model\.axial_modes: a moving base"):
+        fb.load_case("seed-experiment", {"base.acceleration": [0.0, 1.0], "model.axial_modes": 2})

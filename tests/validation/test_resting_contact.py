@@ -48,16 +48,20 @@ def _steps_between(seg, a, b):
     return int(np.count_nonzero((t >= a) & (t < b)))
 
 
+def static_force(case) -> float:
+    """F_s = m g L / (2 x_P): the contact force that holds the uniform beam, pinned at O, level on the stop at x_P."""
+    b = case.beam
+    m = b.density * math.pi * b.radius**2 * b.length
+    return m * case.model.gravity * b.length / (2.0 * case.contact.position)
+
+
 def test_rest_is_the_static_solution(runs):
     """Mean force and penetration over WINDOW equal F_s and d_s.  Tolerance 0.5 %: the mean of a ringing of relative
     amplitude a = 0.05 over a window of w T = 105 rad differs from its centre by <= 2 a / (w T) = 0.1 %, the Hertz
     curvature shifts the mean force by (3/16) a^2 = 0.05 %, the moment arms change by O(theta^2, w'^2) < 1e-8."""
     sol, _ = runs
     seg = _resting_segment(sol)
-    c = fb.load_case("seed-experiment")
-    b = c.beam
-    m = b.density * math.pi * b.radius**2 * b.length
-    F_s = m * c.model.gravity * b.length / (2.0 * c.contact.position)
+    F_s = static_force(fb.load_case("seed-experiment"))
     K, n = seg.phase.parameters[0][:2]
     d_s = (F_s / K) ** (1.0 / n)
     rec = seg.dense.records

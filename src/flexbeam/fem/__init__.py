@@ -8,7 +8,8 @@ iterations, with the same obstacles and contact pairs (``[obstacle]`` and each
 point of the deformed beam's capsule surface nearest the obstacle), CCFM contact laws,
 drives and initial states as the modal model -- but without modal truncation and without
 the second-order coupling-deformation approximation.  What it does not model (a
-compliant ``obstacle.support``) raises a ParameterError; a joint kind other than ``revolute`` a ModelError.
+compliant ``obstacle.support``) raises a ParameterError; a joint kind other than ``revolute`` and ``free`` a
+ModelError.  A free beam (``joint.kind = "free"``, :mod:`flexbeam.fem.free`) has no hub: every node is free.
 
 * :mod:`flexbeam.fem.element` -- element internal force/tangent (Crisfield 1991) and
   exact inertia of the interpolated field (Numba);
@@ -28,6 +29,9 @@ compliant ``obstacle.support``) raises a ParameterError; a joint kind other than
   :mod:`flexbeam.fem.event_location`, the step sizes of :mod:`flexbeam.fem.step_size` and the contact log of
   :mod:`flexbeam.fem.run_record`;
 * :mod:`flexbeam.fem.initial` -- the initial state (a release angle solved by shooting on the FE free flight);
+* :mod:`flexbeam.fem.free` -- the free beam: its rigid-body motion (G, the angular momentum about G, the mean-axis
+  angle) and its start; :mod:`flexbeam.fem.rigid_motion` -- that motion on a run's samples, for the collision
+  episodes and the apparent restitution of :mod:`flexbeam.results.episodes`;
 * :mod:`flexbeam.fem.simulate` -- :func:`simulate_fem`, returning a
   :class:`~flexbeam.results.solution.Solution` (the force between samples from :mod:`flexbeam.fem.dense_force`);
 * :mod:`flexbeam.fem.jit` -- the kernels' Numba compilation, cached on disk under a key of all
@@ -36,8 +40,8 @@ compliant ``obstacle.support``) raises a ParameterError; a joint kind other than
 It shares no equations with the modal model: the contact force and the gap are
 evaluated by its own kernels; only the case's inputs are interpreted alike (the law and
 its chi(e), the Hertz stiffness, the obstacle placement, the joint of
-:func:`flexbeam.model.joints.joint_of`: its kind -- a revolute joint only, another kind raises a ModelError -- and
-its drive :class:`flexbeam.model.joints.drive.JointDrive`) and the results go into the same
+:func:`flexbeam.model.joints.joint_of`: its kind -- a revolute joint or none (free), another kind raises a
+ModelError -- and its drive :class:`flexbeam.model.joints.drive.JointDrive`) and the results go into the same
 :class:`~flexbeam.results.solution.Solution`.
 """
 

@@ -6,7 +6,9 @@ Degrees of freedom
 ------------------
 z = [theta, X_1, Y_1, psi_1, ..., X_N, Y_N, psi_N]: node 0 is clamped to the hub at
 r_h e1(theta) with psi_0 = theta, and maps onto theta with the weights
-T0 = dX_0/dtheta = (-r_h sin theta, r_h cos theta, 1).  The tangent is assembled in
+T0 = dX_0/dtheta = (-r_h sin theta, r_h cos theta, 1).  A free beam (``free``, no joint:
+``joint.kind = "free"``) has no hub: z = [X_0, Y_0, psi_0, ..., X_N, Y_N, psi_N], every node
+free, node i's DOFs at 3 i + k.  The tangent is assembled in
 LAPACK general-band storage (kl = ku = 5, :mod:`flexbeam.fem.banded`) for
 :func:`scipy.linalg.lapack.dgbsv`.  The elements are those of :mod:`flexbeam.fem.element`;
 the contact force of each contact pair comes from :mod:`flexbeam.fem.contact_law` and its gap from
@@ -21,14 +23,23 @@ import numpy as np
 
 from .banded import BAND, band_solve, fix_first_dof
 from .contact_law import law_force
-from .element import corotational_element, inertia_element
+from .element import corotational_element, gather, inertia_element
 from .gap import anywhere_gap, gap_at
 from .jit import fem_jit
 
 
 @fem_jit
-def node_states(z, zd, zdd, rh, X, V, A):
-    """Fill node arrays (nn x 3) from the DOF vectors; node 0 follows the hub angle."""
+def node_states(z, zd, zdd, rh, free, X, V, A):
+    """Fill node arrays (nn x 3) from the DOF vectors; node 0 follows the hub angle (``free``: every node is
+    its own three DOFs)."""
+    nn = X.shape[0]
+    if free:
+        for i in range(nn):
+            for k in range(3):
+                X[i, k] = z[3 * i + k]
+                V[i, k] = zd[3 * i + k]
+                A[i, k] = zdd[3 * i + k]
+        return
     th, w, al = z[0], zd[0], zdd[0]
     ct, st = math.cos(th), math.sin(th)
     X[0, 0] = rh * ct
@@ -40,7 +51,6 @@ def node_states(z, zd, zdd, rh, X, V, A):
     A[0, 0] = rh * (-st * al - ct * w * w)
     A[0, 1] = rh * (ct * al - st * w * w)
     A[0, 2] = al
-    nn = X.shape[0]
     for i in range(1, nn):
         for k in range(3):
             X[i, k] = z[3 * i + k - 2]
@@ -49,9 +59,12 @@ def node_states(z, zd, zdd, rh, X, V, A):
 
 
 @fem_jit
-def _dof_map(e, a, T0):
+def _dof_map(e, a, T0, free):
+    """(DOF index, weight) of local DOF ``a`` of element ``e``: node 0 onto theta with T0 unless ``free``."""
     node = e + a // 3
     k = a % 3
+    if free:
+        return 3 * node + k, 1.0
     if node == 0:
         return 0, T0[k]
     return 3 * node + k - 2, 1.0
@@ -59,7 +72,7 @@ def _dof_map(e, a, T0):
 
 @fem_jit
 def assemble(
-    z, zd, zdd, t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
+    z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, g, gxi, gw,
     cM, cC, cK, want_S,
     pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout,
     R, ab,
@@ -68,7 +81,8 @@ def assemble(
 
     R = f_in + f_int - f_g - sum_k J_k^T F_k (+ J_h theta'' - tau on theta), with
     S = cM M + cC C + cK K in LAPACK band storage ``ab`` (kl = ku = BAND; row
-    offset 2 BAND) if ``want_S``.  ``t_tau`` is the joint torque tau.
+    offset 2 BAND) if ``want_S``.  ``t_tau`` is the joint torque tau; a ``free`` beam has no hub (no theta, no
+    J_h, no torque: every node's DOFs are unknowns).
 
     The contact pairs k = 0 .. S-1 are given by arrays: the node ``pnodes[k]`` of
     the contact point, its signed offset ``cPs[k]`` below the centre line, the
@@ -95,25 +109,27 @@ def assemble(
     X = np.empty((nn, 3))
     V = np.empty((nn, 3))
     A = np.empty((nn, 3))
-    node_states(z, zd, zdd, rh, X, V, A)
-    th = z[0]
+    node_states(z, zd, zdd, rh, free, X, V, A)
+    th = 0.0 if free else z[0]
     T0 = np.array([-rh * math.sin(th), rh * math.cos(th), 1.0])
     d2X0 = np.array([-rh * math.cos(th), -rh * math.sin(th), 0.0])
     R[:] = 0.0
     if want_S:
         ab[:, :] = 0.0
     R0node = np.zeros(3)
-    _add_elements(X, V, A, T0, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab, R0node)
+    _add_elements(X, V, A, T0, free, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab, R0node)
     # contact of each pair at its node or, anywhere, at its nearest point
     Jp = np.empty(3)
     Jg = np.empty(6)
     for q in range(pnodes.size):
         if anyw[q] != 0:
-            _anywhere_pair(q, X, V, A, l0, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
+            _anywhere_pair(q, X, V, A, l0, T0, free, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
                            cK, cC, want_S, R, ab, R0node, Jg)  # fmt: skip
         else:
-            _node_pair(q, pnodes[q], X, V, A, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
+            _node_pair(q, pnodes[q], X, V, A, T0, free, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout,
                        cK, cC, want_S, R, ab, R0node, Jp)  # fmt: skip
+    if free:
+        return pout[0, 0], pout[0, 1], pout[0, 2], pout[0, 3]
     # hub
     R[0] += Jh * zdd[0] - t_tau
     if want_S:
@@ -122,7 +138,7 @@ def assemble(
 
 
 @fem_jit
-def _add_elements(X, V, A, T0, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab, R0node):
+def _add_elements(X, V, A, T0, free, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab, R0node):
     """Add each element's f_in + f_int - f_g to R and cM M_e + cK K_e to the band matrix ``ab`` (if ``want_S``),
     node 0's mapped onto theta with the weights T0; node 0's unmapped forces are summed into ``R0node``
     (:func:`assemble`)."""
@@ -139,17 +155,11 @@ def _add_elements(X, V, A, T0, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab
     idx = np.empty(6, np.int64)
     wts = np.empty(6)
     for e in range(l0.size):
-        for k in range(3):
-            xe[k] = X[e, k]
-            xe[3 + k] = X[e + 1, k]
-            ve[k] = V[e, k]
-            ve[3 + k] = V[e + 1, k]
-            ae[k] = A[e, k]
-            ae[3 + k] = A[e + 1, k]
+        gather(X, V, A, e, xe, ve, ae)
         corotational_element(xe, l0[e], EA, EI, fe, Ke, want_S)
         inertia_element(xe, ve, ae, l0[e], mu, g, gxi, gw, fin, Me, fg, G)
         for a in range(6):
-            i, w = _dof_map(e, a, T0)
+            i, w = _dof_map(e, a, T0, free)
             idx[a] = i
             wts[a] = w
             fa = fin[a] + fe[a] - fg[a]
@@ -165,7 +175,7 @@ def _add_elements(X, V, A, T0, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab
 
 @fem_jit
 def _node_pair(
-    q, pnode, X, V, A, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout, cK, cC, want_S, R, ab,
+    q, pnode, X, V, A, T0, free, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout, cK, cC, want_S, R, ab,
     R0node, Jp,
 ):  # fmt: skip
     """Contact pair q at mesh node ``pnode``: R -= J^T F, S += (cK dF/dd + cC dF/dd') J^T J (:func:`assemble`)."""
@@ -181,7 +191,10 @@ def _node_pair(
         F, Fk, dFd, dFdd = law_force(lawps[q], d, dd)
         # R -= J^T F; dF/dz = -dFd J - dFdd J (dz'/dz) (the gap Hessian is neglected)
         for k in range(3):
-            if pnode == 0:
+            if free:
+                pidx[k] = 3 * pnode + k
+                pw[k] = 1.0
+            elif pnode == 0:
                 pidx[k] = 0
                 pw[k] = T0[k]
                 R0node[k] -= Jp[k] * F
@@ -203,8 +216,9 @@ def _node_pair(
 
 @fem_jit
 def _anywhere_pair(
-    q, X, V, A, l0, T0, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout, cK, cC, want_S, R, ab, R0node, Jg
-):
+    q, X, V, A, l0, T0, free, cPs, okinds, ocentres, oradii, onormals, active, lawps, pout, cK, cC, want_S, R, ab,
+    R0node, Jg,
+):  # fmt: skip
     """Contact pair q anywhere: R -= G^T n F at the nearest point (element e), S += coef J^T J (:func:`assemble`)."""
     delta, vn, _, e, xi = anywhere_gap(X, V, A, l0, cPs[q], okinds[q], ocentres[q], oradii[q], onormals[q], Jg)
     F = 0.0
@@ -214,7 +228,7 @@ def _anywhere_pair(
         idx = np.empty(6, np.int64)
         wts = np.empty(6)
         for a in range(6):
-            i, w = _dof_map(e, a, T0)
+            i, w = _dof_map(e, a, T0, free)
             idx[a] = i
             wts[a] = w
             R[i] -= w * Jg[a] * F
@@ -239,7 +253,7 @@ def _anywhere_pair(
 @fem_jit
 def newton(
     z, zd, zdd, a, cM, cC, ca, scale, tol, max_iter, prescribed,
-    t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw,
+    t_tau, rh, Jh, free, l0, mu, EA, EI, g, gxi, gw,
     pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout,
     R, ab,
 ):  # fmt: skip
@@ -250,7 +264,7 @@ def newton(
     """
     for it in range(1, max_iter + 1):
         assemble(
-            z, zd, zdd, t_tau, rh, Jh, l0, mu, EA, EI, g, gxi, gw, cM, cC, 1.0, True,
+            z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, g, gxi, gw, cM, cC, 1.0, True,
             pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout, R, ab,
         )  # fmt: skip
         if prescribed:

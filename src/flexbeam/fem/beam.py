@@ -2,7 +2,9 @@
 
 Generalised coordinates z = [theta, X_1, Y_1, psi_1, ..., X_N, Y_N, psi_N] (global
 node positions and absolute section rotations, on the mesh of :mod:`flexbeam.fem.mesh`);
-node 0 is clamped to the hub at r_h e1(theta) with rotation theta.  The equations of motion are
+node 0 is clamped to the hub at r_h e1(theta) with rotation theta.  A free beam (``joint.kind = "free"``,
+:mod:`flexbeam.fem.free`) has no hub and no theta: z = [X_0, Y_0, psi_0, ..., X_N, Y_N, psi_N].  The equations of
+motion are
 
     R(z, z', z'', t) = f_in + f_int - f_g - J^T F + [J_h theta'' - tau, 0, ...] = 0,
 
@@ -37,13 +39,15 @@ from .assembly import assemble, node_states
 from .banded import BAND, band_to_dense
 from .contact_geometry import PairGeometry
 from .element import GAUSS_W, GAUSS_XI
+from .free import FreeBody
 from .mesh import build_mesh, locate
 from .outputs import BeamOutputs
 from .pairs import ContactState, FemPair, pair_arrays, pairs_from_setup
 from .statics import StaticsAndVibration
 
 #: the joint kinds the FE reference models: a revolute joint at O (free, torque-driven or with its angle prescribed)
-JOINT_KINDS = ("revolute",)
+#: and no joint at all (a free-flying beam: every node free, no hub)
+JOINT_KINDS = ("revolute", "free")
 
 
 def joint_drive(case: Case) -> JointDrive:
@@ -58,13 +62,14 @@ def joint_drive(case: Case) -> JointDrive:
     Returns
     -------
     JointDrive
-        The joint's own drive (the FE's hub angle theta is the revolute joint's angle).
+        The joint's own drive (the FE's hub angle theta is the revolute joint's angle); for a free beam the
+        drive of ``[drive]``, which is ``free`` (no torque, nothing prescribed).
 
     Raises
     ------
     ModelError
         For a joint kind the FE reference does not model (naming it): the FE beam is clamped to a hub turning about
-        the fixed point O.
+        the fixed point O, or free.
     """
     joint = joint_of(case)
     if case.base.moving:
@@ -73,11 +78,13 @@ def joint_drive(case: Case) -> JointDrive:
         raise ModelError(
             f"joint.kind: the FE reference models a {' or '.join(map(repr, JOINT_KINDS))} joint, not {joint.kind!r}"
         )
+    if joint.kind == "free":
+        return JointDrive(case.drive)
     return joint.drive
 
 
 @dataclass
-class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
+class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
     """Everything the time integrator needs about one case, for the FE model.
 
     Build it with :meth:`from_case`.
@@ -102,6 +109,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
     obstacle_normal: np.ndarray
     measuring: list[tuple[int, float]]
     pairs: tuple[FemPair, ...] = ()
+    free: bool = False
 
     def __post_init__(self) -> None:
         """The pairs from the pair-0 fields when none are given, and the kernels' arrays of them."""
@@ -160,6 +168,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
             obstacle_normal=np.asarray(contact.obstacle.normal, float),
             measuring=measuring,
             pairs=pairs,
+            free=case.joint.kind == "free",
         )
 
     # -------------------------------------------------------------- sizes
@@ -170,8 +179,8 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
 
     @property
     def size(self) -> int:
-        """Number of generalised coordinates, 1 + 3 N."""
-        return 1 + 3 * self.elements
+        """Number of generalised coordinates, 1 + 3 N (a free beam: 3 (N + 1))."""
+        return 3 * (self.elements + 1) if self.free else 1 + 3 * self.elements
 
     @property
     def npairs(self) -> int:
@@ -202,10 +211,11 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
 
     # ---------------------------------------------------------- equations
     def model_args(self) -> tuple:
-        """Arguments of the kernels after the state: hub, mesh, material, gravity, quadrature."""
+        """Arguments of the kernels after the state: hub (none if ``free``), mesh, material, gravity, quadrature."""
         return (
             self.hub_radius,
             self.hub_inertia,
+            self.free,
             self.l0,
             self.mu,
             self.EA,
@@ -280,7 +290,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
         """Node arrays (X, V, A), each (N + 1) x 3: X, Y, psi per node."""
         nn = self.elements + 1
         X, V, A = np.empty((nn, 3)), np.empty((nn, 3)), np.empty((nn, 3))
-        node_states(z, zd, np.zeros_like(z) if zdd is None else zdd, self.hub_radius, X, V, A)
+        node_states(z, zd, np.zeros_like(z) if zdd is None else zdd, self.hub_radius, self.free, X, V, A)
         return X, V, A
 
     # ------------------------------------------------------ configurations
@@ -306,6 +316,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration):
         """Per-DOF scale of Newton increments: L for positions, 1 rad for rotations."""
         s = np.ones(self.size)
         L = float(self.x_nodes[-1])
-        s[1::3] = L
-        s[2::3] = L
+        first = 0 if self.free else 1
+        s[first::3] = L
+        s[first + 1 :: 3] = L
         return s

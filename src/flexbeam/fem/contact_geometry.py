@@ -73,7 +73,7 @@ class PairGeometry:
         return total
 
     def gap_jacobian(self, z: np.ndarray, pair: int = 0) -> np.ndarray:
-        """d delta / dz of ``pair`` (dense, length 1 + 3N)."""
+        """d delta / dz of ``pair`` (dense, length 1 + 3N; a free beam's 3 (N + 1))."""
         _, _, _, Jn = self.gap(z, np.zeros_like(z), pair=pair)
         J = np.zeros(self.size)
         pr = self.pairs[pair]
@@ -81,7 +81,9 @@ class PairGeometry:
         for a in range(Jn.size // 3):
             p = first + a
             Ja = Jn[3 * a : 3 * a + 3]
-            if p == 0:
+            if self.free:
+                J[3 * p : 3 * p + 3] += Ja
+            elif p == 0:
                 th = z[0]
                 J[0] += Ja @ np.array([-self.hub_radius * math.sin(th), self.hub_radius * math.cos(th), 1.0])
             else:

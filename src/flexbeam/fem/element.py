@@ -87,6 +87,19 @@ def _local_rotations(c, s, p1, p2):
 
 
 @fem_jit
+def gather(X, V, A, e, xe, ve, ae):
+    """Element e's coordinates, velocities and accelerations (6 each: its two nodes' X, Y, psi) from the node
+    arrays (N + 1) x 3, into ``xe``, ``ve``, ``ae``."""
+    for k in range(3):
+        xe[k] = X[e, k]
+        xe[3 + k] = X[e + 1, k]
+        ve[k] = V[e, k]
+        ve[3 + k] = V[e + 1, k]
+        ae[k] = A[e, k]
+        ae[3 + k] = A[e + 1, k]
+
+
+@fem_jit
 def element_chord(xe):
     """The chord of an element from node A to node B: (dx, dy), its length l, its direction (c, s) = (dx, dy)/l
     and the nodes' rotations theta_1, theta_2 relative to it (the co-rotational frame)."""

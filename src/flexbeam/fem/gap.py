@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from .element import chord_rates, element_chord, point_kinematics
+from .element import chord_rates, element_chord, gather, point_kinematics
 from .jit import fem_jit
 
 #: obstacle kinds
@@ -243,13 +243,7 @@ def anywhere_gap(X, V, A, l0, tube, kind, centre, radius, normal, Jg):
     xe = np.empty(6)
     ve = np.empty(6)
     ae = np.empty(6)
-    for k in range(3):
-        xe[k] = X[e, k]
-        xe[3 + k] = X[e + 1, k]
-        ve[k] = V[e, k]
-        ve[3 + k] = V[e + 1, k]
-        ae[k] = A[e, k]
-        ae[3 + k] = A[e + 1, k]
+    gather(X, V, A, e, xe, ve, ae)
     G = np.empty((2, 6))
     r, v, a = point_kinematics(xe, ve, ae, l0[e], xi, G)
     delta, rate, accel, nx, ny = obstacle_gap(r, v, a, kind, centre, radius + tube, normal)

@@ -88,6 +88,8 @@ def solve_release_angle(beam: FemBeam) -> float:
 def initial_state(beam: FemBeam) -> tuple[np.ndarray, np.ndarray, dict[str, float]]:
     """(z, z', info) for ``case.initial`` (see :func:`flexbeam.simulation.initial_state`)."""
     init = beam.case.initial
+    if beam.free:
+        return beam.free_initial_state()
     if beam.prescribed:
         th, thd, _ = beam.drive.motion(0.0)
         z, zd = beam.straight(th, thd)

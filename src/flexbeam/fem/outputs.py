@@ -14,14 +14,14 @@ from .jit import fem_jit
 
 
 @fem_jit
-def state_energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
-    """(kinetic, elastic, gravitational) energy [J] of the mesh and hub."""
+def state_energies(z, zd, rh, Jh, free, l0, mu, EA, EI, g, gxi, gw):
+    """(kinetic, elastic, gravitational) energy [J] of the mesh and hub (a ``free`` beam has none)."""
     nel = l0.size
     nn = nel + 1
     X = np.empty((nn, 3))
     V = np.empty((nn, 3))
     A = np.empty((nn, 3))
-    node_states(z, zd, np.zeros(z.size), rh, X, V, A)
+    node_states(z, zd, np.zeros(z.size), rh, free, X, V, A)
     xe = np.empty(6)
     ve = np.empty(6)
     fe = np.empty(6)
@@ -30,7 +30,7 @@ def state_energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
     Me = np.empty((6, 6))
     fg = np.empty(6)
     G = np.empty((2, 6))
-    T = 0.5 * Jh * zd[0] * zd[0]
+    T = 0.0 if free else 0.5 * Jh * zd[0] * zd[0]
     Ve = 0.0
     Vg = 0.0
     for e in range(nel):
@@ -47,17 +47,17 @@ def state_energies(z, zd, rh, Jh, l0, mu, EA, EI, g, gxi, gw):
 
 
 @fem_jit
-def normal_velocities(z, zd, rh, l0, elems, xis):
+def normal_velocities(z, zd, rh, free, theta, l0, elems, xis):
     """Velocities along e2(theta) of centre-line points (element, xi) [m/s]."""
     nn = l0.size + 1
     X = np.empty((nn, 3))
     V = np.empty((nn, 3))
     A = np.empty((nn, 3))
-    node_states(z, zd, zd, rh, X, V, A)
+    node_states(z, zd, zd, rh, free, X, V, A)
     out = np.empty(elems.size)
     xe = np.empty(6)
     ve = np.empty(6)
-    st, ct = math.sin(z[0]), math.cos(z[0])
+    st, ct = math.sin(theta), math.cos(theta)
     for p in range(elems.size):
         e = elems[p]
         for k in range(3):
@@ -82,8 +82,9 @@ class BeamOutputs:
         ve = np.concatenate((V[e], V[e + 1]))
         return point_on_element(xe, ve, self.l0[e], xi)
 
-    def measuring_velocities(self, z: np.ndarray, zd: np.ndarray) -> np.ndarray:
-        """Velocities along e2(theta) of all measuring points [m/s]."""
+    def measuring_velocities(self, z: np.ndarray, zd: np.ndarray, theta: float | None = None) -> np.ndarray:
+        """Velocities along e2(theta) of all measuring points [m/s] (``theta``: default the hub angle; a free
+        beam's mean-axis angle, :meth:`~flexbeam.fem.free.FreeBody.rigid`)."""
         if not self.measuring:
             return np.empty(0)
         if not hasattr(self, "_meas"):
@@ -91,10 +92,17 @@ class BeamOutputs:
                 np.array([m[0] for m in self.measuring], np.int64),
                 np.array([m[1] for m in self.measuring], float),
             )
-        return normal_velocities(z, zd, self.hub_radius, self.l0, *self._meas)
+        if theta is None:
+            theta = self.rigid(z, zd).angle if self.free else float(z[0])
+        return normal_velocities(z, zd, self.hub_radius, self.free, theta, self.l0, *self._meas)
 
-    def tip_deflection(self, z: np.ndarray) -> float:
-        """Transverse tip displacement in the hub frame, e2(theta) . r_tip [m]."""
+    def tip_deflection(self, z: np.ndarray, rigid=None) -> float:
+        """Transverse tip displacement in the hub frame, e2(theta) . r_tip [m]; a free beam's in its mean-axis
+        frame, e2(theta) . (r_tip - r_G) (``rigid``: its :meth:`~flexbeam.fem.free.FreeBody.rigid`, if known)."""
+        if self.free:
+            rigid = self.rigid(z, np.zeros_like(z)) if rigid is None else rigid
+            th = rigid.angle
+            return float(-math.sin(th) * (z[-3] - rigid.position[0]) + math.cos(th) * (z[-2] - rigid.position[1]))
         th = z[0]
         return float(-math.sin(th) * z[-3] + math.cos(th) * z[-2])
 

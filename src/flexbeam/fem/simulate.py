@@ -19,6 +19,7 @@ from .eventdriven import run
 from .initial import initial_state
 from .integrator import FemIntegrator, State, StepResult
 from .pairs import ContactState
+from .rigid_motion import FemMotion
 from .run_record import Record, RunInfo
 
 SCHEME = "generalized-alpha (Chung & Hulbert 1993; Arnold & Bruls 2007 form), Newton"
@@ -37,6 +38,12 @@ class _Sampler:
         self.dissipated = 0.0
         self.work = 0.0
         self.pair_rows: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+        # a free beam: (x_G, y_G, v_Gx, v_Gy, a_Gx, a_Gy, H_G, H_G') per sample, and the pairs' (n_x, n_y, lever)
+        # where the contact state changes (flexbeam.fem.rigid_motion)
+        self.rigid_rows: list[tuple[float, ...]] = []
+        self.strikes: list[tuple[float, np.ndarray]] = []
+        self._active: tuple[int, ...] | None = None
+        self._angle = 0.0
 
     def __call__(self, s: State, res: StepResult, phase: str, lawp: ContactState | np.ndarray | None) -> None:
         """Record the outputs at ``s``: pair 0's force, gap and rate (as the modal model's columns), the
@@ -64,20 +71,38 @@ class _Sampler:
             self.pair_rows.append(
                 (res.pair_gap.copy(), res.pair_gap_rate.copy(), res.pair_force.copy(), res.pair_position.copy())
             )
-        p_drive = res.torque * float(s.zd[0])
+        p_drive = 0.0 if b.free else res.torque * float(s.zd[0])
         if self._prev is not None:
             t0, pd0, pw0 = self._prev
             dt = s.t - t0
             self.dissipated += 0.5 * dt * (pd0 + p_diss)
             self.work += 0.5 * dt * (pw0 + p_drive)
         self._prev = (s.t, p_diss, p_drive)
-        mv = b.measuring_velocities(s.z, s.zd)
+        if b.free:
+            theta, rate, tip, mv = self._free(s, cs)
+        else:
+            theta, rate, tip = float(s.z[0]), float(s.zd[0]), b.tip_deflection(s.z)
+            mv = b.measuring_velocities(s.z, s.zd)
         self.times.append(s.t)
         self.phases.append(phase)
-        self.rows.append((
-            float(s.z[0]), float(s.zd[0]), F, res.gap, res.gap_rate, T, Ve, Vg, Uc,
-            self.dissipated, self.work, res.torque, b.tip_deflection(s.z), mv,
-        ))  # fmt: skip
+        self.rows.append((theta, rate, F, res.gap, res.gap_rate, T, Ve, Vg, Uc, self.dissipated, self.work,
+                          res.torque, tip, mv))  # fmt: skip
+
+    def _free(self, s: State, cs: ContactState) -> tuple[float, float, float, np.ndarray]:
+        """A free beam's sample: its rigid-body motion recorded, the pairs' normals and lever arms where the contact
+        state changes; (theta, theta', tip deflection, measuring velocities) in its mean-axis frame, theta
+        unwrapped."""
+        b = self.beam
+        rg = b.rigid(s.z, s.zd, s.zdd)
+        self.rigid_rows.append((*rg.position, *rg.velocity, *rg.acceleration, rg.momentum, rg.torque))
+        active = tuple(int(a) for a in cs.active)
+        if active != self._active:
+            self.strikes.append((s.t, np.array([b.rigid_jacobian(s.z, k) for k in range(b.npairs)])))
+            self._active = active
+        theta = rg.angle + 2.0 * math.pi * round((self._angle - rg.angle) / (2.0 * math.pi))
+        self._angle = theta
+        mv = b.measuring_velocities(s.z, s.zd, rg.angle)
+        return theta, rg.angle_rate, b.tip_deflection(s.z, rg), mv
 
 
 _SCALARS = (
@@ -92,10 +117,17 @@ def check_supported(case: Case) -> None:
     ``case`` that the FE reference does not model, instead of ignoring it.
 
     The FE reference has contact pairs at fixed material points or anywhere (``[contact]`` and each
-    ``[[obstacles]]`` entry's) on rigidly held obstacles: no compliant ``obstacle.support``.
+    ``[[obstacles]]`` entry's) on rigidly held obstacles: no compliant ``obstacle.support``; a free beam starts
+    straight (it has no modes for ``initial.modal_displacement`` or ``initial.modal_velocity``).
     """
     if case.obstacle.support.compliant:
         raise ParameterError("obstacle.support: the FE reference supports rigidly held obstacles only")
+    if case.joint.kind == "free":
+        for name in ("modal_displacement", "modal_velocity"):
+            if any(v != 0.0 for v in getattr(case.initial, name)):
+                raise ParameterError(
+                    f"initial.{name}: the FE reference has no modes; its free beam starts straight (leave it empty)"
+                )
 
 
 def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) -> Solution:
@@ -185,6 +217,7 @@ def build_solution(
         provenance=provenance(case, beam, run_info, info, version, case_toml),
         measuring_points=np.asarray(case.output.measuring_points, float),
         force_at=pair_force(dense) if any(f is not None for f in dense) else None,
+        motion=FemMotion.of_run(beam, t, sampler, rec, out) if beam.free else None,
     )
     for ev in rec.contacts:  # the peaks of a pair's contact on that pair's force
         peaks = sol.force_peaks(ev.index, threshold=0.0)

@@ -73,8 +73,14 @@ class StaticsAndVibration:
 
         ``pinned`` (default: the joint is free) keeps theta as a coordinate (the root
         rotates with the hub: pinned-free for J_h = r_h = 0); otherwise the root is
-        clamped.  Zero-frequency (rigid-body) modes are included.
+        clamped.  Zero-frequency (rigid-body) modes are included.  A free beam (no joint) is free-free, at
+        ``theta``, its three rigid-body modes the first three.
         """
+        if self.free:
+            z, _ = self.free_straight(np.zeros(2), theta, np.zeros(2), 0.0)
+            M, K = self.matrices(z)
+            w2 = eigh(K, M, eigvals_only=True)
+            return np.sqrt(np.clip(w2, 0.0, None))
         pinned = (not self.prescribed) if pinned is None else pinned
         z, _ = self.straight(theta, 0.0)
         M, K = self.matrices(z)

@@ -3,12 +3,12 @@
 ``fem.time_step`` fixes the step.  Otherwise, during contact h_c = t_c / 200 with t_c
 the Hertz duration 2 delta_max / v int_0^1 (1 - s^(n+1))^(-1/2) ds of the approach
 speed v and a reference effective mass (the rigid-body one, (J_h + J_beam)/J_theta^2
-for a free or torque-driven joint; the first clamped mode's mu L / phi_1(x_P)^2 when
-theta(t) is prescribed), and in free flight h_f = 2 h_c (t_c estimated with the
-impact velocity of the case; with several pairs each pair's own estimate with its
-law and J_theta at its point, the smallest of them for h_f, and while several pairs
-are in contact the smallest of theirs).  The free-flight factor is kept small because the
-vibration that an impact excites has the contact's own time scale, and the phase of
+for a free or torque-driven joint, 1/(1/m + a^2/J_G) at lever arm a about G for a free beam;
+the first clamped mode's mu L / phi_1(x_P)^2 when theta(t) is prescribed), and in free
+flight h_f = 2 h_c (t_c estimated with the impact velocity of the case; with several
+pairs each pair's own estimate with its law and J_theta at its point, the smallest of them
+for h_f, and while several pairs are in contact the smallest of theirs).  The free-flight
+factor is kept small because the vibration that an impact excites has the contact's own time scale, and the phase of
 that vibration decides the next contact: later contacts converge slowly with the
 step, so set ``fem.time_step`` for converged multi-contact histories.
 """
@@ -31,6 +31,8 @@ def reference_mass(beam: FemBeam, z: np.ndarray, pair: int = 0) -> float:
     """Effective mass used only to size the contact step of ``pair`` (see the module docstring)."""
     case = beam.case
     xP = beam.pairs[pair].position
+    if beam.free:
+        return beam.rigid_effective_mass(z, pair)
     if not beam.prescribed:
         J_theta = beam.rotation_jacobian(z, pair)
         L, rh, mu = case.beam.length, beam.hub_radius, beam.mu

@@ -41,8 +41,9 @@ _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 
 SUMMARY = 6
 #: the largest block of step records the kernel fills in one call (the blocks grow from 64 by doubling); a stepper
 #: that hands on (a streamed run) hands a phase on in parts of at least this many records (13 MB for the seed case).
-#: The kernel resumes a phase from its state buffer after each block: CCFM and IMM take the steps of one long call,
-#: CCM's do not quite (its constraint scaling restarts), so every run caps its blocks alike
+#: The kernel resumes a phase from its state buffer after each block (the nodal forcing, and a held constraint's
+#: largest multiplier so far, which scales its multiplier's error): the steps are those of one long call, whatever
+#: the block size
 BLOCK_RECORDS = 16384
 
 

@@ -2,16 +2,20 @@
 
 Model buffer (float64; integers stored exactly)::
 
-    [version, n, joint kind, njp, 0, npoints, nobstacles, npairs, nmeasure,
+    [version, n + n_a, joint kind, njp, n_a, npoints, nobstacles, npairs, nmeasure,
      kind_0 .. kind_{nobstacles-1},
      Jc, m1, g, the joint's parameters (njp: flexbeam.model.joints, Joint.parameters),
      Mc (n x n), Mqq (n x n), mtq (n), K (n x n), sf (n), G (n x n), d (n),
-     per point:    base, offset, phi (n), dphi (n), H (n x n),
+     with n_a > 0 (axial modes): M_aa, K_a (their diagonals), m_ta, s_a (n_a each), S (n_a x n),
+     per point:    base, offset, phi (n), dphi (n), H (n x n), with n_a > 0: Phi_a (n_a),
      per obstacle: cx, cy, radius, nx, ny, m_s, k_s, c_s, u_x, u_y,
      per pair:     point, obstacle, anywhere (0 a fixed point, 1 the capsule's nearest point, 2 flat end faces),
      hub radius, nst, surface c, first_order,
      with nst > 0 (contact anywhere): stations x (nst), Psi, Psi', Psi'' (nst x n each), H (nst x n x n),
                    max over the beam of |Psi_k| and |Psi'_k| (n each)]
+
+n counts the bending modes, n_a the axial ones (``model.axial_modes``), whose coordinates p follow q in the
+state: the kernels' flexible coordinates are [q, p].
 
 Points: 0 is the first pair's contact point P, 1 the beam tip (centre line), then the measuring points, then the
 other pairs' contact points.  Only obstacle 0 may stand on a compliant support.
@@ -66,13 +70,13 @@ def pack_model(
     other contact points), obstacles and contact pairs (point index, obstacle index, anywhere); ``nmeasure``
     measuring points follow P and the tip (default: every point after them); ``stations``: the shape tables of
     contact anywhere."""
-    n = beam.n
+    na = beam.na
     head = [
         LAYOUT_VERSION,
-        n,
+        beam.nq,
         joint,
         len(joint_parameters),
-        0,
+        na,
         len(points),
         len(obstacles),
         len(pairs),
@@ -83,8 +87,13 @@ def pack_model(
     parts: list[np.ndarray] = [np.asarray(head, float), np.asarray(scalars, float)]
     for arr in (beam.Mc, beam.Mqq, beam.mtq, beam.Kff, beam.sf, beam.G, beam.d):
         parts.append(np.asarray(arr, float).ravel())
+    if na:
+        ax = beam.axial
+        parts += [np.asarray(a, float).ravel() for a in (ax.Maa, ax.Ka, ax.mta, ax.sa, ax.S)]
     for pt in points:
         parts += [np.array([pt.base, pt.offset]), pt.phi.ravel(), pt.dphi.ravel(), pt.H.ravel()]
+        if na:
+            parts.append(np.asarray(pt.aphi, float).ravel())
     for o in obstacles:
         parts += [
             np.asarray(o.centre, float),

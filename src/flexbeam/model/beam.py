@@ -39,6 +39,7 @@ import numpy as np
 
 from .. import numerics as nm
 from ..parameters.case import Case
+from .axial import AxialModes, case_axial
 from .modes import FreeFreeShapes, ModeShapes, free_free_shapes, mode_shapes
 
 
@@ -57,6 +58,8 @@ class PointData:
     dphi: np.ndarray
     H: np.ndarray
     offset: float
+    #: Phi_a(x), the axial shapes (model.axial_modes; empty without them)
+    aphi: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 @dataclass(frozen=True)
@@ -88,6 +91,8 @@ class ModalBeam:
     #: H(0), where the foreshortening's H(x) starts: r_h d^T d when None (a beam on a hub); -H_bar for a free beam,
     #: whose u_x is measured from its mean (frame ``"mean-axis"``)
     H_root: np.ndarray | None = None
+    #: the axial modes (``model.axial_modes``), whose coordinates p follow q: None for an inextensible beam
+    axial: AxialModes | None = None
     #: points already built by :meth:`point` (x, offset) -> PointData
     _points: dict = field(default_factory=dict, compare=False, repr=False)
     #: station tables already built by :func:`station_table`, by surface offset
@@ -97,6 +102,16 @@ class ModalBeam:
     def first_order(self) -> bool:
         """True when the coupling deformation u_x is kept."""
         return self.coupling == "first-order"
+
+    @property
+    def na(self) -> int:
+        """The axial modes' count n_a (0: inextensible)."""
+        return 0 if self.axial is None else self.axial.count
+
+    @property
+    def nq(self) -> int:
+        """The flexible coordinates [q, p]: n bending modes, then n_a axial ones."""
+        return self.n + self.na
 
     @property
     def Jc(self) -> float:
@@ -136,7 +151,8 @@ class ModalBeam:
                 d1 = self.shapes(xg, 1)
                 H = H + nm.gram(d1, wg)
             H = 0.5 * (H + H.T)  # exactly symmetric: the kernels read it by columns
-        return PointData(float(x), self.hub_radius + x, phi, dphi, H, float(offset))
+        aphi = np.zeros(0) if self.axial is None else self.axial.shapes(np.array([x]), 0)[0]
+        return PointData(float(x), self.hub_radius + x, phi, dphi, H, float(offset), aphi)
 
 
 @dataclass(frozen=True)
@@ -285,6 +301,7 @@ def _build_modal_beam(case: Case) -> ModalBeam:
         D=sym(D),
         G=sym(G),
         d=d,
+        axial=case_axial(case, shapes),
     )
 
 
@@ -337,6 +354,7 @@ def _build_free_beam(case: Case) -> ModalBeam:
         G=np.zeros((n, n)),
         d=np.zeros(n),
         H_root=sym(H_root),
+        axial=case_axial(case, shapes),
     )
 
 

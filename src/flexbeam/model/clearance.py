@@ -57,9 +57,12 @@ def stations(beam: ModalBeam) -> np.ndarray:
 
 def centre_line(beam: ModalBeam, q: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(rho_x, rho_y, a): the deformed centre line in the body frame and the section's slope angle at ``x``
-    (sorted, starting at 0) for the modal coordinates ``q``."""
+    (sorted, starting at 0) for the modal coordinates ``q`` (with axial modes [q, p])."""
     q = np.asarray(q, float)
     base = beam.hub_radius + x
+    if beam.axial is not None:  # [q, p]: the axial modes' stretch Phi_a(x) p moves the sections along e1
+        q, p = q[: beam.n], q[beam.n :]
+        base = base + beam.axial.shapes(x, 0) @ p
     if beam.n == 0 or not np.any(q):  # undeformed (every start from rest): the straight line, no shapes evaluated
         zero = np.zeros_like(x)
         return base, zero, zero

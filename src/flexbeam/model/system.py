@@ -7,6 +7,7 @@ form, with two bookkeeping integrals appended), for the revolute joint:
 * joint free or torque-driven:  y = [theta, q_1..q_n, theta', q'_1..q'_n, E_d, W]
 * theta(t) prescribed:          y = [q_1..q_n, q'_1..q'_n, E_d, W]
 * compliant obstacle support:   [s, s'] inserted just before [E_d, W]
+* axial modes (``model.axial_modes``): the n_a axial coordinates p follow the bending ones, q = [q_b, p]
 
 theta is the angle of the body frame (``docs/formulation.md``): in the hub frame the hub angle itself, in the
 system frame the angle of the frame carrying the rigid rotation, the hub angle being theta + d q.  E_d is the
@@ -100,7 +101,8 @@ class BeamSystem:
 
     @property
     def n(self) -> int:
-        return self.beam.n
+        """The flexible coordinates [q, p]: the bending modes, then the axial ones (``model.axial_modes``)."""
+        return self.beam.nq
 
     @property
     def law(self):

@@ -111,6 +111,11 @@ class Beam(Section):
         return self.youngs_modulus * self.section_second_moment
 
     @property
+    def axial_stiffness(self) -> float:
+        """Axial stiffness EA [N]."""
+        return self.youngs_modulus * self.section_area
+
+    @property
     def mass(self) -> float:
         """Beam mass [kg]."""
         return self.line_density * self.length
@@ -152,6 +157,12 @@ class Model(Section):
     quadrature_points: Annotated[int, Field(ge=0, le=4000)] = Field(
         0, description="Gauss points for the modal integrals (0 = automatic, else >= modes + 1)"
     )
+    axial_modes: Annotated[int, Field(ge=0, le=64)] = Field(
+        0,
+        description="number of axial modes n_a (0 = inextensible beam): the centre line stretches by "
+        "Phi_a(x) p, fixed-free modes on a revolute joint, free-free on a free beam (first-order model only; "
+        "modes + axial_modes at most 64, 62 for a free beam)",
+    )
 
     @model_validator(mode="after")
     def _enough_points(self) -> Model:
@@ -161,5 +172,15 @@ class Model(Section):
             raise ValueError(
                 f"model.quadrature_points: must be 0 (automatic) or >= model.modes + 1 = {self.modes + 1} "
                 f"(got {self.quadrature_points})"
+            )
+        if self.axial_modes and self.coupling != "first-order":
+            raise ValueError(
+                f"model.axial_modes: the axial modes need model.coupling = 'first-order' (got "
+                f"'{self.coupling}' with axial_modes = {self.axial_modes})"
+            )
+        if self.modes + self.axial_modes > 64:
+            raise ValueError(
+                f"model.axial_modes: model.modes + model.axial_modes must be at most 64 (got "
+                f"{self.modes} + {self.axial_modes})"
             )
         return self

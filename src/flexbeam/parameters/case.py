@@ -93,6 +93,7 @@ class Case(Section):
                 raise ValueError(f"initial.{name}: {len(values)} values for model.modes = {self.model.modes} modes")
             if values and init.kind != "state":
                 raise ValueError(f"initial.{name}: only for initial.kind = 'state' (got '{init.kind}')")
+        self._axial()
         if self.joint.kind == "free":
             self._free_beam()
         elif init.position != (0.0, 0.0) or init.velocity != (0.0, 0.0):
@@ -144,6 +145,26 @@ class Case(Section):
                 )
         return self
 
+    def _axial(self) -> None:
+        """The axial modes' initial values and what does not model them yet: one line naming the field."""
+        init, na = self.initial, self.model.axial_modes
+        for name in ("axial_displacement", "axial_velocity"):
+            values = getattr(init, name)
+            if len(values) > na:
+                raise ValueError(f"initial.{name}: {len(values)} values for model.axial_modes = {na} modes")
+            if values and init.kind != "state":
+                raise ValueError(f"initial.{name}: only for initial.kind = 'state' (got '{init.kind}')")
+        if na and self.base.moving:
+            raise ValueError(
+                "model.axial_modes: a moving base (base) does not model the axial modes yet; set "
+                "model.axial_modes = 0 or leave the base still"
+            )
+        if na and (self.contact.anywhere or any(ob.contact.anywhere for ob in self.obstacles)):
+            raise ValueError(
+                "model.axial_modes: contact anywhere (contact.anywhere) does not model the axial modes yet; give "
+                "the contact point (contact.position, contact.side) or set model.axial_modes = 0"
+            )
+
     def _free_beam(self) -> None:
         """What a free beam (``joint.kind = "free"``) does not have, or does not support yet: one line naming the
         field."""
@@ -162,6 +183,11 @@ class Case(Section):
             )
         if self.model.modes > 62:
             raise ValueError(f"model.modes: at most 62 for a free beam (joint.kind = 'free'; got {self.model.modes})")
+        if self.model.modes + self.model.axial_modes > 62:
+            raise ValueError(
+                f"model.axial_modes: model.modes + model.axial_modes must be at most 62 for a free beam (joint.kind "
+                f"= 'free'; got {self.model.modes} + {self.model.axial_modes})"
+            )
         if self.initial.kind == "release":
             raise ValueError(
                 "initial.kind: 'release' needs a joint to hold the beam; a free beam (joint.kind = 'free') starts "

@@ -62,6 +62,16 @@ class Initial(Section):
         default_factory=list,
         description="initial modal velocities q'_1, q'_2, ... [m/s] (kind = state; the others 0)",
     )
+    axial_displacement: list[Finite] = Field(
+        default_factory=list,
+        description="initial axial modal coordinates p_1, p_2, ... [m] (kind = state, model.axial_modes > 0; the "
+        "others 0)",
+    )
+    axial_velocity: list[Finite] = Field(
+        default_factory=list,
+        description="initial axial modal velocities p'_1, p'_2, ... [m/s] (kind = state, model.axial_modes > 0; "
+        "the others 0)",
+    )
 
     def impact_rate(self, J_theta: float, velocity: float | None = None) -> float:
         """The hub rate giving P the normal velocity ``velocity`` (default ``impact_velocity``) when P moves

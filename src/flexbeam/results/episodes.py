@@ -19,17 +19,15 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
-from .restitution import RigidMotion, apparent_restitution
+from .restitution import FREE_FREE_ROOT as FREE_FREE_ROOT
+from .restitution import Motion, RigidMotion, apparent_restitution, free_free_period
 
 if TYPE_CHECKING:
     from ..model.beam import ModalBeam
     from .counts import ContactCounts
+    from .records import ContactEvent
     from .solution import Solution
 
-#: beta_1 L of the first free-free bending mode, the first root of cos z cosh z = 1
-FREE_FREE_ROOT = 4.730040744862704
 #: the default gap of free flight that ends an episode, in periods of the first free-free bending mode
 GAP_PERIODS = 1.0
 #: the apparent coefficients are given when every record of an episode strikes within this share of L of the first
@@ -40,8 +38,7 @@ SAME_POINT = 0.1
 def first_free_free_period(beam: ModalBeam) -> float:
     """T_1 = 2 pi / ((beta_1 L)^2 sqrt(EI / (mu L^4))) [s]: the continuum's first free-free bending period, whatever
     ``model.modes`` is (so that a rigid model and a flexible one of the same bar group their records alike)."""
-    L = beam.length
-    return 2.0 * math.pi / (FREE_FREE_ROOT**2 * math.sqrt(beam.bending_stiffness / (beam.line_density * L**4)))
+    return free_free_period(beam.length, beam.bending_stiffness, beam.line_density)
 
 
 def default_gap(beam: ModalBeam) -> float:
@@ -137,27 +134,35 @@ class Episode:
 
 
 def is_free(sol: Solution) -> bool:
-    """Is the run's beam a free one (a run with a dense output and ``joint.kind = "free"``)?"""
-    return sol.source is not None and sol.source.system.joint.kind == "free"
+    """Is the run's beam a free one (a run with a dense output and ``joint.kind = "free"``, or a Solution given
+    its rigid-body motion: the finite-element reference's free beam)?"""
+    if sol.source is not None:
+        return sol.source.system.joint.kind == "free"
+    return sol.motion is not None
+
+
+def rigid_motion(sol: Solution) -> Motion | None:
+    """The rigid-body motion of a free beam's Solution (:func:`is_free`), else None."""
+    if not is_free(sol):
+        return None
+    return RigidMotion(sol.source) if sol.source is not None else sol.motion
 
 
 def find_episodes(sol: Solution, counts: ContactCounts, gap: float | None = None) -> list[Episode]:
     """The collision episodes of a free beam's run (:func:`group_episodes` with ``gap``, default
     :func:`default_gap`) with their rigid-body velocities and apparent restitution; [] for any other run."""
-    if not is_free(sol):
+    motion = rigid_motion(sol)
+    if motion is None:
         return []
-    assert sol.source is not None
-    system = sol.source.system
-    gap = default_gap(system.beam) if gap is None else float(gap)
+    gap = GAP_PERIODS * motion.period if gap is None else float(gap)
     records = sol.contacts
     ends = [ev.end if math.isfinite(ev.end) else math.nan for ev in records]
-    motion = RigidMotion(sol.source)
     out = []
     for k, group in enumerate(group_episodes([ev.onset for ev in records], ends, gap)):
         first, last = records[group[0]], records[group[-1]]
-        t1 = max((ev.end if math.isfinite(ev.end) else sol.source.run.t_final) for ev in (records[i] for i in group))
+        t1 = max((ev.end if math.isfinite(ev.end) else motion.t_final) for ev in (records[i] for i in group))
         t1 = max(t1, last.onset)
-        same = _one_point(sol, group)
+        same = _one_point(motion, [records[i] for i in group])
         coeffs = apparent_restitution(motion, [records[i] for i in group], first.pair, first.onset, t1, same)
         before, after = motion.state(first.onset, after=False), motion.state(t1, after=True)
         micro = sum(counts.micro[i] for i in group)
@@ -180,22 +185,10 @@ def find_episodes(sol: Solution, counts: ContactCounts, gap: float | None = None
     return out
 
 
-def _one_point(sol: Solution, group: list[int]) -> bool:
-    """Do all records of the group strike the first one's pair within :data:`SAME_POINT` L of its point?"""
-    src = sol.source
-    assert src is not None
-    records = [sol.contacts[i] for i in group]
+def _one_point(motion: Motion, records: list[ContactEvent]) -> bool:
+    """Do all ``records`` strike the first one's pair within :data:`SAME_POINT` L of its point?"""
     pair = records[0].pair
     if any(ev.pair != pair for ev in records):
         return False
-    L = src.system.beam.length
-    xs = [_contact_position(sol, ev.onset, pair) for ev in records]
-    return all(abs(x - xs[0]) <= SAME_POINT * L for x in xs)
-
-
-def _contact_position(sol: Solution, t: float, pair: int) -> float:
-    """Material coordinate of a pair's contact point at time t (after a jump there)."""
-    src = sol.source
-    assert src is not None
-    seg = [s for s in (src.segments[i] for i in src._around(t, t)) if s.t0 <= t <= s.t1][-1]
-    return float(src.evaluate_pairs(seg, np.array([t]))[2][0, pair, 3])
+    xs = [motion.contact_position(ev.onset, pair) for ev in records]
+    return all(abs(x - xs[0]) <= SAME_POINT * motion.length for x in xs)

@@ -31,6 +31,7 @@ vibration takes energy from the rigid motion and gives some back at later micro-
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -44,9 +45,65 @@ if TYPE_CHECKING:
 
 #: bisection for t_c stops at this bracket [s]
 TC_XTOL = 1e-13
+#: beta_1 L of the first free-free bending mode, the first root of cos z cosh z = 1
+FREE_FREE_ROOT = 4.730040744862704
 
 
-class RigidMotion:
+def free_free_period(length: float, bending_stiffness: float, line_density: float) -> float:
+    """T_1 = 2 pi / ((beta_1 L)^2 sqrt(EI / (mu L^4))) [s], the first free-free bending period of a beam of
+    ``length`` L, EI and mu (the continuum's)."""
+    L = length
+    return 2.0 * math.pi / (FREE_FREE_ROOT**2 * math.sqrt(bending_stiffness / (line_density * L**4)))
+
+
+class Motion:
+    """What the apparent restitution and the episodes read of a free beam's rigid-body motion (v_G, Omega): a run's
+    dense output (:class:`RigidMotion`) or the finite-element reference's samples (``flexbeam.fem``)."""
+
+    #: the beam's length L [m] and the first free-free bending period T_1 [s] (the default episode gap)
+    length: float
+    period: float
+    #: the end of the run [s]
+    t_final: float
+
+    def state(self, t: float, after: bool) -> np.ndarray:
+        """(v_Gx, v_Gy, Omega) at time t (``after``: after a jump there)."""
+        raise NotImplementedError
+
+    def strike(self, t0: float, pair: int) -> None:
+        """Freeze the normal and lever arm of ``pair``'s contact point at the onset t0 (before any jump)."""
+        raise NotImplementedError
+
+    def at(self, t: float, after: bool) -> float:
+        """v(t), the striking point's normal velocity in the rigid-body motion (:meth:`strike`), gravity's share
+        taken out."""
+        raise NotImplementedError
+
+    def pieces(self, t0: float, t1: float, pair: int) -> Iterator[tuple[Piece, float, float]]:
+        """The pieces of ``pair``'s contact force over [t0, t1]: (piece, lo, hi), one per stretch of dense output."""
+        raise NotImplementedError
+
+    def contact_position(self, t: float, pair: int) -> float:
+        """Material coordinate of ``pair``'s contact point at time t (after a jump there) [m]."""
+        raise NotImplementedError
+
+
+class Piece:
+    """One stretch of dense output in a contact: its integrator steps' breaks, the force and v on it."""
+
+    def breaks(self) -> np.ndarray:
+        raise NotImplementedError
+
+    def force(self, times: np.ndarray) -> np.ndarray:
+        """The striking pair's normal contact force [N]."""
+        raise NotImplementedError
+
+    def speed(self, times: np.ndarray) -> np.ndarray:
+        """v(t) of the motion's frozen striking point."""
+        raise NotImplementedError
+
+
+class RigidMotion(Motion):
     """The rigid-body motion (v_G, Omega) of a free beam's run on its dense output."""
 
     def __init__(self, source: RunSource) -> None:
@@ -54,7 +111,15 @@ class RigidMotion:
         system = source.system
         self.n, self.nz = system.n, system.nz
         self.JG, self.Mc, self.g = system.beam.Jc, system.beam.Mc, system.g
+        self.beam = system.beam
         self.normal, self.lever, self.t0 = np.array([0.0, 1.0]), 0.0, 0.0
+        self.length = system.beam.length
+        self.t_final = source.run.t_final
+
+    @property
+    def period(self) -> float:
+        beam = self.source.system.beam
+        return free_free_period(beam.length, beam.bending_stiffness, beam.line_density)
 
     def segment(self, t: float, after: bool) -> Segment:
         """The last segment holding t (``after``: after a jump there) or the first."""
@@ -67,8 +132,19 @@ class RigidMotion:
         Y = np.atleast_2d(Y)
         nz = self.nz
         q = Y[:, 3:nz]
+        if self.beam.axial is not None:
+            return np.column_stack((Y[:, nz], Y[:, nz + 1], self._axial_spin(Y)))
         pq = np.einsum("ij,jk,ik->i", q, self.Mc, q) if self.n else np.zeros(Y.shape[0])
         return np.column_stack((Y[:, nz], Y[:, nz + 1], Y[:, nz + 2] * (1.0 + pq / self.JG)))
+
+    def _axial_spin(self, Y: np.ndarray) -> np.ndarray:
+        """p_theta / J_G with axial modes: theta' (J_G + q^T Mc q + 2 m_ta p + p^T M_aa p) + p^T S q' - q^T S^T p'."""
+        nz, nb, ax = self.nz, self.beam.n, self.beam.axial
+        q, p = Y[:, 3 : 3 + nb], Y[:, 3 + nb : nz]
+        qd, pd = Y[:, nz + 3 : nz + 3 + nb], Y[:, nz + 3 + nb : 2 * nz]
+        J = self.JG + np.einsum("ij,jk,ik->i", q, self.Mc, q) + p @ (2.0 * ax.mta) + (p * p) @ ax.Maa
+        h = np.einsum("ik,kj,ij->i", p, ax.S, qd) - np.einsum("ik,kj,ij->i", pd, ax.S, q)
+        return (Y[:, nz + 2] * J + h) / self.JG
 
     def state(self, t: float, after: bool) -> np.ndarray:
         """(v_Gx, v_Gy, Omega) at time t."""
@@ -90,6 +166,30 @@ class RigidMotion:
     def at(self, t: float, after: bool) -> float:
         seg = self.segment(t, after)
         return float(self.velocity(np.array([t]), seg.states(np.array([t])))[0])
+
+    def pieces(self, t0: float, t1: float, pair: int) -> Iterator[tuple[Piece, float, float]]:
+        for seg in self.source._contact_segments(t0, t1, pair):
+            yield _SegmentPiece(self, seg, pair), max(t0, seg.t0), min(t1, seg.t1)
+
+    def contact_position(self, t: float, pair: int) -> float:
+        seg = self.segment(t, after=True)
+        return float(self.source.evaluate_pairs(seg, np.array([t]))[2][0, pair, 3])
+
+
+class _SegmentPiece(Piece):
+    """A segment of a run's dense output."""
+
+    def __init__(self, motion: RigidMotion, seg: Segment, pair: int) -> None:
+        self.motion, self.seg, self.pair = motion, seg, pair
+
+    def breaks(self) -> np.ndarray:
+        return self.seg.breaks()
+
+    def force(self, times: np.ndarray) -> np.ndarray:
+        return self.motion.source.pair_force(self.seg, times, self.pair)
+
+    def speed(self, times: np.ndarray) -> np.ndarray:
+        return self.motion.velocity(times, self.seg.states(times))
 
 
 class _Phases:
@@ -115,26 +215,26 @@ class _Phases:
         else:
             self.add(0 if self.compressing else 1, J, 0.5 * J * (vm + vp))
 
-    def steps(self, motion: RigidMotion, seg: Segment, lo: float, hi: float, pair: int) -> None:
-        """The contact force of ``pair`` on segment ``seg`` over [lo, hi]."""
-        b = np.unique(np.clip(seg.breaks(), lo, hi))
+    def steps(self, piece: Piece, lo: float, hi: float) -> None:
+        """The contact force on ``piece`` over [lo, hi]."""
+        b = np.unique(np.clip(piece.breaks(), lo, hi))
         if b.size < 2:
             return
         if self.compressing:
-            v = motion.velocity(b, seg.states(b))
+            v = piece.speed(b)
             up = np.nonzero(v >= 0.0)[0]
             if up.size:
                 i = int(up[0])
-                tc = float(b[0]) if i == 0 else _bisect(motion, seg, float(b[i - 1]), float(b[i]))
-                self.add(0, *_quad(motion, seg, b[b <= tc], tc, pair))
+                tc = float(b[0]) if i == 0 else _bisect(piece, float(b[i - 1]), float(b[i]))
+                self.add(0, *_quad(piece, b[b <= tc], tc))
                 self.compressing, self.tc = False, tc
-                self.add(1, *_quad(motion, seg, np.concatenate(([tc], b[b > tc])), None, pair))
+                self.add(1, *_quad(piece, np.concatenate(([tc], b[b > tc])), None))
                 return
-        self.add(0 if self.compressing else 1, *_quad(motion, seg, b, None, pair))
+        self.add(0 if self.compressing else 1, *_quad(piece, b, None))
 
 
-def _quad(motion: RigidMotion, seg: Segment, b: np.ndarray, end: float | None, pair: int) -> tuple[float, float]:
-    """(int F dt, int F v dt) of ``pair`` over the steps between the breaks b (and ``end`` appended)."""
+def _quad(piece: Piece, b: np.ndarray, end: float | None) -> tuple[float, float]:
+    """(int F dt, int F v dt) over the steps between the breaks b (and ``end`` appended)."""
     if end is not None:
         b = np.concatenate((b, [end]))
     b = np.unique(b)
@@ -145,19 +245,19 @@ def _quad(motion: RigidMotion, seg: Segment, b: np.ndarray, end: float | None, p
         return 0.0, 0.0
     x, w = nm.leggauss(8)
     t = (0.5 * (c - a)[:, None] * (x[None, :] + 1.0) + a[:, None]).ravel()
-    F = motion.source.pair_force(seg, t, pair)
-    v = motion.velocity(t, seg.states(t))
+    F = piece.force(t)
+    v = piece.speed(t)
     h = np.repeat(0.5 * (c - a), x.size) * np.tile(w, a.size)
     return nm.fsum(h * F), nm.fsum(h * F * v)
 
 
-def _bisect(motion: RigidMotion, seg: Segment, lo: float, hi: float) -> float:
+def _bisect(piece: Piece, lo: float, hi: float) -> float:
     """The time in [lo, hi] where v crosses zero (v(lo) < 0 <= v(hi)), to :data:`TC_XTOL`."""
     for _ in range(200):
         if hi - lo <= TC_XTOL:
             break
         mid = 0.5 * (lo + hi)
-        if motion.velocity(np.array([mid]), seg.states(np.array([mid])))[0] >= 0.0:
+        if piece.speed(np.array([mid]))[0] >= 0.0:
             hi = mid
         else:
             lo = mid
@@ -165,12 +265,11 @@ def _bisect(motion: RigidMotion, seg: Segment, lo: float, hi: float) -> float:
 
 
 def apparent_restitution(
-    motion: RigidMotion, records: list[ContactEvent], pair: int, t0: float, t1: float, one_point: bool = True
+    motion: Motion, records: list[ContactEvent], pair: int, t0: float, t1: float, one_point: bool = True
 ) -> dict[str, Any]:
     """The episode's rigid-body normal velocities, compression end, impulses, works and apparent coefficients
     (the module docstring) for the records of one episode from ``t0`` to ``t1``; the coefficients are NaN unless
     ``one_point`` (every record strikes at the first one's point)."""
-    src = motion.source
     motion.strike(t0, pair)
     v_before, v_after = motion.at(t0, after=False), motion.at(t1, after=True)
     acc = _Phases(v_before < 0.0, t0)
@@ -179,10 +278,10 @@ def apparent_restitution(
             continue
         if not math.isnan(ev.jump_impulse):
             acc.jump(ev.onset, ev.jump_impulse, motion.at(ev.onset, after=False), motion.at(ev.onset, after=True))
-        end = ev.end if math.isfinite(ev.end) else src.run.t_final
+        end = ev.end if math.isfinite(ev.end) else motion.t_final
         if end > ev.onset:
-            for seg in src._contact_segments(ev.onset, end, pair):
-                acc.steps(motion, seg, max(ev.onset, seg.t0), min(end, seg.t1), pair)
+            for piece, lo, hi in motion.pieces(ev.onset, end, pair):
+                acc.steps(piece, lo, hi)
     (Pc, _), (Wc, Wr) = acc.P, acc.W
     Pr = math.fsum(ev.impulse for ev in records if ev.pair == pair) - Pc  # the records' impulses: exact quadrature
     ok = one_point and v_before < 0.0

@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     import xarray as xr
 
     from .arrays import RunSource
+    from .restitution import Motion
 
 
 class Solution:
@@ -57,7 +58,9 @@ class Solution:
     duration) -- the stream computed while the run went on.  With given arrays, ``force_at(t, pair)`` -- a contact
     pair's force F_k(t) [N] on a dense output, 0 outside its contact phases -- refines each contact's force peaks
     between the samples (the samples' maximum without it); with a ``source`` its own
-    :meth:`~flexbeam.results.arrays.RunSource.force_at` is used.
+    :meth:`~flexbeam.results.arrays.RunSource.force_at` is used.  ``motion``: a free beam's rigid-body motion
+    (:class:`~flexbeam.results.restitution.Motion`) for its collision episodes, given with the arrays (the
+    finite-element reference's; a run's is read from its ``source``).
     """
 
     def __init__(
@@ -75,6 +78,7 @@ class Solution:
         source: RunSource | None = None,
         file: str | Path | None = None,
         summaries: dict[str, Any] | None = None,
+        motion: Motion | None = None,
     ) -> None:
         if source is None and file is None and (time is None or phase is None or arrays is None):
             raise ValueError("Solution: give time, phase and arrays, a source or a file")
@@ -90,6 +94,7 @@ class Solution:
         self.measuring_points = np.empty(0) if measuring_points is None else np.asarray(measuring_points, float)
         self._force_at = force_at if source is None else source.force_at
         self.source = source
+        self.motion = motion
         self._peaks: dict[int, list[tuple[float, float]]] = {}
 
     # ----------------------------------------------------------------- samples

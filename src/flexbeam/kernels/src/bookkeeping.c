@@ -45,14 +45,17 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
     *wd = (Mtt * nd->frame.thdd - Q[0] - JF) * nd->frame.thd - mq * nd->frame.thdd;
 }
 
-double fb_boundary_work(const fb_phase *ph, double t, const double *v) {
+double fb_boundary_work(const fb_phase *ph, double t, const double *eta, const double *v) {
     const fb_model *m = ph->m;
     if (!m->ngiven) return 0.0;
     double z[FB_MAXN], zd[FB_MAXN], M[FB_MAXN * FB_MAXN], acc = 0.0;
     fb_frame fr;
     const double *q, *qd;
     fb_to_physical(ph->b, v, zd);
-    memset(z, 0, sizeof z); /* the frame's rate needs no position: given coordinates come from time */
+    if (m->na) /* the axial modes' theta row depends on (q, p): -q^T S^T, S^T p */
+        fb_to_physical(ph->b, eta, z);
+    else
+        memset(z, 0, sizeof z); /* the frame's rate needs no position: given coordinates come from time */
     fb_joint(m)->split(m, t, z, zd, &fr, &q, &qd);
     fb_joint(m)->mass(m, q, M);
     for (int i = 0; i < m->n; i++) acc += M[m->nrigid + i] * zd[i];
@@ -131,7 +134,7 @@ void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, con
     *dEd = h * ed;
     double tau = fb_joint(m)->torque(m, t);
     if (m->ngiven)
-        *dW = h * wd + fb_boundary_work(ph, t + h, st->v1) - fb_boundary_work(ph, t, v);
+        *dW = h * wd + fb_boundary_work(ph, t + h, st->eta1, st->v1) - fb_boundary_work(ph, t, eta, v);
     else if (tau != 0.0)
         *dW = tau * (fb_hub_angle(ph, st->eta1) - fb_hub_angle(ph, eta));
     else
@@ -180,7 +183,7 @@ int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, i
         }
         double tau = fb_joint(m)->torque(m, t);
         if (m->ngiven) {
-            W += fb_boundary_work(&ph, t, v) - fb_boundary_work(&ph, rec[0], v0);
+            W += fb_boundary_work(&ph, t, eta, v) - fb_boundary_work(&ph, rec[0], eta0, v0);
         } else if (tau != 0.0) {
             W = (fb_base_moving(m) ? W : rec[3]) + tau * (fb_hub_angle(&ph, eta) - fb_hub_angle(&ph, eta0));
         }

@@ -64,7 +64,8 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
     out->t = t;
     double Q[FB_MAXN], R[FB_MAXN];
     double ds = jt->forces(m, &out->frame, q, qd, jt->torque(m, t), 0, Q); /* no elastic force */
-    double c = jt->remainder(m, b, ph->row0_q, &out->frame, q, Q, ds, R);
+    fb_update up;
+    jt->remainder(m, b, ph->row0_q, &out->frame, q, Q, ds, &up, R);
     double s = 0.0, sd = 0.0;
     if (compliant) {
         const fb_obstacle *o = &m->obstacles[0];
@@ -94,8 +95,8 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
             for (int i = 0; i < N; i++) out->jb[k][i] = fabs(out->jm[k][i]);
         }
         if (!active) continue;
-        if (c != 0.0) {
-            jt->correct(m, b, c, Jx);
+        if (up.active) {
+            jt->correct(m, b, &up, Jx);
             fb_project(b, Jx, out->b[k]);
         } else {
             memcpy(out->b[k], out->jm[k], sizeof(double) * N);
@@ -333,4 +334,23 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
         out->err = fmax(out->err, fabs(L) / (ph->atol + fmax(MULTIPLIER_RTOL * ph->rtol, MULTIPLIER_NOISE) * big));
     }
     return 0;
+}
+
+/* Values at the next step's nodes (1 + ratio c_i) of the interpolant through the nodal rows of f (N per node)
+ * and of each pair's F. */
+void fb_extrapolate(int N, int S, double ratio, double *f, double F[][FB_P]) {
+    const fb_tables *tb = fb_gauss();
+    double L[FB_P][FB_P], g[FB_P * FB_MAXN], G[FB_MAX_PAIRS][FB_P];
+    for (int i = 0; i < FB_P; i++)
+        for (int j = 0; j < FB_P; j++) L[i][j] = fb_lagrange(j, 1.0 + ratio * tb->c[i]);
+    for (int i = 0; i < FB_P; i++) {
+        for (int k = 0; k < S; k++) G[k][i] = 0.0;
+        for (int q = 0; q < N; q++) g[i * N + q] = 0.0;
+        for (int j = 0; j < FB_P; j++) {
+            for (int k = 0; k < S; k++) G[k][i] += L[i][j] * F[k][j];
+            for (int q = 0; q < N; q++) g[i * N + q] += L[i][j] * f[j * N + q];
+        }
+    }
+    memcpy(f, g, sizeof(double) * FB_P * N);
+    for (int k = 0; k < S; k++) memcpy(F[k], G[k], sizeof(double) * FB_P);
 }

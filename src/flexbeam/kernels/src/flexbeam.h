@@ -33,6 +33,7 @@ enum { FB_SPHERE = 0, FB_PLANE = 1 };
 typedef struct {
     double base, offset, offset_t;
     const double *phi, *dphi, *H;
+    const double *aphi; /* Phi_a(x), the axial shapes (m->na of them; NULL without axial modes) */
 } fb_point;
 
 /* An obstacle: sphere (centre, radius) or half-plane (point, outward unit normal), optionally on a
@@ -52,14 +53,16 @@ typedef struct {
 } fb_pair;
 
 typedef struct fb_model_s {
-    int n;      /* flexible modes */
+    int n;      /* flexible coordinates [q, p]: n - na bending modes q, then na axial modes p */
+    int na;     /* axial modes (0: an inextensible beam) */
     int joint;  /* the joint's kind, FB_JOINT_* (joint.h); its code in joint_<kind>.c */
     int nrigid; /* the floating frame's coordinates, leading the full coordinates [rigid, q] (1: theta) */
     int ngiven; /* of them, those the joint gives as functions of time (not in the state: 1 for theta(t) prescribed) */
     int njp;    /* the joint's parameters jp (joint_<kind>.c reads them) */
     double jp[FB_MAX_JOINT_PARAMS];
     double Jc, m1, g;
-    const double *Mc, *Mqq, *mtq, *K, *sf, *G, *d; /* n x n, n x n, n, n x n, n, n x n, n */
+    const double *Mc, *Mqq, *mtq, *K, *sf, *G, *d; /* the bending modes': nb x nb, nb x nb, nb, nb x nb, nb, nb x nb, nb */
+    const double *Maa, *Ka, *mta, *sa, *S;         /* the axial modes' (na > 0): na, na, na, na, na x nb (axial.c) */
     int npoints, nobstacles, npairs, nmeasure; /* nmeasure: measuring points, points[2 .. 2 + nmeasure) */
     fb_point points[FB_MAX_POINTS];       /* points[0]: the first pair's contact point P, points[1]: the tip */
     fb_obstacle obstacles[FB_MAX_OBSTACLES];
@@ -86,6 +89,8 @@ typedef struct {
 /* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair]. */
 int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf);
 
+/* The bending modes' count (the flexible coordinates without the axial ones). */
+static inline int fb_nb(const fb_model *m) { return m->n - m->na; }
 /* Number of full coordinates [rigid, q] (the equations' rows) and of the state's coordinates (without the given
  * ones): [theta, q] or q. */
 static inline int fb_nfull(const fb_model *m) { return m->nrigid + m->n; }
@@ -128,6 +133,15 @@ fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int
                     double *J);
 fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                    double sd, int want_acc, double *J);
+
+/* ------------------------------------------------------------------ axial.c (the axial modes, na > 0) */
+double fb_axial_row(const fb_model *m, const double *q, double *u);
+double fb_axial_forces(const fb_model *m, double thd, const double *q, const double *qd, int elastic, double *Qf);
+void fb_axial_energies(const fb_model *m, double thd, const double *q, const double *qd, double *T, double *Ve);
+void fb_axial_mass(const fb_model *m, const double *q, int r, double *M);
+double fb_axial_remainder(const fb_model *m, const struct fb_basis_s *b, int row, const double *q, const double *Q,
+                          double ds, fb_update *up, double *R);
+void fb_axial_correct(const struct fb_basis_s *b, const fb_update *up, double *x);
 
 /* ------------------------------------------------------------------ nearest.c (contact anywhere) */
 /* A point of the beam's surface built on the fly: its fb_point and the arrays it points to. */

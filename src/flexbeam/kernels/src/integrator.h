@@ -76,6 +76,8 @@ typedef struct {
 
 int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const double *eta0, const double *v0,
                  double *f, fb_step *out);
+/* The next step's first guess from the nodal values of the last (collocation.c) */
+void fb_extrapolate(int N, int S, double ratio, double *f, double F[][FB_P]);
 
 /* Energy-norm helpers (stepcontrol.c) */
 double fb_energy_norm(const fb_phase *ph, const double *eta, const double *v);

@@ -35,6 +35,21 @@ struct fb_model_s;
 struct fb_kin_s;
 struct fb_basis_s;
 
+#define FB_JOINT_MAXZ 66 /* the state's coordinates: at most 64 flexible ones, the frame's, a support coordinate */
+
+/* How M(q) differs from the linearised M0 over the state's coordinates, for the collocation's M0 M(q)^-1 x
+ * (joint.h, remainder and correct).  Rank one, M = M0 + ds e e^T (e the frame's angle): M0 M^-1 x = x - c e (row0 . x)
+ * by Sherman-Morrison.  With axial modes the frame angle's row and column change too, M = M0 + ds e e^T + e u^T +
+ * u e^T (u: S^T p on q, -S q on p), a rank-two update by Woodbury's identity (axial.c, rank2). */
+typedef struct {
+    int active; /* M differs from M0 (correct() changes a direction) */
+    int rank2;  /* the axial modes' rank-two update (else rank one with c) */
+    int row;    /* the frame angle's index e in the state's coordinates */
+    double c;
+    double u[FB_JOINT_MAXZ], w[FB_JOINT_MAXZ]; /* u and M0^-1 u over the state's coordinates */
+    double G[2][2];                            /* the inverse of Woodbury's 2 x 2 capacitance matrix */
+} fb_update;
+
 /* A joint kind's functions (joint_<kind>.c); joint.c picks the table of m->joint. */
 typedef struct {
     /* the joint's parameters jp checked, m->nrigid and m->ngiven set; nonzero if they are inconsistent */
@@ -77,10 +92,11 @@ typedef struct {
     int (*row0_coupled)(const struct fb_model_s *m, const struct fb_basis_s *b);
     /* the linearised model's remainder R = M0 M(q)^-1 Q over the state's coordinates (collocation.c; the elastic
      * force is not in Q, K0 z is in the linear part) from Q over the full coordinates and ds (forces); returns the
-     * coefficient c of M(q) = M0 + ds e e^T by which correct() turns a contact direction x into M0 M^-1 x */
+     * coefficient c of M(q) = M0 + ds e e^T by which correct() turns a contact direction x into M0 M^-1 x (the
+     * update up: rank one, or rank two with axial modes) */
     double (*remainder)(const struct fb_model_s *m, const struct fb_basis_s *b, int row0_q, const fb_frame *f,
-                        const double *q, const double *Q, double ds, double *R);
-    void (*correct)(const struct fb_model_s *m, const struct fb_basis_s *b, double c, double *x);
+                        const double *q, const double *Q, double ds, fb_update *up, double *R);
+    void (*correct)(const struct fb_model_s *m, const struct fb_basis_s *b, const fb_update *up, double *x);
 } fb_joint_ops;
 
 /* The table of m's joint kind (joint.c). */

@@ -13,6 +13,8 @@
  * coordinate is x = rho_x - r_h with r_h = -L/2 (the model buffer's hub radius): rho_x = x - L/2 on the straight beam.
  * The model buffer's Jc is J_G, m1, s_f, G, d and m_tq are zero (the frame at G, the mean-axis conditions).
  *
+ * With axial modes (m->na > 0; the flexible coordinates [q, p]) axial.c adds their terms (free-free modes: s_a = 0).
+ *
  * Parameters jp: [m] (the beam's mass; flexbeam.model.joints.free packs it).
  */
 #include <string.h>
@@ -52,13 +54,14 @@ static double free_torque(const fb_model *m, double t) {
 }
 
 static void free_mass(const fb_model *m, const double *q, double *M) {
-    int n = m->n, N = n + 3;
+    int n = m->n, nb = fb_nb(m), N = n + 3;
     memset(M, 0, sizeof(double) * (size_t)N * N);
     M[0] = MASS(m);
     M[N + 1] = MASS(m);
-    M[2 * N + 2] = m->Jc + fb_quad(m->Mc, q, n);
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j < n; j++) M[(i + 3) * N + j + 3] = m->Mqq[i * n + j];
+    M[2 * N + 2] = m->Jc + fb_quad(m->Mc, q, nb);
+    for (int i = 0; i < nb; i++)
+        for (int j = 0; j < nb; j++) M[(i + 3) * N + j + 3] = m->Mqq[i * nb + j];
+    if (m->na) fb_axial_mass(m, q, 2, M);
 }
 
 /* Q of the equations (elastic: with the elastic force -K q); returns q^T Mc q (the theta-theta mass change).  The
@@ -66,7 +69,7 @@ static void free_mass(const fb_model *m, const double *q, double *M) {
 static double free_forces(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double tau,
                           int elastic, double *Q) {
     (void)tau;
-    int n = m->n;
+    int n = fb_nb(m);
     double thd = f->thd, qMcqd = 0.0, qMcq = 0.0, mcq[MAXZ];
     fb_symv(m->Mc, q, n, mcq);
     for (int i = 0; i < n; i++) {
@@ -82,17 +85,22 @@ static double free_forces(const fb_model *m, const fb_frame *f, const double *q,
     Q[0] = 0.0;
     Q[1] = -MASS(m) * m->g;
     Q[2] = -2.0 * thd * qMcqd;
+    if (m->na) { /* axial.c (free-free modes: s_a = 0, gravity acts on y_G alone) */
+        Q[2] += fb_axial_forces(m, thd, q, qd, elastic, Q + 3);
+        for (int k = 0; k < m->na; k++) qMcq += (2.0 * m->mta[k] + m->Maa[k] * q[n + k]) * q[n + k];
+    }
     return qMcq;
 }
 
 static void free_energies(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double *T,
                           double *Ve, double *Vg) {
-    int n = m->n;
+    int n = fb_nb(m);
     double thd = f->thd;
     *T = 0.5 * MASS(m) * (f->Rd[0] * f->Rd[0] + f->Rd[1] * f->Rd[1]) +
          0.5 * thd * thd * (m->Jc + fb_quad(m->Mc, q, n)) + 0.5 * fb_quad(m->Mqq, qd, n);
     *Ve = 0.5 * fb_quad(m->K, q, n);
     *Vg = MASS(m) * m->g * f->R[1];
+    if (m->na) fb_axial_energies(m, thd, q, qd, T, Ve);
 }
 
 /* r = R + A(theta) rho, v = R' + A (rho' + theta' e3 x rho), a0 = A (acc + 2 theta' e3 x rho' - theta'^2 rho) (R''
@@ -192,13 +200,16 @@ static int free_row0_coupled(const fb_model *m, const fb_basis *b) {
 /* R = M0 M^-1 Q with M(q) = M0 + ds e2 e2^T (e2: theta's row): M0 M^-1 x = x - c e2 (row0 . x),
  * c = ds / (1 + ds (M0^-1)_22); row0 = e2^T M0^-1 and (M0^-1)_22 are the basis buffer's row0 and inv00. */
 static double free_remainder(const fb_model *m, const fb_basis *b, int row0_q, const fb_frame *f, const double *q,
-                             const double *Q, double ds, double *R) {
-    (void)m;
+                             const double *Q, double ds, fb_update *up, double *R) {
     (void)row0_q;
     (void)f;
-    (void)q;
+    if (m->na) return fb_axial_remainder(m, b, 2, q, Q, ds, up, R);
     int nz = b->nz;
     double c = ds / (1.0 + ds * b->inv00);
+    up->c = c;
+    up->active = c != 0.0;
+    up->rank2 = 0;
+    up->row = 2;
     double r0 = 0.0;
     for (int i = 0; i < nz; i++) r0 += b->row0[i] * Q[i];
     for (int i = 0; i < nz; i++) R[i] = Q[i];
@@ -206,9 +217,13 @@ static double free_remainder(const fb_model *m, const fb_basis *b, int row0_q, c
     return c;
 }
 
-static void free_correct(const fb_model *m, const fb_basis *b, double c, double *x) {
+static void free_correct(const fb_model *m, const fb_basis *b, const fb_update *up, double *x) {
     (void)m;
-    double r0 = 0.0;
+    if (up->rank2) {
+        fb_axial_correct(b, up, x);
+        return;
+    }
+    double c = up->c, r0 = 0.0;
     for (int i = 0; i < b->nz; i++) r0 += b->row0[i] * x[i];
     x[2] -= c * r0;
 }

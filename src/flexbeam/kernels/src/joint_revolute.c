@@ -11,6 +11,9 @@
  * so that M z'' = Q + J^T F.  Energies T = 1/2 z'^T M z', V_e = 1/2 q^T K q,
  * V_g = g [sin(theta)(m1 - 1/2 q^T G q) + cos(theta) s_f q].  A point at rho in the frame is at r = A(theta) rho.
  *
+ * With axial modes (m->na > 0; the flexible coordinates [q, p]) axial.c adds their terms: the fixed-free modes'
+ * centrifugal forcing and stiffening, the theta row's S^T p and -S q, gravity through s_a p.
+ *
  * Parameters jp: [drive (0 free, 1 torque, 2 prescribed), profile (0 constant rate, 1 Kane's spin-up), torque,
  * spin rate, spin-up time, theta0] (flexbeam.model.joints.revolute packs them).
  */
@@ -86,13 +89,14 @@ static double rev_torque(const fb_model *m, double t) {
 }
 
 static void rev_mass(const fb_model *m, const double *q, double *M) {
-    int n = m->n, N = n + 1;
-    M[0] = m->Jc + fb_quad(m->Mc, q, n);
-    for (int i = 0; i < n; i++) {
+    int n = m->n, nb = fb_nb(m), N = n + 1;
+    M[0] = m->Jc + fb_quad(m->Mc, q, nb);
+    for (int i = 0; i < nb; i++) {
         M[i + 1] = m->mtq[i];
         M[(i + 1) * N] = m->mtq[i];
-        for (int j = 0; j < n; j++) M[(i + 1) * N + j + 1] = m->Mqq[i * n + j];
+        for (int j = 0; j < nb; j++) M[(i + 1) * N + j + 1] = m->Mqq[i * nb + j];
     }
+    if (m->na) fb_axial_mass(m, q, 0, M);
 }
 
 /* rev_forces on a moving base: gravity replaced by the uniform field (g_x, g_y) = f->field through its components in
@@ -101,7 +105,7 @@ static void rev_mass(const fb_model *m, const double *q, double *M) {
  * s_x = m1 - 1/2 q^T G q, s_y = s_f q; with (0, -g) these are the fixed joint's terms. */
 static double field_forces(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double tau,
                            int elastic, double *Q) {
-    int n = m->n;
+    int n = m->n; /* no axial modes on a moving base (flexbeam.parameters.case refuses them) */
     double c, s, thd = f->thd;
     fb_sincos(f->th, &s, &c);
     double g1 = f->field[0] * c + f->field[1] * s, g2 = -f->field[0] * s + f->field[1] * c;
@@ -124,7 +128,7 @@ static double field_forces(const fb_model *m, const fb_frame *f, const double *q
 static double rev_forces(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double tau, int elastic,
                      double *Q) {
     if (fb_base_moving(m)) return field_forces(m, f, q, qd, tau, elastic, Q);
-    int n = m->n;
+    int n = fb_nb(m);
     double c, s, g = m->g, thd = f->thd;
     fb_sincos(f->th, &s, &c);
     double qMcqd = 0.0, qMcq = 0.0, qGq = 0.0, sfq = 0.0, mcq[MAXZ], gq[MAXZ];
@@ -148,12 +152,24 @@ static double rev_forces(const fb_model *m, const fb_frame *f, const double *q, 
         for (int i = 0; i < n; i++) Q[i + 1] -= kq[i];
     }
     Q[0] = tau - 2.0 * thd * qMcqd - g * (c * (m->m1 - 0.5 * qGq) - s * sfq);
+    if (m->na) { /* axial.c; gravity through s_a p: V_g += g sin(theta) s_a p */
+        double dJ = 0.0, sap = 0.0;
+        Q[0] += fb_axial_forces(m, thd, q, qd, elastic, Q + 1);
+        for (int k = 0; k < m->na; k++) {
+            const double pk = q[n + k];
+            dJ += (2.0 * m->mta[k] + m->Maa[k] * pk) * pk;
+            sap += m->sa[k] * pk;
+            Q[n + k + 1] -= g * s * m->sa[k];
+        }
+        Q[0] -= g * c * sap;
+        qMcq += dJ;
+    }
     return qMcq;
 }
 
 static void rev_energies(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double *T, double *Ve,
                      double *Vg) {
-    int n = m->n;
+    int n = fb_nb(m);
     double thd = f->thd;
     *T = 0.5 * thd * thd * (m->Jc + fb_quad(m->Mc, q, n)) + thd * fb_dot(m->mtq, qd, n) +
          0.5 * fb_quad(m->Mqq, qd, n);
@@ -161,6 +177,10 @@ static void rev_energies(const fb_model *m, const fb_frame *f, const double *q, 
     double s, c;
     fb_sincos(f->th, &s, &c);
     *Vg = m->g * (s * (m->m1 - 0.5 * fb_quad(m->G, q, n)) + c * fb_dot(m->sf, q, n));
+    if (m->na) {
+        fb_axial_energies(m, thd, q, qd, T, Ve);
+        *Vg += m->g * s * fb_dot(m->sa, q + n, m->na);
+    }
 }
 
 /* r = A(theta) rho, v = A (rho' + theta' e3 x rho), a0 = A (acc + 2 theta' e3 x rho' - theta'^2 rho); dr/dtheta =
@@ -201,14 +221,14 @@ static void rev_to_body(const fb_model *m, const fb_frame *f, const double *p, i
 }
 
 static void rev_hub(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double *phi, double *phid) {
-    *phi = f->th + fb_dot(m->d, q, m->n);
-    *phid = f->thd + fb_dot(m->d, qd, m->n);
+    *phi = f->th + fb_dot(m->d, q, fb_nb(m));
+    *phid = f->thd + fb_dot(m->d, qd, fb_nb(m));
 }
 
 /* phi = theta + d q accumulated from theta (the order the step bookkeeping has always used). */
 static double rev_work_angle(const fb_model *m, const double *z) {
     double acc = z[0];
-    for (int i = 0; i < m->n; i++) acc += m->d[i] * z[i + 1];
+    for (int i = 0; i < fb_nb(m); i++) acc += m->d[i] * z[i + 1];
     return acc;
 }
 
@@ -216,7 +236,7 @@ static double rev_work_angle(const fb_model *m, const double *z) {
 static double rev_power(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double torque) {
     (void)q;
     if (m->ngiven) return torque * f->thd;
-    return torque * (f->thd + fb_dot(m->d, qd, m->n));
+    return torque * (f->thd + fb_dot(m->d, qd, fb_nb(m)));
 }
 
 /* max |theta'| over [t0, t1] of a prescribed theta (its profiles have monotone rates), else 0. */
@@ -248,13 +268,24 @@ static int rev_row0_coupled(const fb_model *m, const fb_basis *b) {
 /* R = M0 M^-1 Q (+ K0 z): theta prescribed, M = M_qq = M0 and R = Q_q - m_tq theta''; theta free, M(q) = M0 +
  * ds e0 e0^T and by Sherman-Morrison M0 M^-1 x = x - c e0 (row0 . x), c = ds / (1 + ds (M0^-1)_00). */
 static double rev_remainder(const fb_model *m, const fb_basis *b, int row0_q, const fb_frame *f, const double *q,
-                        const double *Q, double ds, double *R) {
-    int n = m->n, nz = b->nz;
-    if (m->ngiven) {
+                        const double *Q, double ds, fb_update *up, double *R) {
+    int n = fb_nb(m), nz = b->nz;
+    up->active = up->rank2 = up->row = 0;
+    up->c = 0.0;
+    if (m->ngiven) { /* M = blockdiag(M_qq, M_aa): R = Q - M_(q,p)theta theta'' */
         for (int i = 0; i < n; i++) R[i] = Q[i + 1] - m->mtq[i] * f->thdd;
+        if (m->na) {
+            double u[FB_JOINT_MAXZ];
+            fb_axial_row(m, q, u);
+            for (int i = 0; i < n; i++) R[i] -= u[i] * f->thdd;
+            for (int k = 0; k < m->na; k++) R[n + k] = Q[n + k + 1] - u[n + k] * f->thdd;
+        }
         return 0.0;
     }
+    if (m->na) return fb_axial_remainder(m, b, 0, q, Q, ds, up, R);
     double c = ds / (1.0 + ds * b->inv00);
+    up->c = c;
+    up->active = c != 0.0;
     double r0 = 0.0;
     for (int i = 0; i < nz; i++) r0 += b->row0[i] * Q[i];
     if (row0_q) { /* row0 . (-K0 z): the elastic force is not in Q */
@@ -269,9 +300,13 @@ static double rev_remainder(const fb_model *m, const fb_basis *b, int row0_q, co
     return c;
 }
 
-static void rev_correct(const fb_model *m, const fb_basis *b, double c, double *x) {
+static void rev_correct(const fb_model *m, const fb_basis *b, const fb_update *up, double *x) {
     (void)m;
-    double r0 = 0.0;
+    if (up->rank2) {
+        fb_axial_correct(b, up, x);
+        return;
+    }
+    double c = up->c, r0 = 0.0;
     for (int i = 0; i < b->nz; i++) r0 += b->row0[i] * x[i];
     x[0] -= c * r0;
 }

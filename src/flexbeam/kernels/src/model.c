@@ -5,7 +5,8 @@
  *
  * A material point at x, offset c below the centre line along the deformed section normal and c_t along its
  * tangent (section rotation a = Psi'(x) q), sits in the frame at
- *   rho = (r_h + x - 1/2 q^T H q + c sin a + c_t cos a, Psi q - c cos a + c_t sin a).
+ *   rho = (r_h + x - 1/2 q^T H q + c sin a + c_t cos a + Phi_a p, Psi q - c cos a + c_t sin a),
+ * Phi_a p the axial modes' stretch (model.axial_modes; the flexible coordinates are [q, p]).
  */
 #include <string.h>
 
@@ -13,25 +14,27 @@
 
 #define MAXZ 66 /* n <= 64 modes, theta, and a support coordinate */
 
-/* Model buffer: [version, n, joint kind, njp, (unused), npoints, nobstacles, npairs, nmeasure,
- * obstacle kinds (nobstacles),
- * Jc, m1, g, the joint's parameters (njp), Mc, Mqq, mtq, K, sf, G, d,
- * per point: base, offset, phi, dphi, H; per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy;
+/* Model buffer: [version, n (flexible coordinates), joint kind, njp, na (axial modes), npoints, nobstacles, npairs,
+ * nmeasure, obstacle kinds (nobstacles),
+ * Jc, m1, g, the joint's parameters (njp), Mc, Mqq, mtq, K, sf, G, d (the nb = n - na bending modes'), with na > 0:
+ * Maa, Ka, mta, sa (na each), S (na x nb),
+ * per point: base, offset, phi, dphi, H (nb), Phi_a (na); per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy;
  * per pair: point, obstacle, anywhere; hub_radius, nst, surface, first_order, then with nst > 0: x (nst), Psi, Psi', Psi'' (nst x n each),
  * H (nst x n x n), max |Psi| (n), max |Psi'| (n)] (flexbeam.kernels.layout.pack_model writes it). */
 int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     const double *ints = buf;
     size_t nints = 9;
     if (nbuf < nints || (int)ints[0] != FB_LAYOUT_VERSION) return -1;
-    int n = (int)ints[1];
+    int n = (int)ints[1], na = (int)ints[4], nb = n - na;
     m->n = n;
+    m->na = na;
     m->joint = (int)ints[2];
     m->njp = (int)ints[3];
     m->npoints = (int)ints[5];
     m->nobstacles = (int)ints[6];
     m->npairs = (int)ints[7];
     m->nmeasure = (int)ints[8];
-    if (n < 0 || n > 64 || m->npoints < 1 || m->npoints > FB_MAX_POINTS || m->nobstacles < 0 ||
+    if (n < 0 || n > 64 || na < 0 || na > n || m->npoints < 1 || m->npoints > FB_MAX_POINTS || m->nobstacles < 0 ||
         m->nobstacles > FB_MAX_OBSTACLES || m->npairs < 0 || m->npairs > FB_MAX_PAIRS || m->nmeasure < 0 ||
         m->nmeasure > m->npoints - 2 || m->joint < 0 || m->joint >= FB_JOINT_KINDS || m->njp < 0 ||
         m->njp > FB_MAX_JOINT_PARAMS ||
@@ -40,29 +43,36 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     nints += (size_t)m->nobstacles;
     const double *f = buf + nints;
     size_t nf = nbuf - nints;
-    size_t need = 3 + (size_t)m->njp + 4 * (size_t)n * n + 3 * (size_t)n + (size_t)m->npoints * (2 + 2 * n + (size_t)n * n) +
-                  10 * (size_t)m->nobstacles + 3 * (size_t)m->npairs + 4;
+    size_t need = 3 + (size_t)m->njp + 4 * (size_t)nb * nb + 3 * (size_t)nb + (size_t)na * (4 + (size_t)nb) +
+                  (size_t)m->npoints * (2 + 2 * nb + (size_t)nb * nb + (size_t)na) + 10 * (size_t)m->nobstacles +
+                  3 * (size_t)m->npairs + 4;
     if (nf < need) return -2;
     const double *p = f;
     m->Jc = *p++;
     m->m1 = *p++;
     m->g = *p++;
     for (int i = 0; i < m->njp; i++) m->jp[i] = *p++;
-    m->Mc = p; p += n * n;
-    m->Mqq = p; p += n * n;
-    m->mtq = p; p += n;
-    m->K = p; p += n * n;
-    m->sf = p; p += n;
-    m->G = p; p += n * n;
-    m->d = p; p += n;
+    m->Mc = p; p += nb * nb;
+    m->Mqq = p; p += nb * nb;
+    m->mtq = p; p += nb;
+    m->K = p; p += nb * nb;
+    m->sf = p; p += nb;
+    m->G = p; p += nb * nb;
+    m->d = p; p += nb;
+    m->Maa = p; p += na;
+    m->Ka = p; p += na;
+    m->mta = p; p += na;
+    m->sa = p; p += na;
+    m->S = p; p += na * nb;
     for (int i = 0; i < m->npoints; i++) {
         fb_point *P = &m->points[i];
         P->base = *p++;
         P->offset = *p++;
         P->offset_t = 0.0;
-        P->phi = p; p += n;
-        P->dphi = p; p += n;
-        P->H = p; p += n * n;
+        P->phi = p; p += nb;
+        P->dphi = p; p += nb;
+        P->H = p; p += nb * nb;
+        P->aphi = na ? p : NULL; p += na;
     }
     for (int i = 0; i < m->nobstacles; i++) {
         fb_obstacle *o = &m->obstacles[i];
@@ -84,15 +94,16 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     m->surface = *p++;
     m->first_order = (int)*p++;
     size_t M = (size_t)m->nst;
-    if (nf != need + M * (1 + 3 * (size_t)n + (size_t)n * n) + (M ? 2 * (size_t)n : 0)) return -2;
+    if (nf != need + M * (1 + 3 * (size_t)nb + (size_t)nb * nb) + (M ? 2 * (size_t)nb : 0)) return -2;
     for (int k = 0; k < m->npairs; k++)
         if (m->pairs[k].anywhere && M < 2) return -3;
+    if (M && na) return -3; /* contact anywhere does not model the axial modes */
     m->st_x = p; p += M;
-    m->st_phi = p; p += M * n;
-    m->st_dphi = p; p += M * n;
-    m->st_ddphi = p; p += M * n;
-    m->st_H = p; p += M * n * n;
-    m->st_maxphi = p; p += M ? n : 0;
+    m->st_phi = p; p += M * nb;
+    m->st_dphi = p; p += M * nb;
+    m->st_ddphi = p; p += M * nb;
+    m->st_H = p; p += M * nb * nb;
+    m->st_maxphi = p; p += M ? nb : 0;
     m->st_maxdphi = p;
     return fb_joint(m)->unpack(m) ? -4 : 0;
 }
@@ -183,17 +194,17 @@ double fb_dot(const double *a, const double *b, int n) {
  * and dr (2 x nfull, row-major): dr/dz with z = [rigid, q]: the point's motion in the frame, placed by the joint. */
 void fb_point_kinematics(const fb_model *m, const fb_point *P, const fb_frame *f, const double *q, const double *qd,
                          fb_kin *out, double *dr) {
-    int n = m->n;
-    double ang = fb_dot(P->dphi, q, n), angd = fb_dot(P->dphi, qd, n);
+    int n = m->n, nb = fb_nb(m);
+    double ang = fb_dot(P->dphi, q, nb), angd = fb_dot(P->dphi, qd, nb);
     double sa, ca, c = P->offset, ot = P->offset_t;
     fb_sincos(ang, &sa, &ca);
     double qHq = 0.0, rhod_x = 0.0, rhod_y = 0.0, qdHqd = 0.0, hq[MAXZ], hqd[MAXZ], drho[2 * MAXZ];
-    fb_symv(P->H, q, n, hq);
+    fb_symv(P->H, q, nb, hq);
     if (out->want_acc) {
-        fb_symv(P->H, qd, n, hqd);
-        for (int i = 0; i < n; i++) qdHqd += qd[i] * hqd[i];
+        fb_symv(P->H, qd, nb, hqd);
+        for (int i = 0; i < nb; i++) qdHqd += qd[i] * hqd[i];
     }
-    for (int i = 0; i < n; i++) {
+    for (int i = 0; i < nb; i++) {
         qHq += q[i] * hq[i];
         double dx = -hq[i] + (c * ca - ot * sa) * P->dphi[i];
         double dy = P->phi[i] + (c * sa + ot * ca) * P->dphi[i];
@@ -202,9 +213,17 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, const fb_frame *f
         drho[i] = dx;
         drho[n + i] = dy;
     }
+    double stretch = 0.0; /* the axial modes' Phi_a(x) p along the frame's e1 (linear: no velocity product) */
+    for (int k = 0; k < m->na; k++) {
+        stretch += P->aphi[k] * q[nb + k];
+        rhod_x += P->aphi[k] * qd[nb + k];
+        drho[nb + k] = P->aphi[k];
+        drho[n + nb + k] = 0.0;
+    }
     fb_body_kin bk;
     bk.rho[0] = P->base - 0.5 * qHq + c * sa + ot * ca;
-    bk.rho[1] = fb_dot(P->phi, q, n) - c * ca + ot * sa;
+    if (m->na) bk.rho[0] += stretch;
+    bk.rho[1] = fb_dot(P->phi, q, nb) - c * ca + ot * sa;
     bk.rhod[0] = rhod_x;
     bk.rhod[1] = rhod_y;
     bk.acc[0] = -qdHqd - (c * sa + ot * ca) * angd * angd;

@@ -229,6 +229,7 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     out->P.phi = out->phi;
     out->P.dphi = out->dphi;
     out->P.H = out->H;
+    out->P.aphi = NULL; /* contact anywhere does not model the axial modes (refused at unpack) */
 }
 
 /* Per generalised coordinate [theta, q] a bound on |d delta / dz| of an anywhere pair over all the beam's surface

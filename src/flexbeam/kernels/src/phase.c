@@ -35,7 +35,7 @@ enum { EV_IMPACT = 1, EV_SEPARATION = 2, EV_RELEASE = 4 };
 
 int fb_record_size(int N, int S) { return 4 + 2 * N + FB_P * N + S * FB_P + 2 * FB_P + FB_RECORD_SUMMARY; }
 
-int fb_state_buffer_size(int N, int S) { return 5 + 2 * N + FB_P * N + S * FB_P; }
+int fb_state_buffer_size(int N, int S) { return 5 + 2 * N + FB_P * N + S * FB_P + 1; }
 
 /* The step's energy-balance residual r = E(t + h) - E(t) + dE_d - dW against BALANCE_SHARE of the energy error the
  * state tolerance admits: a state error e in the energy norm (|x|^2 = 2 (T + V_e) = 2 scale) moves the energy by
@@ -71,25 +71,6 @@ static void start_guess(const fb_phase *ph, double t, const double *eta, const d
                 if (ph->c.mode[k] != FB_MODE_NONE) x += nd.b[k][i] * F0[k];
             f[j * N + i] = x;
         }
-}
-
-/* Values at the next step's nodes (1 + ratio c_i) of the interpolant through the nodal rows of f (N per node)
- * and of each pair's F. */
-static void extrapolate(int N, int S, double ratio, double *f, double F[][FB_P]) {
-    const fb_tables *tb = fb_gauss();
-    double L[FB_P][FB_P], g[FB_P * FB_MAXN], G[FB_MAX_PAIRS][FB_P];
-    for (int i = 0; i < FB_P; i++)
-        for (int j = 0; j < FB_P; j++) L[i][j] = fb_lagrange(j, 1.0 + ratio * tb->c[i]);
-    for (int i = 0; i < FB_P; i++) {
-        for (int k = 0; k < S; k++) G[k][i] = 0.0;
-        for (int q = 0; q < N; q++) g[i * N + q] = 0.0;
-        for (int j = 0; j < FB_P; j++) {
-            for (int k = 0; k < S; k++) G[k][i] += L[i][j] * F[k][j];
-            for (int q = 0; q < N; q++) g[i * N + q] += L[i][j] * f[j * N + q];
-        }
-    }
-    memcpy(f, g, sizeof(double) * FB_P * N);
-    for (int k = 0; k < S; k++) memcpy(F[k], G[k], sizeof(double) * FB_P);
 }
 
 /* The earliest event of the accepted step [t, t + h] over the pairs, as a fraction of the step (FB_NO_EVENT if
@@ -294,6 +275,23 @@ static void move_to_end(int N, int S, const fb_work *w, const fb_step *st, const
     memcpy(gap0, w->end.gap, sizeof(fb_gap) * S);
 }
 
+/* The work space of one call of fb_advance; at the phase's start (state[4] == 0) the first forcing guess, the start
+ * time and a zero multiplier scale, else the scale the last call left.  NULL if out of memory. */
+static fb_work *begin_call(const fb_phase *ph, double *state, double t, const double *eta, const double *v, double *f,
+                           double F[][FB_P], double *lambda_scale, double *info) {
+    fb_work *w = malloc(sizeof(fb_work));
+    if (!w) return NULL;
+    w->h = -1.0;
+    if (state[4] == 0.0) { /* the phase starts */
+        start_guess(ph, t, eta, v, f, F);
+        info[FB_INFO_T0] = t;
+        *lambda_scale = 0.0;
+    }
+    w->lambda_scale = *lambda_scale;
+    state[4] = 1.0;
+    return w;
+}
+
 /* Advance one phase from the state buffer toward t_end.  ctrl: see phase.h; records (capacity rows of
  * fb_record_size); info (FB_INFO_SIZE, see phase.h) accumulates over the calls of a phase.  Returns ADV_* and the
  * number of records written in *nrec. */
@@ -308,15 +306,9 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
     double t = state[0], h = state[1], Ed = state[2], W = state[3];
     double *eta = state + 5, *v = eta + N, *f = v + N;
     double(*F)[FB_P] = (double(*)[FB_P])(f + FB_P * N);
-    fb_work *w = malloc(sizeof(fb_work));
+    double *lambda_scale = f + FB_P * N + S * FB_P; /* kept in the state: a resumed phase goes on with its scale */
+    fb_work *w = begin_call(&ph, state, t, eta, v, f, F, lambda_scale, info);
     if (!w) return ADV_NONFINITE;
-    w->h = -1.0;
-    w->lambda_scale = 0.0;
-    if (state[4] == 0.0) { /* the phase starts */
-        start_guess(&ph, t, eta, v, f, F);
-        info[FB_INFO_T0] = t;
-    }
-    state[4] = 1.0;
     *nrec = 0;
     int code = ADV_END, have_gap0 = 0, retry = 0; /* retry: the step was just cut, it may not stretch to t_end */
     int have_E0 = 0;                              /* E0: the energy at t (T + V_e + V_g + U_c), scale0 its T + V_e */
@@ -387,13 +379,11 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
         }
         retry = 0;
         double hn = fb_next_step(h, st.err, 1);
-        extrapolate(N, S, hn / h, f, F);
+        fb_extrapolate(N, S, hn / h, f, F);
         h = hn;
     }
-    state[0] = t;
-    state[1] = h;
-    state[2] = Ed;
-    state[3] = W;
+    state[0] = t, state[1] = h, state[2] = Ed, state[3] = W;
+    *lambda_scale = w->lambda_scale;
     free(w);
     return code;
 }

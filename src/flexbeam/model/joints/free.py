@@ -22,7 +22,7 @@ import numpy as np
 from ...errors import ParameterError
 from ...parameters.case import Case
 from .base import Joint
-from .revolute import initial_modal
+from .revolute import flexible_blocks, initial_modal
 
 if TYPE_CHECKING:
     from ..beam import ModalBeam
@@ -35,9 +35,9 @@ class FreeJoint(Joint):
     kind = "free"
     code = 1
     coordinates = ("x_G", "y_G", "theta")
-    #: the FE reference has no free beam (flexbeam.fem.beam.JOINT_KINDS); CCM runs
-    #: (tests/validation/test_free_beam_ccm.py)
-    unsupported_methods = ("fem",)
+    #: every method runs a free beam: CCM (tests/validation/test_free_beam_ccm.py), the FE reference
+    #: (flexbeam.fem.free)
+    unsupported_methods: tuple[str, ...] = ()
 
     @property
     def ngiven(self) -> int:
@@ -77,13 +77,12 @@ class FreeJoint(Joint):
         return theta, rate
 
     def linear_model(self, beam: ModalBeam) -> tuple[np.ndarray, np.ndarray, int | None]:
-        n = beam.n
+        n = beam.nq
         M0 = np.zeros((n + 3, n + 3))
         M0[0, 0] = M0[1, 1] = self.mass
         M0[2, 2] = beam.Jc
-        M0[3:, 3:] = beam.Mqq
-        K0 = np.zeros((n + 3, n + 3))
-        K0[3:, 3:] = beam.Kff
+        M0[3:, 3:], K0 = flexible_blocks(beam)
+        K0 = np.pad(K0, ((3, 0), (3, 0)))
         return M0, K0, 2
 
     def initial_state(self, system: BeamSystem, case: Case, first_impact: Callable[[np.ndarray], float]):

@@ -35,12 +35,27 @@ PROFILES = {"constant-rate": 0, "kane-spinup": 1}
 
 
 def initial_modal(case: Case, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """(q, q') of ``initial.modal_displacement`` and ``initial.modal_velocity``, the modes they leave out at 0."""
+    """(q, q') over the n flexible coordinates [q, p] of ``initial.modal_displacement`` and ``initial.modal_velocity``
+    (the bending modes) and ``initial.axial_displacement``, ``initial.axial_velocity`` (the axial ones, after the
+    ``model.modes`` bending modes), the modes they leave out at 0."""
     q, qd = np.zeros(n), np.zeros(n)
-    init = case.initial
+    init, nb = case.initial, case.model.modes
     q[: len(init.modal_displacement)] = init.modal_displacement
     qd[: len(init.modal_velocity)] = init.modal_velocity
+    q[nb : nb + len(init.axial_displacement)] = init.axial_displacement
+    qd[nb : nb + len(init.axial_velocity)] = init.axial_velocity
     return q, qd
+
+
+def flexible_blocks(beam: ModalBeam) -> tuple[np.ndarray, np.ndarray]:
+    """The linearised mass and stiffness of the flexible coordinates [q, p] at rest: blockdiag(M_qq, M_aa) and
+    blockdiag(K_ff, K_a) (no axial-bending coupling at first order)."""
+    n, nq = beam.n, beam.nq
+    M, K = np.zeros((nq, nq)), np.zeros((nq, nq))
+    M[:n, :n], K[:n, :n] = beam.Mqq, beam.Kff
+    if beam.axial is not None:
+        M[n:, n:], K[n:, n:] = np.diag(beam.axial.Maa), np.diag(beam.axial.Ka)
+    return M, K
 
 
 def initial_angle_guess(case: Case) -> float:
@@ -105,15 +120,16 @@ class RevoluteJoint(Joint):
         return theta + nm.dot(beam.d, q), rate + nm.dot(beam.d, qd)
 
     def linear_model(self, beam: ModalBeam) -> tuple[np.ndarray, np.ndarray, int | None]:
-        n = beam.n
+        n, nq = beam.n, beam.nq
+        Mf, Kf = flexible_blocks(beam)
         if self.drive.prescribed:
-            return beam.Mqq.copy(), beam.Kff.copy(), None
-        M0 = np.zeros((n + 1, n + 1))
+            return Mf, Kf, None
+        M0 = np.zeros((nq + 1, nq + 1))
         M0[0, 0] = beam.Jc
-        M0[0, 1:] = M0[1:, 0] = beam.mtq
-        M0[1:, 1:] = beam.Mqq
-        K0 = np.zeros((n + 1, n + 1))
-        K0[1:, 1:] = beam.Kff
+        M0[0, 1 : n + 1] = M0[1 : n + 1, 0] = beam.mtq
+        M0[1:, 1:] = Mf
+        K0 = np.zeros((nq + 1, nq + 1))
+        K0[1:, 1:] = Kf
         return M0, K0, 0
 
     # ------------------------------------------------------------------------------------------ initial states
@@ -146,7 +162,8 @@ class RevoluteJoint(Joint):
         The potential V = 1/2 q^T K q + g [sin(theta)(m1 - 1/2 q^T G q) + cos(theta) s_f q] is stationary under the
         constraint theta + d q = angle (d = 0 in the hub frame):
         [K - g sin(theta) (G - d^T s_f)] q = -g cos(theta) [s_f - (m1 - 1/2 q^T G q) d^T], theta = angle - d q,
-        solved by fixed-point iteration on theta and q^T G q (d q is of the order of the static slope).
+        solved by fixed-point iteration on theta and q^T G q (d q is of the order of the static slope); the axial
+        modes (no elastic coupling to q) at K_a p = -g sin(theta) s_a.
         """
         b, g = system.beam, system.g
         q = np.zeros(b.n)
@@ -164,6 +181,8 @@ class RevoluteJoint(Joint):
                 q, theta = q_new, theta_new
                 if done:
                     break
+        if b.axial is not None:  # K_a p = -g sin(theta) s_a: the rod's own weight along it
+            q = np.concatenate((q, -g * nm.sin(theta) * b.axial.sa / b.axial.Ka))
         return system.state(theta, 0.0, q)
 
     def solve_release_angle(self, system: BeamSystem, case: Case, first_impact: Callable[[np.ndarray], float]):

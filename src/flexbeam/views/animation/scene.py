@@ -98,14 +98,16 @@ class Scene:
             )
         system = BeamSystem.from_case(history.case)
         beam = system.beam
-        if history.q.shape[1] != beam.n:
+        if history.q.shape[1] != beam.nq:
             raise ModelError(
                 f"animate: the result has {history.q.shape[1]} modal coordinates, its case "
-                f"{beam.n} (a finite-element result has none: animate a modal run)"
+                f"{beam.nq} (a finite-element result has none: animate a modal run)"
             )
         times, density = frame_times(_window(t, window), history.contacts, frames, contact_share)
         phi = np.interp(times, t, history.phi)
-        q = np.column_stack([np.interp(times, t, col) for col in history.q.T]) if beam.n else np.zeros((frames, 0))
+        # the bending modes only: the drawing leaves out the axial modes' stretch (of the order of the strain)
+        bending = history.q[:, : beam.n]
+        q = np.column_stack([np.interp(times, t, col) for col in bending.T]) if beam.n else np.zeros((frames, 0))
         x = np.union1d(np.linspace(0.0, beam.length, BEAM_POINTS), [p.position for p in system.contact.pairs])
         iP = int(np.searchsorted(x, system.contact.position))
         band = _Band.magnified(system, phi, q, x, iP, reference, scale)
