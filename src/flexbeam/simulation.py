@@ -129,6 +129,7 @@ def simulate(
             "streaming, or stream a modal method (ccfm, ccm, imm)"
         )
     check_joint_method(case, method)
+    check_friction_method(case, method)
     check_memory(case, method, outputs, stream=stream is not None)
     if method == "fem":
         if case.obstacle.support.compliant:
@@ -162,6 +163,21 @@ def _continued(system: BeamSystem, state: np.ndarray) -> np.ndarray:
         raise ParameterError(f"state: a finite state of {system.size} values, not {y.size}")
     y[-2:] = 0.0
     return y
+
+
+def check_friction_method(case: Case, method: str) -> None:
+    """A one-line ModelError naming ``contact.friction`` when a pair has friction and ``method`` does not model it:
+    today only IMM's frictional impacts do (:mod:`flexbeam.methods.friction`)."""
+    frictional = (
+        case.contact.friction > 0.0
+        or (case.contact.friction_static or 0.0) > 0.0
+        or any((ob.contact.friction or 0.0) > 0.0 or (ob.contact.friction_static or 0.0) > 0.0 for ob in case.obstacles)
+    )
+    if frictional and method != "imm":
+        raise ModelError(
+            f"contact.friction: method '{method}' does not model friction yet; use --method imm (Stronge's frictional "
+            "impact) or friction = 0"
+        )
 
 
 def check_joint_method(case: Case, method: str) -> None:

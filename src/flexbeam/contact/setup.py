@@ -16,6 +16,7 @@ import numpy as np
 from .. import numerics as nm
 from ..errors import ParameterError
 from ..parameters.case import SIDES, Case, Obstacle, PairContact
+from ..parameters.contact import check_friction
 from .hertz import effective_modulus, sphere_on_cylinder_stiffness
 from .laws import ContactLaw, make_law
 
@@ -53,6 +54,12 @@ class ContactPair:
     restitution: float
     label: str
     anywhere: bool = False  #: the contact point is found on the deformed beam (position, offset: a start)
+    friction_static: float = 0.0  #: Coulomb's static coefficient mu_s (IMM's frictional impacts)
+    friction: float = 0.0  #: the kinetic coefficient mu_k
+
+    @property
+    def frictional(self) -> bool:
+        return self.friction_static > 0.0 or self.friction > 0.0
 
 
 @dataclass(frozen=True)
@@ -89,10 +96,12 @@ class ContactSetup:
         c = case.beam.surface_offset
         offset = SIDES[case.contact.side] * c
         obstacles = [place_obstacle(case, case.contact.position, offset)]
+        mu_k = case.contact.friction
+        mu_s = mu_k if case.contact.friction_static is None else case.contact.friction_static
         pairs = [
             ContactPair(
                 float(case.contact.position), float(offset), 0, contact_law(case), case.contact.restitution,
-                "obstacle", case.contact.anywhere,
+                "obstacle", case.contact.anywhere, float(mu_s), float(mu_k),
             )
         ]  # fmt: skip
         for i, ob in enumerate(case.obstacles):
@@ -103,7 +112,16 @@ class ContactSetup:
             law = contact_law(case, ob, pc)
             e = case.contact.restitution if pc.restitution is None else pc.restitution
             anywhere = case.contact.anywhere if pc.anywhere is None else pc.anywhere
-            pairs.append(ContactPair(float(x), float(SIDES[side] * c), i + 1, law, e, f"obstacles[{i}]", anywhere))
+            kinetic = mu_k if pc.friction is None else pc.friction
+            static = pc.friction_static
+            if static is None:
+                static = mu_s if pc.friction is None else kinetic
+            try:
+                check_friction(f"obstacles[{i}].contact", kinetic, static)
+            except ValueError as exc:
+                raise ParameterError(str(exc)) from None
+            pairs.append(ContactPair(float(x), float(SIDES[side] * c), i + 1, law, e, f"obstacles[{i}]", anywhere,
+                                     float(static), float(kinetic)))  # fmt: skip
         check_overlaps(obstacles)
         return cls(tuple(pairs), tuple(obstacles))
 

@@ -197,6 +197,8 @@ class ImpactMethod:
             ev = self.new_contact(t, jump.y, k)
             ev.velocity_before = float(jump.velocities_before[i])
             ev.impulse = ev.jump_impulse = float(jump.impulses[i])
+            if jump.tangential is not None:
+                ev.tangential_impulse = float(jump.tangential[i])
             ev.energy_before, ev.energy_after = jump.kinetic_before, jump.kinetic_after
             out.append(ev)
         return out

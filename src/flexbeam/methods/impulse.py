@@ -18,13 +18,17 @@ does the rest of the kinetic-energy change.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .. import numerics as nm
+from ..errors import FlexbeamWarning
 from ..model.system import BeamSystem
+from .friction import frictional_impulse
 
 
 @dataclass(frozen=True)
@@ -37,6 +41,7 @@ class Jump:
     velocities_after: np.ndarray  # J z'^+ [m/s]
     kinetic_before: float  # [J]
     kinetic_after: float  # [J]
+    tangential: np.ndarray | None = None  # the frictional impulses along each pair's tangent [N s] (None: none)
 
     @property
     def impulse(self) -> float:
@@ -97,6 +102,8 @@ def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs
     """
     pairs = list(pairs)
     e = np.broadcast_to(np.asarray(restitution, float), (len(pairs),)).copy()
+    if any(system.contact.pairs[k].frictional for k in pairs):
+        return frictional_jump(system, t, y, e, pairs)
     M = system.mass_matrix(t, y)
     J = np.array([system.gap(t, y, k)[3] for k in pairs])
     zd = system.velocities(t, y)
@@ -118,3 +125,54 @@ def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs
     y_plus[-2] += -work_contact
     y_plus[-1] += (T_plus - T_minus) - work_contact
     return Jump(y_plus, P, v_minus, v_plus, T_minus, T_plus)
+
+
+def frictional_jump(system: BeamSystem, t: float, y: np.ndarray, e: np.ndarray, pairs: list[int]) -> Jump:
+    """The impulse-momentum map of one pair with Coulomb friction (Stronge's energetic restitution ``e`` along the
+    slip process: :func:`~flexbeam.methods.friction.frictional_impulse`).  Several pairs impacting at once with
+    friction are not modelled: their frictionless impulses are applied, with a warning naming it."""
+    if len(pairs) > 1:
+        warnings.warn(
+            "contact.friction: several pairs impact at once; friction at simultaneous impacts is not modelled, their "
+            "impulses are frictionless",
+            FlexbeamWarning,
+            stacklevel=3,
+        )
+        frictionless = [dataclasses.replace(p, friction=0.0, friction_static=0.0) for p in system.contact.pairs]
+        return impulse_jump(_Frictionless(system, frictionless), t, y, e, pairs)
+    k = pairs[0]
+    pair = system.contact.pairs[k]
+    M = system.mass_matrix(t, y)
+    _, _, vt, Jn, Jt = system.tangent(t, y, k)
+    zd = system.velocities(t, y)
+    free = slice(system.ngiven, None)
+    Mr, JJ = M[free, free], np.vstack((Jt, Jn))[:, free]
+    T_minus = system.energies(t, y)["kinetic"]
+    v_minus = nm.matmul(np.vstack((Jt, Jn)), zd)
+    if JJ.shape[1] == 0:
+        return Jump(y.copy(), np.zeros(1), v_minus[1:], v_minus[1:], T_minus, T_minus, np.zeros(1))
+    MinvJ = nm.solve(Mr, np.ascontiguousarray(JJ.T))
+    W = nm.matmul(JJ, MinvJ)
+    imp = frictional_impulse((W[0, 0], W[0, 1], W[1, 1]), float(v_minus[0]), float(v_minus[1]), float(e[0]),
+                             pair.friction_static, pair.friction)  # fmt: skip
+    P = np.array([imp.tangential, imp.normal])
+    zd_plus = zd.copy()
+    zd_plus[free] += nm.matmul(MinvJ, P)
+    y_plus = system.with_velocities(t, y, zd_plus)
+    v_plus = nm.matmul(np.vstack((Jt, Jn)), zd_plus)
+    T_plus = system.energies(t, y_plus)["kinetic"]
+    work_contact = 0.5 * nm.dot(P, v_minus + v_plus)
+    y_plus[-2] += -work_contact
+    y_plus[-1] += (T_plus - T_minus) - work_contact
+    return Jump(y_plus, P[1:], v_minus[1:], v_plus[1:], T_minus, T_plus, P[:1])
+
+
+class _Frictionless:
+    """``system`` seen with frictionless pairs (the fallback of simultaneous frictional impacts)."""
+
+    def __init__(self, system: BeamSystem, pairs: list) -> None:
+        self._system = system
+        self.contact = dataclasses.replace(system.contact, pairs=tuple(pairs))
+
+    def __getattr__(self, name: str):
+        return getattr(self._system, name)

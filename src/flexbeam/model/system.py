@@ -249,6 +249,15 @@ class BeamSystem:
         delta, rate, gamma, _, _ = core.gap(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J)
         return delta, rate, gamma, J
 
+    def tangent(self, t: float, y: np.ndarray, pair: int = 0) -> tuple[float, float, float, np.ndarray, np.ndarray]:
+        """(delta, delta', slip velocity, J, J_t) of contact pair ``pair``: the gap, its rate, the contact point's
+        velocity along the tangent t = (-n_y, n_x), and the normal and tangential Jacobians d delta/dz, d(t . r)/dz
+        (Coulomb friction)."""
+        size = self.nfull + (1 if self.compliant else 0)
+        J, Jt = np.empty(size), np.empty(size)
+        delta, rate, vt, _, _ = core.tangent(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J, Jt)
+        return delta, rate, vt, J, Jt
+
     def sensor_force(self, y: np.ndarray) -> float:
         """Force read by a sensor under a compliant support, -(k_s s + c_s s') [N] (0 if rigid)."""
         s, sd = self.support_state(y)

@@ -114,6 +114,26 @@ class Contact(Section):
     stiffness: Positive | None = Field(None, description="contact stiffness K [N/m^n] (omitted = Hertz theory)")
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = Field(1.5, description="force exponent n (1.5 = Hertz)")
     restitution: Annotated[float, Field(ge=0.0, le=1.0)] = Field(0.8, description="coefficient of restitution e [-]")
+    friction: Bounded(0.0, 10.0) = Field(
+        0.0, description="Coulomb friction: the kinetic coefficient mu_k [-] (0 = frictionless; at most 10; IMM only)"
+    )
+    friction_static: Bounded(0.0, 10.0) | None = Field(
+        None, description="the static coefficient mu_s >= mu_k [-] (omitted = friction)"
+    )
+
+    @model_validator(mode="after")
+    def _static_not_below_kinetic(self) -> Contact:
+        check_friction("contact", self.friction, self.friction_static)
+        return self
+
+
+def check_friction(where: str, kinetic: float | None, static: float | None) -> None:
+    """mu_s >= mu_k: one line naming ``where``.friction_static otherwise."""
+    if kinetic is not None and static is not None and static < kinetic:
+        raise ValueError(
+            f"{where}.friction_static: the static coefficient must be at least the kinetic one ({where}.friction = "
+            f"{kinetic:g}), got {static:g}"
+        )
 
 
 class PairContact(Section):
@@ -130,6 +150,8 @@ class PairContact(Section):
     restitution: Annotated[float, Field(ge=0.0, le=1.0)] | None = Field(
         None, description="coefficient of restitution e [-]"
     )
+    friction: Bounded(0.0, 10.0) | None = Field(None, description="kinetic coefficient of friction mu_k [-]")
+    friction_static: Bounded(0.0, 10.0) | None = Field(None, description="static coefficient mu_s [-]")
 
 
 class ExtraObstacle(Obstacle):

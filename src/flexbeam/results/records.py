@@ -64,6 +64,8 @@ class ContactEvent:
     jump_impulse: float = float("nan")
     pair: int = 0
     time_scale: float = float("nan")
+    #: the frictional impulse along the contact's tangent t = (-n_y, n_x) [N s] (IMM with friction; NaN without)
+    tangential_impulse: float = float("nan")
 
     @property
     def duration(self) -> float:

@@ -134,7 +134,9 @@ def events(sol: Solution, counts: ContactCounts | None = None) -> list[dict[str,
     ``duration`` [s], ``peak_force`` [N] and ``peak_time`` [s after the onset] (NaN without a force
     history: an IMM impact), ``velocity_before``, ``velocity_after`` [m/s] (P's normal velocity, negative
     approaching), ``impulse`` [N s], ``kind`` (``"contact"`` or ``"micro-impact"``) and ``chatter_episode``
-    (the micro-impact's episode, None for a contact); ``counts``: :func:`contact_counts`, if already known.
+    (the micro-impact's episode, None for a contact) and ``tangential_impulse`` [N s] (a frictional impact's; NaN
+    without friction);
+    ``counts``: :func:`contact_counts`, if already known.
     """
     counts = contact_counts(sol) if counts is None else counts
     labels = sol.pair_labels
@@ -153,6 +155,7 @@ def events(sol: Solution, counts: ContactCounts | None = None) -> list[dict[str,
             "impulse": ev.impulse,
             "kind": counts.kind(i),
             "chatter_episode": counts.episode[i],
+            "tangential_impulse": ev.tangential_impulse,
         }
         for i, ev in enumerate(sol.contacts)
     ]

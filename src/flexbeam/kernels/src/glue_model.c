@@ -120,6 +120,44 @@ fail:
     return NULL;
 }
 
+/* tangent(model, pair, t, y, J, Jt) -> (delta, rate, slip velocity, nx, ny); J and Jt (nfull [+ 1 with a support]):
+ * the normal and tangential Jacobians of the pair's contact point (fb_pair_tangent) */
+PyObject *py_tangent(PyObject *self, PyObject *args) {
+    PyObject *om, *oy, *oJ, *oJt;
+    int pair;
+    double t;
+    if (!PyArg_ParseTuple(args, "OidOOO", &om, &pair, &t, &oy, &oJ, &oJt)) return NULL;
+    buf_t b[4];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oJ, &b[2], 1, "J") ||
+        get_buf(oJt, &b[3], 1, "Jt") || model_from(&b[0], &m))
+        goto fail;
+    int compliant = fb_compliant(&m), N = fb_nfull(&m);
+    if (pair < 0 || pair >= m.npairs || LEN(b[1]) != (size_t)fb_state_size(&m) ||
+        LEN(b[2]) != (size_t)(N + compliant) || LEN(b[3]) != (size_t)(N + compliant)) {
+        PyErr_SetString(PyExc_ValueError, "tangent: no such pair, or array sizes do not match");
+        goto fail;
+    }
+    double *J = PTR(b[2]), *Jt = PTR(b[3]), vt;
+    fb_frame fr;
+    const double *q, *qd, *y = PTR(b[1]);
+    fb_state_split(&m, t, y, &fr, &q, &qd);
+    int nb = 2 * fb_nz(&m);
+    double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
+    fb_gap g = fb_pair_tangent(&m, pair, &fr, q, qd, s, sd, J, Jt, &vt);
+    if (compliant) {
+        const fb_obstacle *o = &m.obstacles[m.pairs[pair].obstacle];
+        J[N] = g.Js;
+        Jt[N] = o->ms > 0.0 ? -(-g.ny * o->ux + g.nx * o->uy) : 0.0;
+    }
+    release(b, 4);
+    return Py_BuildValue("ddddd", g.delta, g.rate, vt, g.nx, g.ny);
+fail:
+    release(b, 4);
+    return NULL;
+}
+
 /* equations(model, t, y, M, Q, E): M (nfull x nfull), Q (nfull, with the applied torque), E = [T, Ve, Vg] */
 PyObject *py_equations(PyObject *self, PyObject *args) {
     PyObject *om, *oy, *oM, *oQ, *oE;

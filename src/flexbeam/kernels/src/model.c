@@ -263,6 +263,21 @@ fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int
 
 /* The gap state of contact pair ``pair`` with the frame f and (q, q'), the support at (s, s') (used only if the
  * pair's obstacle is the compliant obstacle 0), and J = d delta / d[rigid, q] (nfull entries; NULL: not wanted). */
+/* The kinematics of pair pr's contact point (the surface point nearest the obstacle now for an anywhere pair, as a
+ * material point: envelope theorem) into k and dr; returns its material coordinate. */
+static double pair_point(const fb_model *m, const fb_pair *pr, const fb_obstacle *o, const fb_frame *f,
+                         const double *q, const double *qd, double s, fb_kin *k, double *dr) {
+    if (pr->anywhere) {
+        fb_surface_point sp;
+        fb_nearest_point(m, o, f, q, s, pr->anywhere == 2, &sp);
+        fb_point_kinematics(m, &sp.P, f, q, qd, k, dr);
+        return sp.x;
+    }
+    const fb_point *P = &m->points[pr->point];
+    fb_point_kinematics(m, P, f, q, qd, k, dr);
+    return P->base - m->hub_radius;
+}
+
 fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                    double sd, int want_acc, double *J) {
     const fb_pair *pr = &m->pairs[pair];
@@ -270,19 +285,29 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double 
     double dr[2 * MAXZ];
     fb_kin k = {.want_acc = want_acc};
     if (o->ms <= 0.0) s = sd = 0.0;
-    double x;
-    if (pr->anywhere) { /* the surface point nearest the obstacle now, as a material point (envelope theorem) */
-        fb_surface_point sp;
-        fb_nearest_point(m, o, f, q, s, pr->anywhere == 2, &sp);
-        fb_point_kinematics(m, &sp.P, f, q, qd, &k, J ? dr : NULL);
-        x = sp.x;
-    } else {
-        const fb_point *P = &m->points[pr->point];
-        fb_point_kinematics(m, P, f, q, qd, &k, J ? dr : NULL);
-        x = P->base - m->hub_radius;
-    }
+    double x = pair_point(m, pr, o, f, q, qd, s, &k, J ? dr : NULL);
     fb_gap g = fb_gap_state(o, &k, J ? dr : NULL, fb_nfull(m), s, sd, J);
     g.x = x;
+    return g;
+}
+
+/* fb_pair_gap with J, and along the contact's tangent t = (-n_y, n_x) (the normal turned by +90 degrees) the
+ * Jacobian Jt = t . dr/dz (nfull entries) and the slip velocity *vt = t . (v - the support's velocity): Coulomb
+ * friction's kinematics (flexbeam.methods.friction). */
+fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
+                       double sd, double *J, double *Jt, double *vt) {
+    const fb_pair *pr = &m->pairs[pair];
+    const fb_obstacle *o = &m->obstacles[pr->obstacle];
+    double dr[2 * MAXZ];
+    fb_kin k = {.want_acc = 0};
+    if (o->ms <= 0.0) s = sd = 0.0;
+    int N = fb_nfull(m);
+    double x = pair_point(m, pr, o, f, q, qd, s, &k, dr);
+    fb_gap g = fb_gap_state(o, &k, dr, N, s, sd, J);
+    g.x = x;
+    double tx = -g.ny, ty = g.nx;
+    for (int i = 0; i < N; i++) Jt[i] = tx * dr[i] + ty * dr[N + i];
+    *vt = tx * (k.v[0] - sd * o->ux) + ty * (k.v[1] - sd * o->uy);
     return g;
 }
 
