@@ -22,6 +22,9 @@ import numpy as np
 from ..parameters.case import Case
 from ..results.poincare import drive_phase, poincare
 
+#: the Zeno guard (solver.max_contacts) of a point allows at least this many contact records per drive period
+CONTACTS_PER_PERIOD = 20
+
 
 @dataclass
 class Point:
@@ -72,7 +75,11 @@ def run_point(case: Case, method: str, frequency: float, periods: int, discard: 
     of the drive, sampled at ``phase``; else a start at ``phase``, sampled at its own phase 0)."""
     start = 0.0 if state is None else phase
     run_case = shifted(case, frequency, start)
-    run_case = run_case.model_copy(update={"solver": run_case.solver.model_copy(update={"t_end": periods / frequency})})
+    # the Zeno guard scaled to the run's length: a stop struck a few times per period for hundreds of periods is
+    # not an accumulation of contacts (at least CONTACTS_PER_PERIOD per period, or the case's own limit if larger)
+    limit = max(case.solver.max_contacts, CONTACTS_PER_PERIOD * periods)
+    solver = run_case.solver.model_copy(update={"t_end": periods / frequency, "max_contacts": limit})
+    run_case = run_case.model_copy(update={"solver": solver})
     sol = simulate(run_case, method, state=state)
     local = (phase - start) % 1.0
     sec = poincare(sol, phase=local, discard=discard) if sol.source is not None else None
