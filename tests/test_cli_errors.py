@@ -109,14 +109,14 @@ SET_CASES = [
         ("seed-experiment", ["model.axial_modes=4", "model.coupling=zeroth-order"], "model.axial_modes",
          "need model.coupling = 'first-order'"),
         ("rod-end", ["model.axial_modes=61"], "model.axial_modes", "at most 62 for a free beam"),
-        ("spinning-stop", ["model.axial_modes=4"], "model.axial_modes", "contact anywhere"),
+        ("tests/validation/data/shaker-stop.toml", ["model.axial_modes=4"], "model.axial_modes", "a moving base"),
         ("rod-end", ["initial.kind=impact", "initial.axial_velocity=[0.1]"], "initial.axial_velocity",
          "only for initial.kind = 'state'"),
     ],
 )  # fmt: skip
 def test_bad_axial_modes(case, assignments, field, allowed):
-    """The axial modes with the zeroth-order model, too many of them, with contact anywhere, or an axial initial
-    value without ``initial.kind = "state"``: one line naming the field, exit 2."""
+    """The axial modes with the zeroth-order model, too many of them, on a moving base, or an axial initial value
+    without ``initial.kind = "state"``: one line naming the field, exit 2."""
     args = [a for x in assignments for a in ("--set", x)]
     assert_one_line_error(flexbeam("run", case, "--json", *args), field, allowed)
 

@@ -20,8 +20,9 @@ from numpy.testing import assert_allclose
 import flexbeam as fb
 from flexbeam.errors import ParameterError
 from flexbeam.integrate.modal import ModalBasis
-from flexbeam.model.beam import build_modal_beam, station_table
+from flexbeam.model.beam import build_modal_beam
 from flexbeam.model.modes import free_free_roots, free_free_shapes
+from flexbeam.model.stations import station_table
 from flexbeam.model.system import BeamSystem
 from flexbeam.simulation import initial_state
 

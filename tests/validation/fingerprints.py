@@ -47,6 +47,9 @@ RUNS: list[tuple[str, str, dict]] = [
     ("tip-wall", "ccfm", {"model.axial_modes": 8}),
     ("tip-wall", "ccm", {"model.axial_modes": 8}),
     ("tip-wall", "imm", {"model.axial_modes": 8}),
+    # contact anywhere on the stretched centre line: the free bar at 70 degrees, the spinning stop's revolute beam
+    ("free-bar-drop.toml", "ccfm", {"model.axial_modes": 8, "initial.impact_angle": 1.2217304763960306}),
+    ("spinning-stop", "ccfm", {"solver.t_end": 0.2, "model.axial_modes": 4}),
 ]
 
 #: where a run's case named by a file (not a preset) is

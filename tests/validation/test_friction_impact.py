@@ -210,3 +210,12 @@ def test_frictionless_is_todays_imm_bit_for_bit():
     b = fb.simulate(fb.load_case("seed-experiment", {"contact.friction": 0.0}), "imm")
     assert [c.impulse for c in a.contacts] == [c.impulse for c in b.contacts]
     assert math.isnan(a.metrics()["events"][0]["tangential_impulse"])
+
+
+def test_the_result_file_holds_the_tangential_impulses(tmp_path):
+    """result.nc of a frictional run has contact_tangential_impulse, equal to the records'; a frictionless run's has
+    none."""
+    sol = fb.simulate(rough_bar(30.0, 0.3, 0.5), "imm")
+    ds = sol.to_xarray()
+    assert ds["contact_tangential_impulse"].values.tolist() == [c.tangential_impulse for c in sol.contacts]
+    assert "contact_tangential_impulse" not in fb.simulate(rough_bar(30.0, 0.0, 0.5), "imm").to_xarray()

@@ -12,7 +12,8 @@ Model buffer (float64; integers stored exactly)::
      per pair:     point, obstacle, anywhere (0 a fixed point, 1 the capsule's nearest point, 2 flat end faces),
      hub radius, nst, surface c, first_order,
      with nst > 0 (contact anywhere): stations x (nst), Psi, Psi', Psi'' (nst x n each), H (nst x n x n),
-                   max over the beam of |Psi_k| and |Psi'_k| (n each)]
+                   max over the beam of |Psi_k| and |Psi'_k| (n each),
+                   with n_a > 0 also Phi_a, Phi_a' (nst x n_a each), max over the beam of |Phi_a,k| (n_a)]
 
 n counts the bending modes, n_a the axial ones (``model.axial_modes``), whose coordinates p follow q in the
 state: the kernels' flexible coordinates are [q, p].
@@ -41,7 +42,8 @@ import numpy as np
 
 if TYPE_CHECKING:
     from ..contact.setup import ObstacleGeometry
-    from ..model.beam import ModalBeam, PointData, StationTable
+    from ..model.beam import ModalBeam, PointData
+    from ..model.stations import StationTable
 
 LAYOUT_VERSION = 3
 
@@ -108,6 +110,8 @@ def pack_model(
         st = stations
         parts += [np.array([beam.hub_radius, st.x.size, st.surface, float(beam.first_order)]), st.x, st.phi.ravel(),
                   st.dphi.ravel(), st.ddphi.ravel(), st.H.ravel(), st.maxphi, st.maxdphi]  # fmt: skip
+        if na:
+            parts += [st.aphi.ravel(), st.daphi.ravel(), st.maxaphi]
     return np.ascontiguousarray(np.concatenate(parts))
 
 

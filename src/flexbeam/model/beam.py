@@ -32,7 +32,6 @@ model sets D = G = H = 0.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -95,7 +94,7 @@ class ModalBeam:
     axial: AxialModes | None = None
     #: points already built by :meth:`point` (x, offset) -> PointData
     _points: dict = field(default_factory=dict, compare=False, repr=False)
-    #: station tables already built by :func:`station_table`, by surface offset
+    #: station tables already built by :func:`flexbeam.model.stations.station_table`, by surface offset
     _tables: dict = field(default_factory=dict, compare=False, repr=False)
 
     @property
@@ -153,61 +152,6 @@ class ModalBeam:
             H = 0.5 * (H + H.T)  # exactly symmetric: the kernels read it by columns
         aphi = np.zeros(0) if self.axial is None else self.axial.shapes(np.array([x]), 0)[0]
         return PointData(float(x), self.hub_radius + x, phi, dphi, H, float(offset), aphi)
-
-
-@dataclass(frozen=True)
-class StationTable:
-    """Mode shapes at equally spaced stations x_j along the beam, for the contact-anywhere search of the kernels
-    (``kernels/src/nearest.c``, which interpolates them by cubic Hermite polynomials): Psi, Psi', Psi'' (stations x n),
-    H (stations x n x n, H(x) = r_h d d^T + int_0^x Psi'^T Psi' in the first-order model, 0 in the zeroth), the
-    largest |Psi_k| and |Psi'_k| over the beam (with a 5 % margin for the interpolation between stations) and the
-    surface offset c."""
-
-    x: np.ndarray
-    phi: np.ndarray
-    dphi: np.ndarray
-    ddphi: np.ndarray
-    H: np.ndarray
-    maxphi: np.ndarray
-    maxdphi: np.ndarray
-    surface: float
-
-
-#: stations per wavelength of the highest mode: cubic Hermite interpolation is then exact to ~(2 pi / 32)^4 / 384
-#: = 4e-6 of a shape's amplitude
-STATIONS_PER_WAVE = 32
-
-
-def station_table(beam: ModalBeam, surface: float) -> StationTable:
-    """The :class:`StationTable` of ``beam`` (wavelength of mode n ~ 2 L / (n + 1/4)); built once per beam and
-    surface offset (the modal beam itself is memoised by :func:`build_modal_beam`)."""
-    table = beam._tables.get(float(surface))
-    if table is None:
-        table = beam._tables[float(surface)] = _station_table(beam, float(surface))
-    return table
-
-
-def _station_table(beam: ModalBeam, surface: float) -> StationTable:
-    n, L = beam.n, beam.length
-    M = max(33, int(math.ceil(STATIONS_PER_WAVE * (n + 1) / 2)) + 1)
-    x = np.linspace(0.0, L, M)
-    if n == 0:
-        z = np.zeros((M, 0))
-        return StationTable(x, z, z, z, np.zeros((M, 0, 0)), np.zeros(0), np.zeros(0), float(surface))
-    phi, dphi, ddphi = (np.ascontiguousarray(beam.shapes(x, k)) for k in (0, 1, 2))
-    H = np.zeros((M, n, n))
-    if beam.first_order:
-        acc = beam.hub_radius * np.outer(beam.d, beam.d) if beam.H_root is None else beam.H_root.copy()
-        H[0] = acc
-        for j in range(1, M):
-            xg, wg = _gauss(x[j - 1], x[j], 24)
-            d1 = beam.shapes(xg, 1)
-            acc = acc + nm.gram(d1, wg)
-            H[j] = 0.5 * (acc + acc.T)
-    fine = np.linspace(0.0, L, 8 * M)
-    maxphi = 1.05 * np.max(np.abs(beam.shapes(fine, 0)), axis=0)
-    maxdphi = 1.05 * np.max(np.abs(beam.shapes(fine, 1)), axis=0)
-    return StationTable(x, phi, dphi, ddphi, H, maxphi, maxdphi, float(surface))
 
 
 def _auto_points(n: int, requested: int) -> int:

@@ -28,8 +28,9 @@ from .. import numerics as nm
 from ..contact.setup import ContactSetup
 from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS, core, pack_contacts, pack_model
 from ..parameters.case import Case
-from .beam import ModalBeam, PointData, build_modal_beam, station_table
+from .beam import ModalBeam, PointData, build_modal_beam
 from .joints import Joint, joint_of
+from .stations import station_table
 
 #: columns of :meth:`BeamSystem.outputs` that exist only for a compliant obstacle support
 SUPPORT_COLUMNS = ("support_displacement", "sensor_force")
@@ -246,7 +247,7 @@ class BeamSystem:
         For a compliant support z includes s and J ends with d delta/d s (zero for a pair on another obstacle).
         """
         J = np.empty(self.nfull + (1 if self.compliant else 0))
-        delta, rate, gamma, _, _ = core.gap(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J)
+        delta, rate, gamma = core.gap(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J)[:3]
         return delta, rate, gamma, J
 
     def tangent(self, t: float, y: np.ndarray, pair: int = 0) -> tuple[float, float, float, np.ndarray, np.ndarray]:
@@ -257,6 +258,12 @@ class BeamSystem:
         J, Jt = np.empty(size), np.empty(size)
         delta, rate, vt, _, _ = core.tangent(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J, Jt)
         return delta, rate, vt, J, Jt
+
+    def contact_coordinate(self, t: float, y: np.ndarray, pair: int = 0) -> float:
+        """The material coordinate x [m] of a pair's contact point: its fixed point's, or for a pair anywhere the
+        nearest point's now (``kernels/src/nearest.c``)."""
+        J = np.empty(self.nfull + (1 if self.compliant else 0))
+        return core.gap(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J)[5]
 
     def sensor_force(self, y: np.ndarray) -> float:
         """Force read by a sensor under a compliant support, -(k_s s + c_s s') [N] (0 if rigid)."""

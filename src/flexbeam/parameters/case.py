@@ -159,11 +159,6 @@ class Case(Section):
                 "model.axial_modes: a moving base (base) does not model the axial modes yet; set "
                 "model.axial_modes = 0 or leave the base still"
             )
-        if na and (self.contact.anywhere or any(ob.contact.anywhere for ob in self.obstacles)):
-            raise ValueError(
-                "model.axial_modes: contact anywhere (contact.anywhere) does not model the axial modes yet; give "
-                "the contact point (contact.position, contact.side) or set model.axial_modes = 0"
-            )
 
     def _free_beam(self) -> None:
         """What a free beam (``joint.kind = "free"``) does not have, or does not support yet: one line naming the

@@ -150,6 +150,9 @@ def contact_fields(sol: Solution) -> dict[str, tuple[str, str, np.ndarray]]:
         "contact_micro_impact": ("1", "1 for a micro-impact, 0 for a contact (docs/methods.md)", counts.micro),
         "contact_chatter_episode": ("1", "Chatter episode of a micro-impact (NaN for a contact)", episodes),
     }
+    tangential = [e.tangential_impulse for e in c]
+    if any(math.isfinite(v) for v in tangential):  # a run with frictional impacts (IMM with contact.friction)
+        fields["contact_tangential_impulse"] = ("N s", "Frictional impulse along the contact's tangent", tangential)
     return {k: (u, n, np.asarray(v, float)) for k, (u, n, v) in fields.items()}
 
 

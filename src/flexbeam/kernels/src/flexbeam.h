@@ -67,13 +67,15 @@ typedef struct fb_model_s {
     fb_point points[FB_MAX_POINTS];       /* points[0]: the first pair's contact point P, points[1]: the tip */
     fb_obstacle obstacles[FB_MAX_OBSTACLES];
     fb_pair pairs[FB_MAX_PAIRS];
-    /* stations along the beam for contact anywhere (nst = 0 if no pair needs them): x, Psi, Psi', Psi'' (nst x n),
-     * H (nst x n x n), and per mode the largest |Psi_k|, |Psi'_k| over the beam (bounds of the event search) */
+    /* stations along the beam for contact anywhere (nst = 0 if no pair needs them): x, Psi, Psi', Psi'' (nst x nb),
+     * H (nst x nb x nb), and per mode the largest |Psi_k|, |Psi'_k| over the beam (bounds of the event search); with
+     * axial modes Phi_a, Phi_a' (nst x na) and the largest |Phi_a,k| (NULL without) */
     double hub_radius; /* r_h: a point's material x is its base - r_h */
     int nst;
     double surface;  /* c: the beam's surface from its centre line (the capsule's radius) */
     int first_order; /* the coupling deformation u_x = -1/2 q^T H q is kept */
     const double *st_x, *st_phi, *st_dphi, *st_ddphi, *st_H, *st_maxphi, *st_maxdphi;
+    const double *st_aphi, *st_daphi, *st_maxaphi;
 } fb_model;
 
 /* How the contacts act during a phase, pair by pair: FB_MODE_NONE (free), FB_MODE_FORCE (the law
@@ -150,7 +152,7 @@ void fb_axial_correct(const struct fb_basis_s *b, const fb_update *up, double *x
 typedef struct {
     fb_point P;
     double x; /* its material coordinate */
-    double phi[64], dphi[64], H[64 * 64];
+    double phi[64], dphi[64], H[64 * 64], aphi[64];
 } fb_surface_point;
 
 void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,

@@ -87,7 +87,8 @@ fail:
     return NULL;
 }
 
-/* gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny); J (nfull [+ 1 with a support]) = d delta / dz */
+/* gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny, x); J (nfull [+ 1 with a support]) = d delta / dz, x the
+ * contact point's material coordinate (it moves for a pair anywhere) */
 PyObject *py_gap(PyObject *self, PyObject *args) {
     PyObject *om, *oy, *oJ;
     int pair;
@@ -114,7 +115,7 @@ PyObject *py_gap(PyObject *self, PyObject *args) {
     fb_gap g = fb_pair_gap(&m, pair, &fr, q, qd, s, sd, 1, J);
     if (compliant) J[N] = g.Js;
     release(b, 3);
-    return Py_BuildValue("ddddd", g.delta, g.rate, g.gamma, g.nx, g.ny);
+    return Py_BuildValue("dddddd", g.delta, g.rate, g.gamma, g.nx, g.ny, g.x);
 fail:
     release(b, 3);
     return NULL;

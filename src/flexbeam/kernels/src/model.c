@@ -20,7 +20,8 @@
  * Maa, Ka, mta, sa (na each), S (na x nb),
  * per point: base, offset, phi, dphi, H (nb), Phi_a (na); per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy;
  * per pair: point, obstacle, anywhere; hub_radius, nst, surface, first_order, then with nst > 0: x (nst), Psi, Psi', Psi'' (nst x n each),
- * H (nst x n x n), max |Psi| (n), max |Psi'| (n)] (flexbeam.kernels.layout.pack_model writes it). */
+ * H (nst x n x n), max |Psi| (n), max |Psi'| (n), with na > 0 Phi_a, Phi_a' (nst x na each), max |Phi_a| (na)]
+ * (flexbeam.kernels.layout.pack_model writes it). */
 int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     const double *ints = buf;
     size_t nints = 9;
@@ -94,17 +95,23 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     m->surface = *p++;
     m->first_order = (int)*p++;
     size_t M = (size_t)m->nst;
-    if (nf != need + M * (1 + 3 * (size_t)nb + (size_t)nb * nb) + (M ? 2 * (size_t)nb : 0)) return -2;
+    size_t axial_st = M ? 2 * M * (size_t)na + (size_t)na : 0; /* Phi_a, Phi_a' (M x na), max |Phi_a| (na) */
+    if (nf != need + M * (1 + 3 * (size_t)nb + (size_t)nb * nb) + (M ? 2 * (size_t)nb : 0) + axial_st) return -2;
     for (int k = 0; k < m->npairs; k++)
         if (m->pairs[k].anywhere && M < 2) return -3;
-    if (M && na) return -3; /* contact anywhere does not model the axial modes */
     m->st_x = p; p += M;
     m->st_phi = p; p += M * nb;
     m->st_dphi = p; p += M * nb;
     m->st_ddphi = p; p += M * nb;
     m->st_H = p; p += M * nb * nb;
     m->st_maxphi = p; p += M ? nb : 0;
-    m->st_maxdphi = p;
+    m->st_maxdphi = p; p += M ? nb : 0;
+    m->st_aphi = m->st_daphi = m->st_maxaphi = NULL;
+    if (M && na) {
+        m->st_aphi = p; p += M * na;
+        m->st_daphi = p; p += M * na;
+        m->st_maxaphi = p;
+    }
     return fb_joint(m)->unpack(m) ? -4 : 0;
 }
 

@@ -6,7 +6,7 @@ static PyMethodDef methods[] = {
     {"rhs", py_rhs, METH_VARARGS, "rhs(model, t, y, contacts, dy, F) -> torque"},
     {"outputs", py_outputs, METH_VARARGS, "outputs(model, times, Y, contacts, cols, mv, pcols)"},
     {"kinematics", py_kinematics, METH_VARARGS, "kinematics(model, point, t, y, out)"},
-    {"gap", py_gap, METH_VARARGS, "gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny)"},
+    {"gap", py_gap, METH_VARARGS, "gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny, x)"},
     {"tangent", py_tangent, METH_VARARGS, "tangent(model, pair, t, y, J, Jt) -> (delta, rate, slip velocity, nx, ny)"},
     {"equations", py_equations, METH_VARARGS, "equations(model, t, y, M, Q, E)"},
     {"law_force", py_law_force, METH_VARARGS, "law_force(p, d, dd) -> (F, Fk, dF/dd, dF/ddd)"},

@@ -3,11 +3,14 @@
  * The beam's surface is taken as a capsule: the tube of radius c (the surface offset) around the deformed centre
  * line rho(x), x in [0, L], closed by hemispherical caps.  Its point nearest a sphere of centre C is rho(x*) + c u
  * with x* the centre-line point nearest C and u = (C - rho(x*)) / |C - rho(x*)|; nearest a half-plane of outward
- * normal n_o it is rho(x*) - c n_o with x* minimising n_o . rho.  In the body frame rho(x) = (r_h + x + u_x(x), w(x)),
- * w = Psi(x) q, u_x = -1/2 q^T H(x) q (zero in the zeroth-order model), interpolated between the stations by cubic
- * Hermite polynomials (Psi with Psi', Psi' with Psi'', u_x with u_x' = -1/2 (Psi' q)^2, H with H' = Psi' Psi'^T).
- * The search: a scan of the stations (without u_x, second order), then Newton's method on f = (rho - C) . rho'
- * (sphere) or n_o . rho' (plane), safeguarded by bisection, in the two intervals around the best station.
+ * normal n_o it is rho(x*) - c n_o with x* minimising n_o . rho.  In the body frame rho(x) = (r_h + x + s(x) + u_x(x),
+ * w(x)), w = Psi(x) q, u_x = -1/2 q^T H(x) q (zero in the zeroth-order model), s = Phi_a(x) p the axial modes'
+ * stretch (model.axial_modes; the flexible coordinates are [q, p]), interpolated between the stations by cubic
+ * Hermite polynomials (Psi with Psi', Psi' with Psi'', u_x with u_x' = -1/2 (Psi' q)^2, H with H' = Psi' Psi'^T,
+ * Phi_a with Phi_a'; s' and s'' are the derivatives of s's interpolant).
+ * The search: a scan of the stations (with s, without u_x, second order), then Newton's method on
+ * f = (rho - C) . rho' (sphere) or n_o . rho' (plane), safeguarded by bisection, in the two intervals around the
+ * best station.
  * With flat end faces (``flat``) instead of the caps, a minimiser at an end is moved to the end face's point nearest
  * the obstacle: across the section, the corner on the obstacle's side (half-plane) or the face's point nearest the
  * sphere's centre; the tube between the ends is the same.
@@ -38,10 +41,11 @@ static void hermite(double s, double h[4], double d1[4], double d2[4]) {
 /* The centre line of a deformed beam, station data computed once per search. */
 typedef struct {
     const fb_model *m;
-    const double *q;
+    const double *q; /* [q, p]: n bending modes, then the axial ones */
     int n, M;
     double rh, dx;
     double *w, *w1, *w2, *u; /* per station: Psi q, Psi' q, Psi'' q, u_x (NAN until needed) */
+    double *s, *s1;          /* per station: Phi_a p, Phi_a' p (NAN until needed; NULL without axial modes) */
 } line_t;
 
 static double station_u(line_t *ln, int j) {
@@ -64,6 +68,22 @@ static void station_slopes(line_t *ln, int j) {
         ln->w1[j] = dot(ln->m->st_dphi + (size_t)j * ln->n, ln->q, ln->n);
         ln->w2[j] = dot(ln->m->st_ddphi + (size_t)j * ln->n, ln->q, ln->n);
     }
+}
+
+/* The axial stretch Phi_a p at station j and its slope Phi_a' p in *s1 (0 without axial modes). */
+static double station_s(line_t *ln, int j, double *s1) {
+    if (!ln->s) {
+        *s1 = 0.0;
+        return 0.0;
+    }
+    if (isnan(ln->s[j])) {
+        int na = ln->m->na;
+        const double *p = ln->q + ln->n;
+        ln->s[j] = dot(ln->m->st_aphi + (size_t)j * na, p, na);
+        ln->s1[j] = dot(ln->m->st_daphi + (size_t)j * na, p, na);
+    }
+    *s1 = ln->s1[j];
+    return ln->s[j];
 }
 
 static int interval(const line_t *ln, double x, double *s) {
@@ -96,6 +116,12 @@ static void centre_line(line_t *ln, double x, double r[2], double r1[2], double 
     r[0] = ln->rh + x + u, r[1] = w;
     r1[0] = 1.0 + u1, r1[1] = w1;
     r2[0] = u2, r2[1] = w2;
+    if (ln->s) { /* the stretch's interpolant and its derivatives */
+        double sa1, sb1, sa = station_s(ln, j, &sa1), sb = station_s(ln, j + 1, &sb1);
+        r[0] += h[0] * sa + D * h[1] * sa1 + h[2] * sb + D * h[3] * sb1;
+        r1[0] += (d1[0] * sa + d1[2] * sb) / D + d1[1] * sa1 + d1[3] * sb1;
+        r2[0] += (d2[0] * sa + d2[2] * sb) / (D * D) + (d2[1] * sa1 + d2[3] * sb1) / D;
+    }
 }
 
 /* f = (1/2) d/dx of the search's objective: (rho - C) . rho' (sphere) or n . rho' (plane); and df/dx. */
@@ -134,13 +160,44 @@ static double minimise(line_t *ln, int sphere, const double c[2], double a, doub
     return x;
 }
 
+/* The material point at x: Psi, Psi', H and (with axial modes) Phi_a at x by the search's Hermite interpolation. */
+static void material_shapes(const line_t *ln, double x, fb_surface_point *out) {
+    const fb_model *m = ln->m;
+    int n = ln->n, na = m->na;
+    double sj, h[4], d1[4], d2[4];
+    int j = interval(ln, x, &sj);
+    hermite(sj, h, d1, d2);
+    double D = ln->dx;
+    const double *P0 = m->st_phi + (size_t)j * n, *P1 = P0 + n, *Q0 = m->st_dphi + (size_t)j * n, *Q1 = Q0 + n;
+    const double *R0 = m->st_ddphi + (size_t)j * n, *R1 = R0 + n;
+    for (int k = 0; k < n; k++) {
+        out->phi[k] = h[0] * P0[k] + D * h[1] * Q0[k] + h[2] * P1[k] + D * h[3] * Q1[k];
+        out->dphi[k] = h[0] * Q0[k] + D * h[1] * R0[k] + h[2] * Q1[k] + D * h[3] * R1[k];
+    }
+    const double *H0 = m->st_H + (size_t)j * n * n, *H1 = H0 + (size_t)n * n;
+    for (int r = 0; r < n; r++)
+        for (int k = 0; k < n; k++)
+            out->H[r * n + k] = h[0] * H0[r * n + k] + h[2] * H1[r * n + k] +
+                                D * (h[1] * Q0[r] * Q0[k] + h[3] * Q1[r] * Q1[k]);
+    out->P.phi = out->phi;
+    out->P.dphi = out->dphi;
+    out->P.H = out->H;
+    out->P.aphi = NULL;
+    if (na) { /* Phi_a at x by the same Hermite interpolation as the search's stretch */
+        const double *A0 = m->st_aphi + (size_t)j * na, *A1 = A0 + na, *B0 = m->st_daphi + (size_t)j * na, *B1 = B0 + na;
+        for (int k = 0; k < na; k++) out->aphi[k] = h[0] * A0[k] + D * h[1] * B0[k] + h[2] * A1[k] + D * h[3] * B1[k];
+        out->P.aphi = out->aphi;
+    }
+}
+
 void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
                       int flat, fb_surface_point *out) {
-    int n = m->n, M = m->nst;
-    double w[M], w1[M], w2[M], u[M];
+    int n = fb_nb(m), na = m->na, M = m->nst;
+    double w[M], w1[M], w2[M], u[M], sx[na ? M : 1], sx1[na ? M : 1];
     double L = m->st_x[M - 1];
-    line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u};
+    line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u, na ? sx : NULL, na ? sx1 : NULL};
     for (int j = 0; j < M; j++) w[j] = w1[j] = w2[j] = u[j] = NAN;
+    for (int j = 0; na && j < M; j++) sx[j] = sx1[j] = NAN;
     /* the obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction) */
     double p[2] = {o->cx + s * o->ux, o->cy + s * o->uy}, nrm[2] = {o->nx, o->ny}, c[2];
     int sphere = o->kind == FB_SPHERE;
@@ -153,7 +210,8 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     double best_val = INFINITY;
     if (sphere) {
         /* outwards from the station abreast of the centre: a station whose axial distance alone reaches the best
-         * squared distance so far cannot be nearer, nor can any beyond it (r_h + x_j is monotonic in j) */
+         * squared distance so far cannot be nearer, nor can any beyond it (r_h + x_j + s_j is monotonic in j: the
+         * axial strain is far above -1) */
         int j0 = (int)lround((c[0] - ln.rh) / ln.dx);
         j0 = j0 < 0 ? 0 : (j0 > M - 1 ? M - 1 : j0);
         int lo_open = 1, hi_open = 1;
@@ -166,7 +224,7 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
                     else lo_open = 0;
                     continue;
                 }
-                double ex = ln.rh + m->st_x[j] - c[0];
+                double slope, ex = ln.rh + m->st_x[j] + station_s(&ln, j, &slope) - c[0];
                 if (ex * ex >= best_val) {
                     if (side) hi_open = 0;
                     else lo_open = 0;
@@ -178,28 +236,13 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
         }
     } else {
         for (int j = 0; j < M; j++) {
-            double val = c[0] * (ln.rh + m->st_x[j]) + c[1] * station_w(&ln, j);
+            double slope, val = c[0] * (ln.rh + m->st_x[j] + station_s(&ln, j, &slope)) + c[1] * station_w(&ln, j);
             if (val < best_val) best_val = val, best = j;
         }
     }
     double a = m->st_x[best > 0 ? best - 1 : 0], b = m->st_x[best < M - 1 ? best + 1 : M - 1];
     double x = minimise(&ln, sphere, c, a, b);
-    /* the material point: Psi, Psi', H at x by Hermite interpolation */
-    double sj, h[4], d1[4], d2[4];
-    int j = interval(&ln, x, &sj);
-    hermite(sj, h, d1, d2);
-    double D = ln.dx;
-    const double *P0 = m->st_phi + (size_t)j * n, *P1 = P0 + n, *Q0 = m->st_dphi + (size_t)j * n, *Q1 = Q0 + n;
-    const double *R0 = m->st_ddphi + (size_t)j * n, *R1 = R0 + n;
-    for (int k = 0; k < n; k++) {
-        out->phi[k] = h[0] * P0[k] + D * h[1] * Q0[k] + h[2] * P1[k] + D * h[3] * Q1[k];
-        out->dphi[k] = h[0] * Q0[k] + D * h[1] * R0[k] + h[2] * Q1[k] + D * h[3] * R1[k];
-    }
-    const double *H0 = m->st_H + (size_t)j * n * n, *H1 = H0 + (size_t)n * n;
-    for (int r = 0; r < n; r++)
-        for (int k = 0; k < n; k++)
-            out->H[r * n + k] = h[0] * H0[r * n + k] + h[2] * H1[r * n + k] +
-                                D * (h[1] * Q0[r] * Q0[k] + h[3] * Q1[r] * Q1[k]);
+    material_shapes(&ln, x, out);
     /* the direction from the centre line to the obstacle, and the offsets along the section's normal and tangent */
     double r[2], r1[2], r2[2], dir[2];
     centre_line(&ln, x, r, r1, r2);
@@ -226,21 +269,19 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
         out->P.offset_t = 0.0;
         out->P.offset = -t;
     }
-    out->P.phi = out->phi;
-    out->P.dphi = out->dphi;
-    out->P.H = out->H;
-    out->P.aphi = NULL; /* contact anywhere does not model the axial modes (refused at unpack) */
 }
 
-/* Per generalised coordinate [theta, q] a bound on |d delta / dz| of an anywhere pair over all the beam's surface
- * points: |r| for theta; max|Psi_k| + c max|Psi'_k| + |(H q)_k| for q_k, with |(H(x) q)_k| <= sqrt(H_kk(L)
- * q^T H(L) q) (H(L) - H(x) is positive semi-definite). */
+/* Per generalised coordinate [rigid, q, p] a bound on |d delta / dz| of an anywhere pair over all the beam's
+ * surface points: the joint's from the reach |r| for the frame's; max|Psi_k| + c max|Psi'_k| + |(H q)_k| for q_k,
+ * with |(H(x) q)_k| <= sqrt(H_kk(L) q^T H(L) q) (H(L) - H(x) is positive semi-definite); max|Phi_a,k| for p_k. */
 void fb_anywhere_bound(const fb_model *m, const double *q, double *env) {
-    int n = m->n, M = m->nst;
+    int n = fb_nb(m), na = m->na, M = m->nst;
     const double *HL = m->st_H + (size_t)(M - 1) * n * n;
     double qHq = fb_quad(HL, q, n), reach = m->points[1].base + m->surface;
     for (int k = 0; k < n; k++) reach += m->st_maxphi[k] * fabs(q[k]);
+    for (int k = 0; k < na; k++) reach += m->st_maxaphi[k] * fabs(q[n + k]);
     fb_joint(m)->rigid_bound(m, reach, env);
     for (int k = 0; k < n; k++)
         env[m->nrigid + k] = m->st_maxphi[k] + m->surface * m->st_maxdphi[k] + sqrt(fmax(HL[k * n + k], 0.0) * fmax(qHq, 0.0));
+    for (int k = 0; k < na; k++) env[m->nrigid + n + k] = m->st_maxaphi[k];
 }
