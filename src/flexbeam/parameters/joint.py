@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Literal
 
 from pydantic import Field, model_validator
@@ -60,9 +61,9 @@ class Base(Section):
     ``r_O(t) = sum over harmonics of A_i sin(2 pi k_i f t + phi_i) e_axis + 1/2 acceleration t^2``, the harmonics'
     fundamental ``frequency`` f [Hz] (the drive's period 1/f is that of its Poincare map).  The equations are
     written in the base frame (origin at O, axes parallel to the inertial ones), where the base's motion acts as the
-    uniform inertial field g_eff(t) = (0, -g) - a_O(t) on the beam (docs/formulation.md, *A moving base*); the
-    obstacles are carried by the base (they move with O).  No harmonic and no acceleration: a fixed joint, today's
-    model bit for bit.  A revolute joint only.
+    uniform inertial field g_eff(t) = (0, -g) - a_O(t) on the beam (docs/formulation.md, *A moving base*); an
+    obstacle is carried by the base (it moves with O) unless its ``fixed_to = "ground"``.  No harmonic and no
+    acceleration: a fixed joint, today's model bit for bit.  A revolute joint only.
     """
 
     frequency: Positive | None = Field(None, description="fundamental frequency f of the harmonics [Hz]")
@@ -75,6 +76,18 @@ class Base(Section):
     def moving(self) -> bool:
         """Does the joint O move (a harmonic of nonzero amplitude, or an acceleration)?"""
         return any(h.amplitude != 0.0 for h in self.harmonics) or any(a != 0.0 for a in self.acceleration)
+
+    def motion(self, t: float) -> tuple[tuple[float, float], tuple[float, float], tuple[float, float]]:
+        """(r_O, v_O, a_O) at time ``t`` [s] (the compiled kernels evaluate it in ``base_motion.c``)."""
+        ax, ay = self.acceleration
+        r, v, a = [0.5 * ax * t * t, 0.5 * ay * t * t], [ax * t, ay * t], [ax, ay]
+        for h in self.harmonics:
+            k, w = int(h.axis == "y"), 2.0 * math.pi * h.order * (self.frequency or 0.0)
+            s, c = math.sin(w * t + h.phase), math.cos(w * t + h.phase)
+            r[k] += h.amplitude * s
+            v[k] += h.amplitude * w * c
+            a[k] -= h.amplitude * w * w * s
+        return (r[0], r[1]), (v[0], v[1]), (a[0], a[1])
 
     @model_validator(mode="after")
     def _frequency_given(self) -> Base:

@@ -64,12 +64,19 @@ void fb_base_motion(const fb_model *m, double t, double *r, double *v, double *a
     }
 }
 
-/* The field the beam feels in the base frame at t: (0, -g) - a_O(t). */
-void fb_base_field(const fb_model *m, double t, double *field) {
-    double a[2];
-    fb_base_motion(m, t, NULL, NULL, a, NULL);
-    field[0] = -a[0];
-    field[1] = -m->g - a[1];
+/* A bound on |v_O| over [t0, t1] (the event search's reach of an obstacle fixed to the ground): per axis |v_O(t0)|
+ * plus (t1 - t0) times a bound on |a_O|, sum_i |A_i| w_i^2 + |a|. */
+double fb_base_speed_bound(const fb_model *m, double t0, double t1) {
+    const double *b = block(m);
+    if (!b) return 0.0;
+    double v[2], acc[2] = {fabs(b[1]), fabs(b[2])};
+    fb_base_motion(m, t0, NULL, v, NULL, NULL);
+    for (int i = 0; i < (int)b[0]; i++) {
+        const double *h = b + 3 + 4 * i;
+        acc[h[0] != 0.0] += fabs(h[1]) * h[2] * h[2];
+    }
+    double dt = fabs(t1 - t0), vx = fabs(v[0]) + dt * acc[0], vy = fabs(v[1]) + dt * acc[1];
+    return sqrt(vx * vx + vy * vy);
 }
 
 /* A(theta) s(q): the beam's first moment int mu r dx about O in the plane's axes. */
@@ -87,6 +94,31 @@ double fb_base_work_rate(const fb_model *m, double t, const fb_frame *f, const d
     fb_base_motion(m, t, NULL, NULL, NULL, j);
     moment(m, f, q, As);
     return j[0] * As[0] + j[1] * As[1];
+}
+
+/* The rate of the base's work in its direct form, -a_O(t) . d/dt[A s] (the reference integrator's W rate),
+ * d/dt[A s] = A (s_x' - theta' s_y, s_y' + theta' s_x), s_x' = -q^T G q', s_y' = s_f q'. */
+double fb_base_power(const fb_model *m, double t, const fb_frame *f, const double *q, const double *qd) {
+    int n = m->n;
+    double a[2], gq[64], sxd = 0.0, s, c;
+    fb_base_motion(m, t, NULL, NULL, a, NULL);
+    fb_symv(m->G, q, n, gq);
+    for (int i = 0; i < n; i++) sxd -= gq[i] * qd[i];
+    double sx = m->m1 - 0.5 * fb_dot(gq, q, n), sy = fb_dot(m->sf, q, n), syd = fb_dot(m->sf, qd, n);
+    double lx = sxd - f->thd * sy, ly = syd + f->thd * sx;
+    fb_sincos(f->th, &s, &c);
+    return -(a[0] * (c * lx - s * ly) + a[1] * (s * lx + c * ly));
+}
+
+/* The work rate of the obstacles fixed to the ground on the beam, -sum_k F_k n_k . v_O over the pairs touching one
+ * (F the pairs' forces, or multipliers, g their gaps, f the frame with v_O): the contact power F J z' on the beam is
+ * F delta' - F n . v_O, and F delta' = -U_c' - E_d' (docs/formulation.md, "A moving base"). */
+double fb_ground_rate(const fb_model *m, const fb_frame *f, const int *mode, const double *F, const fb_gap *g) {
+    double acc = 0.0;
+    for (int k = 0; k < m->npairs; k++)
+        if (mode[k] != FB_MODE_NONE && m->obstacles[m->pairs[k].obstacle].ground)
+            acc -= F[k] * (g[k].nx * f->vO[0] + g[k].ny * f->vO[1]);
+    return acc;
 }
 
 /* The boundary term of the base's work at t, -a_O(t) . A s. */
