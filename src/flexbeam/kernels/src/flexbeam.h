@@ -20,7 +20,8 @@
 #define FB_MAX_POINTS 64
 #define FB_MAX_OBSTACLES 8
 #define FB_MAX_PAIRS 8
-#define FB_MAX_JOINT_PARAMS 64 /* the joint's parameters in the model buffer (joint_<kind>.c reads them) */
+#define FB_MAX_JOINT_PARAMS 64 /* the joint's given coordinates (accelerations) at most */
+#define FB_MAX_JOINT_BUFFER 1000000 /* the joint's parameters in the model buffer (a moving base's table rows) */
 #define FB_P 4          /* Gauss-Legendre collocation nodes per step */
 #define FB_NPTS (FB_P + 1) /* the nodes and the step end */
 
@@ -61,7 +62,7 @@ typedef struct fb_model_s {
     int nrigid; /* the floating frame's coordinates, leading the full coordinates [rigid, q] (1: theta) */
     int ngiven; /* of them, those the joint gives as functions of time (not in the state: 1 for theta(t) prescribed) */
     int njp;    /* the joint's parameters jp (joint_<kind>.c reads them) */
-    double jp[FB_MAX_JOINT_PARAMS];
+    const double *jp; /* into the model buffer */
     double Jc, m1, g;
     const double *Mc, *Mqq, *mtq, *K, *sf, *G, *d; /* the bending modes': nb x nb, nb x nb, nb, nb x nb, nb, nb x nb, nb */
     const double *Maa, *Ka, *mta, *sa, *S;         /* the axial modes' (na > 0): na, na, na, na, na x nb (axial.c) */
@@ -123,6 +124,7 @@ int fb_base_unpack(const fb_model *m);
 int fb_base_moving(const fb_model *m);
 void fb_base_motion(const fb_model *m, double t, double *r, double *v, double *a, double *j);
 double fb_base_speed_bound(const fb_model *m, double t0, double t1);
+double fb_base_next_knot(const fb_model *m, double t, double tol);
 double fb_base_power(const fb_model *m, double t, const fb_frame *f, const double *q, const double *qd);
 double fb_base_work_rate(const fb_model *m, double t, const fb_frame *f, const double *q);
 double fb_base_boundary(const fb_model *m, double t, const fb_frame *f, const double *q);

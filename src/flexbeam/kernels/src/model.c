@@ -38,7 +38,7 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     if (n < 0 || n > 64 || na < 0 || na > n || m->npoints < 1 || m->npoints > FB_MAX_POINTS || m->nobstacles < 0 ||
         m->nobstacles > FB_MAX_OBSTACLES || m->npairs < 0 || m->npairs > FB_MAX_PAIRS || m->nmeasure < 0 ||
         m->nmeasure > m->npoints - 2 || m->joint < 0 || m->joint >= FB_JOINT_KINDS || m->njp < 0 ||
-        m->njp > FB_MAX_JOINT_PARAMS ||
+        m->njp > FB_MAX_JOINT_BUFFER ||
         nbuf < nints + (size_t)m->nobstacles)
         return -1;
     nints += (size_t)m->nobstacles;
@@ -52,7 +52,7 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     m->Jc = *p++;
     m->m1 = *p++;
     m->g = *p++;
-    for (int i = 0; i < m->njp; i++) m->jp[i] = *p++;
+    m->jp = p; p += m->njp;
     m->Mc = p; p += nb * nb;
     m->Mqq = p; p += nb * nb;
     m->mtq = p; p += nb;
