@@ -9,7 +9,6 @@ from typing import Literal
 
 import numpy as np
 from pydantic import Field, field_validator, model_validator
-from scipy.interpolate import CubicSpline
 
 from .fields import Bounded, Finite, Positive, Rate, Section
 
@@ -93,10 +92,13 @@ class Base(Section):
         return any(h.amplitude != 0.0 for h in self.harmonics) or any(a != 0.0 for a in self.acceleration) or table
 
     @cached_property
-    def spline(self) -> CubicSpline | None:
-        """The table's interpolant T(t) = (x, y), the not-a-knot cubic spline through its rows (None: no table)."""
+    def spline(self):
+        """The table's interpolant T(t) = (x, y), scipy's not-a-knot ``CubicSpline`` through its rows (None: no
+        table)."""
         if self.table is None:
             return None
+        from scipy.interpolate import CubicSpline  # scipy only where a table is used: the CLI starts without it
+
         rows = np.asarray(self.table, float)
         return CubicSpline(rows[:, 0], rows[:, 1:], bc_type="not-a-knot")
 
