@@ -65,7 +65,8 @@ def check_start(system: BeamSystem, case: Case, y: np.ndarray) -> None:
     theta, _, q, _ = system.split(0.0, y)
     origin = system.joint.origin(0.0, y, system.n)
     at = None if origin is None else tuple(origin[0])
-    for p in penetrations(system.beam, case.beam.surface_offset, theta, q, system.contact.obstacles, at):
+    obstacles = system.contact.seen_from(case.base.motion(0.0)[0])  # a ground obstacle where the base sees it
+    for p in penetrations(system.beam, case.beam.surface_offset, theta, q, obstacles, at):
         if p.depth > START_INSIDE:
             raise ParameterError(
                 f"{_obstacle_field(p.obstacle)}.centre: the beam starts {p.depth:.3g} m inside this obstacle, deepest "

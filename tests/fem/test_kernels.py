@@ -98,7 +98,7 @@ def test_straight_element_mass_is_classical_consistent_mass():
     mu, l0 = 2.0, 0.3
     xe = np.array([0.0, 0.0, 0.0, l0, 0.0, 0.0])
     fin, Me, fg, G = np.empty(6), np.empty((6, 6)), np.empty(6), np.empty((2, 6))
-    inertia_element(xe, np.zeros(6), np.zeros(6), l0, mu, 9.81, GAUSS_XI, GAUSS_W, fin, Me, fg, G)
+    inertia_element(xe, np.zeros(6), np.zeros(6), l0, mu, np.array([0.0, -9.81]), GAUSS_XI, GAUSS_W, fin, Me, fg, G)
     ell = l0
     bend = mu * ell / 420.0 * np.array([
         [156, 22 * ell, 54, -13 * ell],

@@ -137,10 +137,10 @@ def test_bad_base_input_names_the_field(overrides, field):
         fb.load_case("seed-experiment", overrides)
 
 
-def test_the_fe_reference_and_a_free_beam_refuse_a_moving_base():
+def test_the_fe_reference_refuses_a_ground_obstacle_and_a_free_beam_a_moving_base():
     moving = {"base.acceleration": [0.0, 1.0]}
-    with pytest.raises(ModelError, match=r"^base:"):
-        fb.simulate(fb.load_case("seed-experiment", moving), "fem")
+    with pytest.raises(ModelError, match=r"^obstacle\.fixed_to: the FE reference carries"):
+        fb.simulate(fb.load_case("seed-experiment", {**moving, "obstacle.fixed_to": "ground"}), "fem")
     with pytest.raises(ValueError, match=r"base: a free beam"):
         fb.load_case("seed-experiment", {**moving, "joint.kind": "free", "hub.radius": 0.0, "hub.inertia": 0.0})
 

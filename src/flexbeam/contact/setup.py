@@ -9,7 +9,7 @@ beam's cylinder unless a stiffness is given).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -29,6 +29,8 @@ class ObstacleGeometry:
 
     ``kind`` 0: sphere (or point, radius 0) at ``centre``; 1: half-plane through ``centre`` with outward unit
     ``normal``.  ``support`` = [m_s, k_s, c_s, u_x, u_y] of a mass-spring-damper holding it (zeros: rigid).
+    ``ground``: fixed to the ground on a moving base, ``centre`` in the inertial axes (the beam sees it at
+    ``centre`` - r_O(t)); else in the base frame (only a moving base sets it).
     """
 
     kind: int
@@ -36,6 +38,13 @@ class ObstacleGeometry:
     radius: float
     normal: np.ndarray
     support: np.ndarray = field(default_factory=lambda: np.zeros(5))
+    ground: bool = False
+
+    def seen_from(self, r_O) -> ObstacleGeometry:
+        """The obstacle in the base frame when the joint O is at ``r_O``: a ground obstacle at ``centre`` - r_O."""
+        if not self.ground:
+            return self
+        return replace(self, centre=self.centre - np.asarray(r_O, float), ground=False)
 
     @property
     def compliant(self) -> bool:
@@ -108,7 +117,7 @@ class ContactSetup:
             pc = ob.contact
             x = case.contact.position if pc.position is None else pc.position
             side = case.contact.side if pc.side is None else pc.side
-            obstacles.append(obstacle_geometry(ob, np.array(ob.centre, float), _outward(case, side)))
+            obstacles.append(obstacle_geometry(ob, np.array(ob.centre, float), _outward(case, side), case))
             law = contact_law(case, ob, pc)
             e = case.contact.restitution if pc.restitution is None else pc.restitution
             anywhere = case.contact.anywhere if pc.anywhere is None else pc.anywhere
@@ -122,8 +131,13 @@ class ContactSetup:
                 raise ParameterError(str(exc)) from None
             pairs.append(ContactPair(float(x), float(SIDES[side] * c), i + 1, law, e, f"obstacles[{i}]", anywhere,
                                      float(static), float(kinetic)))  # fmt: skip
-        check_overlaps(obstacles)
+        r_O = case.base.motion(0.0)[0]
+        check_overlaps([o.seen_from(r_O) for o in obstacles])
         return cls(tuple(pairs), tuple(obstacles))
+
+    def seen_from(self, r_O) -> tuple[ObstacleGeometry, ...]:
+        """The obstacles in the base frame when the joint O is at ``r_O`` (:meth:`ObstacleGeometry.seen_from`)."""
+        return tuple(o.seen_from(r_O) for o in self.obstacles)
 
 
 def _name(i: int) -> str:
@@ -181,7 +195,7 @@ def _outward(case: Case, side: str) -> np.ndarray:
 
 def place_obstacle(case: Case, position: float, offset: float) -> ObstacleGeometry:
     """Obstacle 0's arrays; without a centre it touches P (beam straight, hub at ``initial.impact_angle``; a free
-    beam's centre of mass at the origin)."""
+    beam's centre of mass at the origin) at t = 0 (an obstacle fixed to the ground then at that place + r_O(0))."""
     ob = case.obstacle
     th = case.initial.impact_angle
     s, c = nm.sin(th), nm.cos(th)
@@ -197,12 +211,19 @@ def place_obstacle(case: Case, position: float, offset: float) -> ObstacleGeomet
     if ob.kind == "sphere":  # the contact normal at P, from the sphere's centre
         norm = nm.hypot(*(r_P - centre))
         towards = (centre - r_P) / norm if norm > 0.0 else towards
-    return obstacle_geometry(ob, centre, towards)
+    if ob.centre is None and _ground(ob, case):
+        centre = centre + np.asarray(case.base.motion(0.0)[0], float)
+    return obstacle_geometry(ob, centre, towards, case)
 
 
-def obstacle_geometry(ob: Obstacle, centre: np.ndarray, towards: np.ndarray) -> ObstacleGeometry:
-    """The arrays of obstacle ``ob`` at ``centre``; ``towards``: from the beam toward the obstacle (a plane's
-    default outward normal is its opposite; a support moves along the outward contact normal by default)."""
+def _ground(ob: Obstacle, case: Case) -> bool:
+    """Is ``ob`` fixed to the ground on a base that moves (else it is in the base frame, carried or still)?"""
+    return ob.fixed_to == "ground" and case.base.moving
+
+
+def obstacle_geometry(ob: Obstacle, centre: np.ndarray, towards: np.ndarray, case: Case) -> ObstacleGeometry:
+    """The arrays of obstacle ``ob`` of ``case`` at ``centre``; ``towards``: from the beam toward the obstacle (a
+    plane's default outward normal is its opposite; a support moves along the outward contact normal by default)."""
     if ob.kind == "sphere":
         kind, radius, normal = OBSTACLE_SPHERE, float(ob.radius), np.zeros(2)
         outward = -towards
@@ -214,4 +235,4 @@ def obstacle_geometry(ob: Obstacle, centre: np.ndarray, towards: np.ndarray) -> 
     if sup.compliant:
         u = np.array(sup.direction, float) if sup.direction is not None else outward
         support = np.array([sup.mass, sup.stiffness, sup.damping, u[0], u[1]], float)
-    return ObstacleGeometry(kind, centre, radius, normal, support)
+    return ObstacleGeometry(kind, centre, radius, normal, support, _ground(ob, case))

@@ -72,7 +72,7 @@ def _dof_map(e, a, T0, free):
 
 @fem_jit
 def assemble(
-    z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, g, gxi, gw,
+    z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw,
     cM, cC, cK, want_S,
     pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout,
     R, ab,
@@ -117,7 +117,7 @@ def assemble(
     if want_S:
         ab[:, :] = 0.0
     R0node = np.zeros(3)
-    _add_elements(X, V, A, T0, free, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab, R0node)
+    _add_elements(X, V, A, T0, free, l0, mu, EA, EI, field, gxi, gw, cM, cK, want_S, R, ab, R0node)
     # contact of each pair at its node or, anywhere, at its nearest point
     Jp = np.empty(3)
     Jg = np.empty(6)
@@ -138,7 +138,7 @@ def assemble(
 
 
 @fem_jit
-def _add_elements(X, V, A, T0, free, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S, R, ab, R0node):
+def _add_elements(X, V, A, T0, free, l0, mu, EA, EI, field, gxi, gw, cM, cK, want_S, R, ab, R0node):
     """Add each element's f_in + f_int - f_g to R and cM M_e + cK K_e to the band matrix ``ab`` (if ``want_S``),
     node 0's mapped onto theta with the weights T0; node 0's unmapped forces are summed into ``R0node``
     (:func:`assemble`)."""
@@ -157,7 +157,7 @@ def _add_elements(X, V, A, T0, free, l0, mu, EA, EI, g, gxi, gw, cM, cK, want_S,
     for e in range(l0.size):
         gather(X, V, A, e, xe, ve, ae)
         corotational_element(xe, l0[e], EA, EI, fe, Ke, want_S)
-        inertia_element(xe, ve, ae, l0[e], mu, g, gxi, gw, fin, Me, fg, G)
+        inertia_element(xe, ve, ae, l0[e], mu, field, gxi, gw, fin, Me, fg, G)
         for a in range(6):
             i, w = _dof_map(e, a, T0, free)
             idx[a] = i
@@ -253,7 +253,7 @@ def _anywhere_pair(
 @fem_jit
 def newton(
     z, zd, zdd, a, cM, cC, ca, scale, tol, max_iter, prescribed,
-    t_tau, rh, Jh, free, l0, mu, EA, EI, g, gxi, gw,
+    t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw,
     pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout,
     R, ab,
 ):  # fmt: skip
@@ -264,7 +264,7 @@ def newton(
     """
     for it in range(1, max_iter + 1):
         assemble(
-            z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, g, gxi, gw, cM, cC, 1.0, True,
+            z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw, cM, cC, 1.0, True,
             pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout, R, ab,
         )  # fmt: skip
         if prescribed:

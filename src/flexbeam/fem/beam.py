@@ -72,8 +72,13 @@ def joint_drive(case: Case) -> JointDrive:
         the fixed point O, or free.
     """
     joint = joint_of(case)
-    if case.base.moving:
-        raise ModelError("base: the FE reference holds the joint O fixed; run a moving base with a modal method")
+    grounded = [i for i, ob in enumerate([case.obstacle, *case.obstacles]) if ob.fixed_to == "ground"]
+    if case.base.moving and grounded:
+        name = "obstacle" if grounded[0] == 0 else f"obstacles[{grounded[0] - 1}]"
+        raise ModelError(
+            f"{name}.fixed_to: the FE reference carries its obstacles with a moving base; run an obstacle fixed to "
+            "the ground with a modal method"
+        )
     if joint.kind not in JOINT_KINDS:
         raise ModelError(
             f"joint.kind: the FE reference models a {' or '.join(map(repr, JOINT_KINDS))} joint, not {joint.kind!r}"
@@ -210,8 +215,9 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
         return 0.0 if self.prescribed else self.drive.torque(t)
 
     # ---------------------------------------------------------- equations
-    def model_args(self) -> tuple:
-        """Arguments of the kernels after the state: hub (none if ``free``), mesh, material, gravity, quadrature."""
+    def model_args(self, t: float | None = None) -> tuple:
+        """Arguments of the kernels after the state: hub (none if ``free``), mesh, material, the uniform field the
+        beam feels at ``t`` (:meth:`field`; None: gravity alone, for the energies), quadrature."""
         return (
             self.hub_radius,
             self.hub_inertia,
@@ -220,10 +226,19 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
             self.mu,
             self.EA,
             self.EI,
-            self.gravity,
+            self.field(t),
             GAUSS_XI,
             GAUSS_W,
         )
+
+    def field(self, t: float | None = None) -> np.ndarray:
+        """The uniform field (g_x, g_y) on the beam at ``t``: gravity (0, -g), less the base's acceleration a_O(t) on a
+        moving base, whose frame (origin at O, axes parallel to the plane's) the FE reference then works in, as the
+        modal model does (docs/formulation.md, *A moving base*).  ``t`` None: gravity alone."""
+        if t is None or not self.case.base.moving:
+            return np.array([0.0, -self.gravity])
+        a = self.case.base.motion(t)[2]
+        return np.array([-a[0], -self.gravity - a[1]])
 
     def contact_args(self) -> tuple:
         """Arguments of the kernels describing the pairs' points and obstacles (arrays over the pairs)."""
@@ -258,7 +273,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
             zd,
             zdd,
             self.torque(t),
-            *self.model_args(),
+            *self.model_args(t),
             cM,
             cC,
             cK,

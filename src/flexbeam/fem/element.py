@@ -212,28 +212,30 @@ def _shape_G(xi, l0, ell, c, s, vb, G):
 
 
 @fem_jit
-def inertia_element(xe, ve, ae, l0, mu, g, gxi, gw, fin, Me, fg, G):
+def inertia_element(xe, ve, ae, l0, mu, field, gxi, gw, fin, Me, fg, G):
     """Inertia force, mass matrix, gravity force and energies of one element.
 
     Parameters
     ----------
     xe, ve, ae
         Element coordinates, velocities and accelerations (6 each).
-    l0, mu, g
-        Initial length [m], line density [kg/m], gravity [m/s^2] (along -Y).
+    l0, mu, field
+        Initial length [m], line density [kg/m], the uniform field (g_x, g_y) [m/s^2]: gravity (0, -g), or on a
+        moving base in its frame (0, -g) - a_O(t).
     gxi, gw
         Gauss points and weights on [0, 1].
     fin, Me, fg
         Output (filled): inertia force int mu G^T r'', mass int mu G^T G,
-        generalised gravity force -g int mu G^T e_Y.
+        generalised gravity force int mu G^T (g_x, g_y).
     G
         Work array (2 x 6).
 
     Returns
     -------
     T, V_g
-        Kinetic and gravitational energy [J].
+        Kinetic and gravitational energy [J] (the field's potential -int mu (g_x x + g_y y)).
     """
+    g, gx = -field[1], field[0]  # (0, -g): the fixed joint's operations, bit for bit
     dx, dy, ell, c, s, t1, t2 = element_chord(xe)
     ddx, ddy, bdot, ldot = chord_rates(ve, ell, c, s)
     t1d = ve[2] - bdot
@@ -270,9 +272,13 @@ def inertia_element(xe, ve, ae, l0, mu, g, gxi, gw, fin, Me, fg, G):
         T += 0.5 * wq * (vx * vx + vy * vy)
         ry = (1.0 - xi) * xe[1] + xi * xe[4] + vb * c
         Vg += wq * g * ry
+        if gx != 0.0:
+            Vg -= wq * gx * ((1.0 - xi) * xe[0] + xi * xe[3] - vb * s)
         for a in range(6):
             fin[a] += wq * (G[0, a] * ax + G[1, a] * ay)
             fg[a] -= wq * g * G[1, a]
+            if gx != 0.0:
+                fg[a] += wq * gx * G[0, a]
             for b in range(6):
                 Me[a, b] += wq * (G[0, a] * G[0, b] + G[1, a] * G[1, b])
     return T, Vg

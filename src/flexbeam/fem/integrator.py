@@ -199,7 +199,7 @@ class FemIntegrator:
             NEWTON_MAX_ITER,
             beam.prescribed,
             beam.torque(t1),
-            *beam.model_args(),
+            *beam.model_args(t1),
             *beam.contact_args(),
             cs.active,
             cs.params,

@@ -9,12 +9,12 @@ import math
 import numpy as np
 
 from .assembly import node_states
-from .element import corotational_element, inertia_element, point_on_element
+from .element import GAUSS_W, GAUSS_XI, corotational_element, inertia_element, point_on_element
 from .jit import fem_jit
 
 
 @fem_jit
-def state_energies(z, zd, rh, Jh, free, l0, mu, EA, EI, g, gxi, gw):
+def state_energies(z, zd, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw):
     """(kinetic, elastic, gravitational) energy [J] of the mesh and hub (a ``free`` beam has none)."""
     nel = l0.size
     nn = nel + 1
@@ -40,7 +40,7 @@ def state_energies(z, zd, rh, Jh, free, l0, mu, EA, EI, g, gxi, gw):
             ve[k] = V[e, k]
             ve[3 + k] = V[e + 1, k]
         Ve += corotational_element(xe, l0[e], EA, EI, fe, Ke, False)
-        Te, Vge = inertia_element(xe, ve, ve, l0[e], mu, g, gxi, gw, fin, Me, fg, G)
+        Te, Vge = inertia_element(xe, ve, ve, l0[e], mu, field, gxi, gw, fin, Me, fg, G)
         T += Te
         Vg += Vge
     return T, Ve, Vg
@@ -70,6 +70,31 @@ def normal_velocities(z, zd, rh, free, theta, l0, elems, xis):
     return out
 
 
+@fem_jit
+def momentum(z, zd, rh, free, l0, mu, gxi, gw):
+    """The beam's linear momentum int mu r' dx [kg m/s] (the rate of its first moment; a hub's centre is at O), by
+    the elements' Gauss points."""
+    nn = l0.size + 1
+    X = np.empty((nn, 3))
+    V = np.empty((nn, 3))
+    A = np.empty((nn, 3))
+    node_states(z, zd, zd, rh, free, X, V, A)
+    xe = np.empty(6)
+    ve = np.empty(6)
+    out = np.zeros(2)
+    for e in range(l0.size):
+        for k in range(3):
+            xe[k] = X[e, k]
+            xe[3 + k] = X[e + 1, k]
+            ve[k] = V[e, k]
+            ve[3 + k] = V[e + 1, k]
+        for q in range(gxi.size):
+            _, v = point_on_element(xe, ve, l0[e], gxi[q])
+            out[0] += gw[q] * mu * l0[e] * v[0]
+            out[1] += gw[q] * mu * l0[e] * v[1]
+    return out
+
+
 class BeamOutputs:
     """The output quantities of :class:`~flexbeam.fem.beam.FemBeam` (a mixin: it reads the beam's mesh ``l0``,
     properties, ``measuring`` points and :meth:`~flexbeam.fem.beam.FemBeam.nodes`)."""
@@ -95,6 +120,15 @@ class BeamOutputs:
         if theta is None:
             theta = self.rigid(z, zd).angle if self.free else float(z[0])
         return normal_velocities(z, zd, self.hub_radius, self.free, theta, self.l0, *self._meas)
+
+    def base_power(self, t: float, z: np.ndarray, zd: np.ndarray) -> float:
+        """The rate of the base's work on the beam, -a_O(t) . int mu r' dx [W] (0 without base motion): in the base
+        frame the field's share -a_O does work on the beam's momentum (docs/formulation.md, *A moving base*)."""
+        if not self.case.base.moving:
+            return 0.0
+        a = self.case.base.motion(t)[2]
+        P = momentum(z, zd, self.hub_radius, self.free, self.l0, self.mu, GAUSS_XI, GAUSS_W)
+        return -float(a[0] * P[0] + a[1] * P[1])
 
     def tip_deflection(self, z: np.ndarray, rigid=None) -> float:
         """Transverse tip displacement in the hub frame, e2(theta) . r_tip [m]; a free beam's in its mean-axis

@@ -234,7 +234,7 @@ class ReferenceStepper:
         A point moves at most |v_P| h (to first order) in a step h; allowing a quarter of the obstacle's size
         (sphere radius; 1 mm for a point) or half the current gap keeps at least one event check point inside the
         obstacle, and the Hermite check on (delta, delta') catches a shallower dip.  A half-plane cannot be
-        passed through.
+        passed through.  An obstacle fixed to the ground on a moving base adds the base's speed |v_O|.
         """
         sysm = self.system
         out = math.inf
@@ -243,7 +243,7 @@ class ReferenceStepper:
             if mode != ContactMode.NONE or ob.kind != 0:
                 continue
             _, v, _, _ = sysm.point_state(t, y, sysm.pair_point(k))
-            speed = math.hypot(v[0], v[1])
+            speed = math.hypot(v[0], v[1]) + (math.hypot(*sysm.case.base.motion(t)[1]) if ob.ground else 0.0)
             if speed > 0.0:
                 out = min(out, max(0.25 * (ob.radius or 1e-3), 0.5 * sysm.gap(t, y, k)[0]) / speed)
         return out

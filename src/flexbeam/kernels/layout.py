@@ -8,7 +8,8 @@ Model buffer (float64; integers stored exactly)::
      Mc (n x n), Mqq (n x n), mtq (n), K (n x n), sf (n), G (n x n), d (n),
      with n_a > 0 (axial modes): M_aa, K_a (their diagonals), m_ta, s_a (n_a each), S (n_a x n),
      per point:    base, offset, phi (n), dphi (n), H (n x n), with n_a > 0: Phi_a (n_a),
-     per obstacle: cx, cy, radius, nx, ny, m_s, k_s, c_s, u_x, u_y,
+     per obstacle: cx, cy, radius, nx, ny, m_s, k_s, c_s, u_x, u_y, ground (1: fixed to the ground, not carried by
+                   a moving base),
      per pair:     point, obstacle, anywhere (0 a fixed point, 1 the capsule's nearest point, 2 flat end faces),
      hub radius, nst, surface c, first_order,
      with nst > 0 (contact anywhere): stations x (nst), Psi, Psi', Psi'' (nst x n each), H (nst x n x n),
@@ -45,7 +46,7 @@ if TYPE_CHECKING:
     from ..model.beam import ModalBeam, PointData
     from ..model.stations import StationTable
 
-LAYOUT_VERSION = 3
+LAYOUT_VERSION = 4
 
 #: columns of the kernels' ``outputs`` (``FB_NCOLS`` in C), in order
 OUTPUT_COLUMNS = (
@@ -102,6 +103,7 @@ def pack_model(
             np.array([o.radius]),
             np.asarray(o.normal, float),
             np.asarray(o.support, float),
+            np.array([float(o.ground)]),
         ]
     parts.append(np.asarray(pairs, float).reshape(-1, 3).ravel())
     if stations is None:

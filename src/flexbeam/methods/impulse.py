@@ -6,8 +6,9 @@ Delassus matrix W = J M^-1 J^T, the impulses P solve the linear complementarity 
 
     v+ = v- + W P,    P >= 0,    v+_i + e_i v-_i >= 0,    P_i (v+_i + e_i v-_i) = 0,
 
-and z'^+ = z'^- + M^-1 J^T P; the coordinates do not change.  For one pair this is P = -(1 + e) v- / W, so that
-v+ = -e v-, and the impulse does the work W_c = -(1 - e^2) (v-)^2 / (2 W) <= 0.  For several pairs with one common
+and z'^+ = z'^- + M^-1 J^T P; the coordinates do not change (v: the normal velocities relative to the obstacles,
+J z' plus an obstacle's own n . v_O on a moving base).  For one pair this is P = -(1 + e) v- / W, so that v+ = -e v-,
+and the impulse does the work W_c = -(1 - e^2) (v-)^2 / (2 W) <= 0.  For several pairs with one common
 e the impulses are (1 + e) times those of the plastic (e = 0) problem, whose map is a projection in the kinetic
 metric, so the energy never increases (Glocker's energetic consistency); with different e_i it can (a known limit
 of Newton's law at simultaneous impacts).  A pair that the solution leaves with v+_i > -e_i v-_i separates
@@ -93,21 +94,33 @@ def solve_impact_lcp(W: np.ndarray, v_minus: np.ndarray, e: np.ndarray) -> np.nd
     return best
 
 
+def obstacle_drift(system: BeamSystem, pairs, gaps, v_beam: np.ndarray) -> np.ndarray:
+    """Each pair's normal velocity of the beam relative to its obstacle less the beam's own, J z': n . v_O for an
+    obstacle fixed to the ground on a moving base (its gap rate less J z'), else exactly 0."""
+    ground = [system.contact.obstacles[system.contact.pairs[k].obstacle].ground for k in pairs]
+    return np.array([g[1] - v if on else 0.0 for g, v, on in zip(gaps, v_beam, ground)])
+
+
 def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs=(0,)) -> Jump:
     """Apply the impulse-momentum map at the given contact ``pairs`` with their coefficients of ``restitution``
     (one number for all, or one per pair).
 
     The energy the impulses remove is added to the dissipated-energy integral and the impulsive joint work
     (prescribed theta only) to the drive-work integral, so that the total energy stays continuous across the jump.
+    Against an obstacle fixed to the ground on a moving base the normal velocities are relative to the obstacle
+    (J z' + n . v_O, the gap's rate), and the work -P n . v_O its motion does goes to the work integral.
     """
     pairs = list(pairs)
     e = np.broadcast_to(np.asarray(restitution, float), (len(pairs),)).copy()
     if any(system.contact.pairs[k].frictional for k in pairs):
         return frictional_jump(system, t, y, e, pairs)
     M = system.mass_matrix(t, y)
-    J = np.array([system.gap(t, y, k)[3] for k in pairs])
+    gaps = [system.gap(t, y, k) for k in pairs]
+    J = np.array([g[3] for g in gaps])
     zd = system.velocities(t, y)
     v_minus = nm.matmul(J, zd)
+    drift = obstacle_drift(system, pairs, gaps, v_minus)
+    v_minus = v_minus + drift
     free = slice(system.ngiven, None)
     Mr, Jr = M[free, free], J[:, free]
     T_minus = system.energies(t, y)["kinetic"]
@@ -119,7 +132,7 @@ def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs
     zd_plus = zd.copy()
     zd_plus[free] += nm.matmul(MinvJ, P)
     y_plus = system.with_velocities(t, y, zd_plus)
-    v_plus = nm.matmul(J, zd_plus)
+    v_plus = nm.matmul(J, zd_plus) + drift
     T_plus = system.energies(t, y_plus)["kinetic"]
     work_contact = 0.5 * nm.dot(P, v_minus + v_plus)
     y_plus[-2] += -work_contact
@@ -143,12 +156,14 @@ def frictional_jump(system: BeamSystem, t: float, y: np.ndarray, e: np.ndarray, 
     k = pairs[0]
     pair = system.contact.pairs[k]
     M = system.mass_matrix(t, y)
-    _, _, vt, Jn, Jt = system.tangent(t, y, k)
+    _, rate, vt, Jn, Jt = system.tangent(t, y, k)
     zd = system.velocities(t, y)
     free = slice(system.ngiven, None)
     Mr, JJ = M[free, free], np.vstack((Jt, Jn))[:, free]
     T_minus = system.energies(t, y)["kinetic"]
-    v_minus = nm.matmul(np.vstack((Jt, Jn)), zd)
+    # relative to the obstacle (its own velocity on a moving base when fixed to the ground: impulse_jump)
+    v_minus = np.array([vt, rate])
+    drift = v_minus - nm.matmul(np.vstack((Jt, Jn)), zd)
     if JJ.shape[1] == 0:
         return Jump(y.copy(), np.zeros(1), v_minus[1:], v_minus[1:], T_minus, T_minus, np.zeros(1))
     MinvJ = nm.solve(Mr, np.ascontiguousarray(JJ.T))
@@ -159,7 +174,7 @@ def frictional_jump(system: BeamSystem, t: float, y: np.ndarray, e: np.ndarray, 
     zd_plus = zd.copy()
     zd_plus[free] += nm.matmul(MinvJ, P)
     y_plus = system.with_velocities(t, y, zd_plus)
-    v_plus = nm.matmul(np.vstack((Jt, Jn)), zd_plus)
+    v_plus = nm.matmul(np.vstack((Jt, Jn)), zd_plus) + drift
     T_plus = system.energies(t, y_plus)["kinetic"]
     work_contact = 0.5 * nm.dot(P, v_minus + v_plus)
     y_plus[-2] += -work_contact

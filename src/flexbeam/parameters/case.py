@@ -146,7 +146,8 @@ class Case(Section):
         return self
 
     def _axial(self) -> None:
-        """The axial modes' initial values and what does not model them yet: one line naming the field."""
+        """The axial modes' initial values and what does not model them yet, and a base table that does not cover the
+        run: one line naming the field."""
         init, na = self.initial, self.model.axial_modes
         for name in ("axial_displacement", "axial_velocity"):
             values = getattr(init, name)
@@ -158,6 +159,12 @@ class Case(Section):
             raise ValueError(
                 "model.axial_modes: a moving base (base) does not model the axial modes yet; set "
                 "model.axial_modes = 0 or leave the base still"
+            )
+        table = self.base.table
+        if table is not None and not (table[0][0] <= 0.0 and table[-1][0] >= self.solver.t_end):
+            raise ValueError(
+                f"base.table: covers t = {table[0][0]:g} .. {table[-1][0]:g} s; the run needs 0 .. solver.t_end = "
+                f"{self.solver.t_end:g} s (a table is not extrapolated)"
             )
 
     def _free_beam(self) -> None:

@@ -57,6 +57,10 @@ class Obstacle(Section):
     touches the contact point P with the beam straight at ``initial.impact_angle``
     (sphere directly beneath P along the beam normal; plane tangent there).
     ``support``: rigid, or a mass-spring-damper (see :class:`Support`).
+    ``fixed_to``: on a moving base (``[base]``), ``"base"`` (default) carries the obstacle with the joint O, its
+    ``centre`` fixed in the base frame; ``"ground"`` holds it still in the plane, its ``centre`` in the inertial
+    axes (where O is at r_O = 0), so that the beam sees it at ``centre`` - r_O(t) (docs/formulation.md, *A moving
+    base*).  Without base motion the two are the same.
     No obstacle may overlap the beam's body at t = 0 (a contact may start closed, gap 0).
     """
 
@@ -75,6 +79,11 @@ class Obstacle(Section):
         0.3, description="obstacle Poisson ratio [-] (isotropic: -1 < nu < 1/2)"
     )
     support: Support = Field(default_factory=Support)
+    fixed_to: Literal["base", "ground"] = Field(
+        "base",
+        description="on a moving base: 'base' (carried with the joint O) or 'ground' (still in the plane: the beam "
+        "sees it at centre - r_O(t))",
+    )
 
     @model_validator(mode="after")
     def _normal_is_unit(self) -> Obstacle:

@@ -50,9 +50,13 @@ def _read_source(source: str | Path) -> dict[str, Any]:
         except OSError as exc:
             raise ParameterError(f"case: cannot read '{path}': {exc.strerror}") from None
         try:
-            return tomllib.loads(text)
+            data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise ParameterError(f"case: '{path}' is not valid TOML: {exc}") from None
+        base = data.get("base")
+        if isinstance(base, dict) and isinstance(base.get("table"), str):  # a CSV path relative to the case file
+            base["table"] = str(path.parent / base["table"])
+        return data
     names = builtin_cases()
     if str(source) not in names:
         raise ParameterError(

@@ -114,7 +114,8 @@ static double base_boundary_at(const fb_phase *ph, double t, const double *eta) 
 
 /* The bookkeeping over a step [t, t + h] whose nodes and end are in w and st: the nodal rates of E_d and W (red,
  * rwd) and their increments, E_d by Gauss quadrature, W as documented at the top of this file; on a moving base W
- * also holds the base's work, its integrand j_O . A s in the nodal rates and its boundary term -a_O . A s. */
+ * also holds the base's work, its integrand j_O . A s in the nodal rates and its boundary term -a_O . A s, and the
+ * work of the obstacles fixed to the ground, -sum_k F_k n_k . v_O (fb_ground_rate), in the nodal rates. */
 void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, const double *eta, const double *v,
                    const fb_step *st, double *red, double *rwd, double *dEd, double *dW) {
     const fb_tables *tb = fb_gauss();
@@ -124,7 +125,11 @@ void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, con
     for (int j = 0; j < FB_P; j++) {
         fb_node_rates(ph, &w->node[j], w->F, w->Fk, j, &red[j], &rwd[j]);
         if (moving) {
-            double r = fb_base_work_rate(m, t + tb->c[j] * h, &w->node[j].frame, w->node[j].z + off);
+            const fb_node *nd = &w->node[j];
+            double Fj[FB_MAX_PAIRS];
+            for (int k = 0; k < ph->c.npairs; k++) Fj[k] = w->F[k][j];
+            double r = fb_base_work_rate(m, t + tb->c[j] * h, &nd->frame, nd->z + off) +
+                       fb_ground_rate(m, &nd->frame, ph->c.mode, Fj, nd->gap);
             rwd[j] += r;
             wb += tb->w[j] * r;
         }

@@ -207,7 +207,8 @@ static double max_forcing(const fb_dense *d, int k) {
 
 /* Is the obstacle out of reach within the step?  Each mode's velocity stays below its free amplitude
  * sqrt(v^2 + w^2 eta^2) plus h LEBESGUE max_j |f_jk|, so the gap's rate stays below R = sum_k |j_k| (that bound)
- * (+ |J_theta| max|theta'| for a prescribed theta: the joint's rate_bound; |J_theta| <= |r_P|); far
+ * (+ |J_theta| max|theta'| for a prescribed theta: the joint's rate_bound; |J_theta| <= |r_P|; + max|v_O| for an
+ * obstacle fixed to the ground on a moving base, which comes at P with the base's speed); far
  * if gap0 > 2 R h (a factor 2 for the variation of J over the step). */
 static int far(const fb_dense *d, const double *jm, double gap0) {
     if (gap0 <= 0.0) return 0;
@@ -225,6 +226,7 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
         double rP = m->pairs[d->pair].anywhere ? m->points[1].base + m->surface : P->base + fabs(P->offset);
         R += rP * given;
     }
+    if (m->obstacles[m->pairs[d->pair].obstacle].ground) R += fb_base_speed_bound(m, d->t0, d->t0 + d->h);
     return gap0 > 2.0 * R * d->h;
 }
 

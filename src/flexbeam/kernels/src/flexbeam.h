@@ -15,12 +15,13 @@
 #include "detmath.h" /* sin, cos, exp, pow with the same bits on every machine */
 #include "joint.h"   /* the joint seam: the frame's motion, its mass and forces, the drive */
 
-#define FB_LAYOUT_VERSION 3
+#define FB_LAYOUT_VERSION 4
 #define FB_PI 3.14159265358979323846
 #define FB_MAX_POINTS 64
 #define FB_MAX_OBSTACLES 8
 #define FB_MAX_PAIRS 8
-#define FB_MAX_JOINT_PARAMS 64 /* the joint's parameters in the model buffer (joint_<kind>.c reads them) */
+#define FB_MAX_JOINT_PARAMS 64 /* the joint's given coordinates (accelerations) at most */
+#define FB_MAX_JOINT_BUFFER 1000000 /* the joint's parameters in the model buffer (a moving base's table rows) */
 #define FB_P 4          /* Gauss-Legendre collocation nodes per step */
 #define FB_NPTS (FB_P + 1) /* the nodes and the step end */
 
@@ -37,9 +38,11 @@ typedef struct {
 } fb_point;
 
 /* An obstacle: sphere (centre, radius) or half-plane (point, outward unit normal), optionally on a
- * support of mass ms, stiffness ks, damping cs along the unit axis (ux, uy); ms = 0: rigidly held. */
+ * support of mass ms, stiffness ks, damping cs along the unit axis (ux, uy); ms = 0: rigidly held.  On a moving base
+ * an obstacle is carried by the base (fixed in the base frame) unless ``ground``. */
 typedef struct {
     int kind;
+    int ground; /* fixed to the ground, not carried by a moving base: at C - r_O(t) in the base frame */
     double cx, cy, radius, nx, ny;
     double ms, ks, cs, ux, uy;
 } fb_obstacle;
@@ -59,7 +62,7 @@ typedef struct fb_model_s {
     int nrigid; /* the floating frame's coordinates, leading the full coordinates [rigid, q] (1: theta) */
     int ngiven; /* of them, those the joint gives as functions of time (not in the state: 1 for theta(t) prescribed) */
     int njp;    /* the joint's parameters jp (joint_<kind>.c reads them) */
-    double jp[FB_MAX_JOINT_PARAMS];
+    const double *jp; /* into the model buffer */
     double Jc, m1, g;
     const double *Mc, *Mqq, *mtq, *K, *sf, *G, *d; /* the bending modes': nb x nb, nb x nb, nb, nb x nb, nb, nb x nb, nb */
     const double *Maa, *Ka, *mta, *sa, *S;         /* the axial modes' (na > 0): na, na, na, na, na x nb (axial.c) */
@@ -122,7 +125,9 @@ void fb_state_split(const fb_model *m, double t, const double *y, fb_frame *f, c
 int fb_base_unpack(const fb_model *m);
 int fb_base_moving(const fb_model *m);
 void fb_base_motion(const fb_model *m, double t, double *r, double *v, double *a, double *j);
-void fb_base_field(const fb_model *m, double t, double *field);
+double fb_base_speed_bound(const fb_model *m, double t0, double t1);
+double fb_base_next_knot(const fb_model *m, double t, double tol);
+double fb_base_power(const fb_model *m, double t, const fb_frame *f, const double *q, const double *qd);
 double fb_base_work_rate(const fb_model *m, double t, const fb_frame *f, const double *q);
 double fb_base_boundary(const fb_model *m, double t, const fb_frame *f, const double *q);
 double fb_quad(const double *A, const double *x, int n);
@@ -131,8 +136,9 @@ void fb_matvec(const double *A, const double *x, int n, double *out);
 double fb_dot(const double *a, const double *b, int n);
 void fb_point_kinematics(const fb_model *m, const fb_point *P, const fb_frame *f, const double *q, const double *qd,
                          fb_kin *out, double *dr);
-fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int nz, double s, double sd,
-                    double *J);
+fb_gap fb_gap_state(const fb_obstacle *o, const fb_frame *f, const fb_kin *k, const double *dr, int nz, double s,
+                    double sd, double *J);
+double fb_ground_rate(const fb_model *m, const fb_frame *f, const int *mode, const double *F, const fb_gap *g);
 fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                    double sd, int want_acc, double *J);
 fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,

@@ -23,6 +23,9 @@ typedef struct {
     double th, thd, thdd;
     double R[2], Rd[2];
     double field[2]; /* the uniform field on the beam in the plane's axes: (0, -g), less a_O(t) on a moving base */
+    /* a moving base's r_O(t), v_O(t), a_O(t) (zero otherwise): an obstacle fixed to the ground sits at C - r_O in the
+     * base frame (fb_gap_state) */
+    double rO[2], vO[2], aO[2];
 } fb_frame;
 
 /* A point's motion relative to the floating frame, in its axes: position rho, velocity rho' and the velocity-product

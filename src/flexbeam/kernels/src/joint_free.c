@@ -43,6 +43,7 @@ static void free_split(const fb_model *m, double t, const double *z, const doubl
     f->thdd = 0.0;
     f->field[0] = 0.0;
     f->field[1] = -m->g;
+    f->rO[0] = f->rO[1] = f->vO[0] = f->vO[1] = f->aO[0] = f->aO[1] = 0.0;
     *q = z + 3;
     *qd = zd + 3;
 }

@@ -64,11 +64,14 @@ static void rev_motion(const fb_model *m, double t, double *th, double *thd, dou
 static void rev_split(const fb_model *m, double t, const double *z, const double *zd, fb_frame *f, const double **q,
                   const double **qd) {
     f->R[0] = f->R[1] = f->Rd[0] = f->Rd[1] = 0.0; /* the frame turns about O, the origin */
-    if (fb_base_moving(m)) {
-        fb_base_field(m, t, f->field); /* the base frame: O's acceleration as an inertial field */
+    if (fb_base_moving(m)) { /* the base frame: O's acceleration as an inertial field */
+        fb_base_motion(m, t, f->rO, f->vO, f->aO, NULL);
+        f->field[0] = -f->aO[0];
+        f->field[1] = -m->g - f->aO[1];
     } else {
         f->field[0] = 0.0;
         f->field[1] = -m->g;
+        f->rO[0] = f->rO[1] = f->vO[0] = f->vO[1] = f->aO[0] = f->aO[1] = 0.0;
     }
     if (m->ngiven) {
         rev_motion(m, t, &f->th, &f->thd, &f->thdd);

@@ -18,7 +18,8 @@
  * nmeasure, obstacle kinds (nobstacles),
  * Jc, m1, g, the joint's parameters (njp), Mc, Mqq, mtq, K, sf, G, d (the nb = n - na bending modes'), with na > 0:
  * Maa, Ka, mta, sa (na each), S (na x nb),
- * per point: base, offset, phi, dphi, H (nb), Phi_a (na); per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy;
+ * per point: base, offset, phi, dphi, H (nb), Phi_a (na); per obstacle: cx, cy, radius, nx, ny, ms, ks, cs, ux, uy,
+ * ground;
  * per pair: point, obstacle, anywhere; hub_radius, nst, surface, first_order, then with nst > 0: x (nst), Psi, Psi', Psi'' (nst x n each),
  * H (nst x n x n), max |Psi| (n), max |Psi'| (n), with na > 0 Phi_a, Phi_a' (nst x na each), max |Phi_a| (na)]
  * (flexbeam.kernels.layout.pack_model writes it). */
@@ -38,21 +39,21 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     if (n < 0 || n > 64 || na < 0 || na > n || m->npoints < 1 || m->npoints > FB_MAX_POINTS || m->nobstacles < 0 ||
         m->nobstacles > FB_MAX_OBSTACLES || m->npairs < 0 || m->npairs > FB_MAX_PAIRS || m->nmeasure < 0 ||
         m->nmeasure > m->npoints - 2 || m->joint < 0 || m->joint >= FB_JOINT_KINDS || m->njp < 0 ||
-        m->njp > FB_MAX_JOINT_PARAMS ||
+        m->njp > FB_MAX_JOINT_BUFFER ||
         nbuf < nints + (size_t)m->nobstacles)
         return -1;
     nints += (size_t)m->nobstacles;
     const double *f = buf + nints;
     size_t nf = nbuf - nints;
     size_t need = 3 + (size_t)m->njp + 4 * (size_t)nb * nb + 3 * (size_t)nb + (size_t)na * (4 + (size_t)nb) +
-                  (size_t)m->npoints * (2 + 2 * nb + (size_t)nb * nb + (size_t)na) + 10 * (size_t)m->nobstacles +
+                  (size_t)m->npoints * (2 + 2 * nb + (size_t)nb * nb + (size_t)na) + 11 * (size_t)m->nobstacles +
                   3 * (size_t)m->npairs + 4;
     if (nf < need) return -2;
     const double *p = f;
     m->Jc = *p++;
     m->m1 = *p++;
     m->g = *p++;
-    for (int i = 0; i < m->njp; i++) m->jp[i] = *p++;
+    m->jp = p; p += m->njp;
     m->Mc = p; p += nb * nb;
     m->Mqq = p; p += nb * nb;
     m->mtq = p; p += nb;
@@ -80,6 +81,7 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
         o->kind = (int)ints[9 + i];
         o->cx = *p++; o->cy = *p++; o->radius = *p++; o->nx = *p++; o->ny = *p++;
         o->ms = *p++; o->ks = *p++; o->cs = *p++; o->ux = *p++; o->uy = *p++;
+        o->ground = *p++ != 0.0;
         if (i > 0 && o->ms > 0.0) return -3; /* only obstacle 0 may stand on a support */
     }
     for (int k = 0; k < m->npairs; k++) {
@@ -240,12 +242,19 @@ void fb_point_kinematics(const fb_model *m, const fb_point *P, const fb_frame *f
 
 /* Gap delta to obstacle o displaced by s along its support axis, its rate, gamma = delta'' at z'' = 0,
  * the normal and J = d delta / dz (nz entries: the full coordinates, from dr) and Js = d delta / ds.
- * Sphere: delta = |r - c| - r_s, delta'' = n.r'' + (|r'|^2 - (n.r')^2) / |r - c|; half-plane: delta = n.(r - c). */
-fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int nz, double s, double sd,
-                    double *J) {
+ * Sphere: delta = |r - c| - r_s, delta'' = n.r'' + (|r'|^2 - (n.r')^2) / |r - c|; half-plane: delta = n.(r - c).
+ * An obstacle fixed to the ground (o->ground, on a moving base) sits at C - r_O(t) in the base frame f: the point's
+ * motion relative to it gains r_O, v_O and a_O (a time-explicit term of gamma; /work/research/moving_base.md, 4). */
+fb_gap fb_gap_state(const fb_obstacle *o, const fb_frame *f, const fb_kin *k, const double *dr, int nz, double s,
+                    double sd, double *J) {
     fb_gap out;
     double cx = o->cx + s * o->ux, cy = o->cy + s * o->uy;
-    double vx = k->v[0] - sd * o->ux, vy = k->v[1] - sd * o->uy;
+    double vx = k->v[0] - sd * o->ux, vy = k->v[1] - sd * o->uy, ax = k->a0[0], ay = k->a0[1];
+    if (o->ground && f) {
+        cx -= f->rO[0], cy -= f->rO[1];
+        vx += f->vO[0], vy += f->vO[1];
+        ax += f->aO[0], ay += f->aO[1];
+    }
     if (o->kind == FB_SPHERE) {
         double dx = k->r[0] - cx, dy = k->r[1] - cy;
         double dist = sqrt(dx * dx + dy * dy);
@@ -253,13 +262,13 @@ fb_gap fb_gap_state(const fb_obstacle *o, const fb_kin *k, const double *dr, int
         out.ny = dy / dist;
         out.delta = dist - o->radius;
         out.rate = out.nx * vx + out.ny * vy;
-        out.gamma = out.nx * k->a0[0] + out.ny * k->a0[1] + (vx * vx + vy * vy - out.rate * out.rate) / dist;
+        out.gamma = out.nx * ax + out.ny * ay + (vx * vx + vy * vy - out.rate * out.rate) / dist;
     } else {
         out.nx = o->nx;
         out.ny = o->ny;
         out.delta = o->nx * (k->r[0] - cx) + o->ny * (k->r[1] - cy);
         out.rate = o->nx * vx + o->ny * vy;
-        out.gamma = o->nx * k->a0[0] + o->ny * k->a0[1];
+        out.gamma = o->nx * ax + o->ny * ay;
     }
     out.Js = o->ms > 0.0 ? -(out.nx * o->ux + out.ny * o->uy) : 0.0;
     out.speed = sqrt(vx * vx + vy * vy);
@@ -293,13 +302,13 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double 
     fb_kin k = {.want_acc = want_acc};
     if (o->ms <= 0.0) s = sd = 0.0;
     double x = pair_point(m, pr, o, f, q, qd, s, &k, J ? dr : NULL);
-    fb_gap g = fb_gap_state(o, &k, J ? dr : NULL, fb_nfull(m), s, sd, J);
+    fb_gap g = fb_gap_state(o, f, &k, J ? dr : NULL, fb_nfull(m), s, sd, J);
     g.x = x;
     return g;
 }
 
 /* fb_pair_gap with J, and along the contact's tangent t = (-n_y, n_x) (the normal turned by +90 degrees) the
- * Jacobian Jt = t . dr/dz (nfull entries) and the slip velocity *vt = t . (v - the support's velocity): Coulomb
+ * Jacobian Jt = t . dr/dz (nfull entries) and the slip velocity *vt = t . (v - the obstacle's velocity): Coulomb
  * friction's kinematics (flexbeam.methods.friction). */
 fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                        double sd, double *J, double *Jt, double *vt) {
@@ -310,11 +319,12 @@ fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const dou
     if (o->ms <= 0.0) s = sd = 0.0;
     int N = fb_nfull(m);
     double x = pair_point(m, pr, o, f, q, qd, s, &k, dr);
-    fb_gap g = fb_gap_state(o, &k, dr, N, s, sd, J);
+    fb_gap g = fb_gap_state(o, f, &k, dr, N, s, sd, J);
     g.x = x;
-    double tx = -g.ny, ty = g.nx;
+    double tx = -g.ny, ty = g.nx, vx = k.v[0] - sd * o->ux, vy = k.v[1] - sd * o->uy;
+    if (o->ground) vx += f->vO[0], vy += f->vO[1]; /* relative to an obstacle fixed to the ground (fb_gap_state) */
     for (int i = 0; i < N; i++) Jt[i] = tx * dr[i] + ty * dr[N + i];
-    *vt = tx * (k.v[0] - sd * o->ux) + ty * (k.v[1] - sd * o->uy);
+    *vt = tx * vx + ty * vy;
     return g;
 }
 

@@ -200,6 +200,7 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     for (int j = 0; na && j < M; j++) sx[j] = sx1[j] = NAN;
     /* the obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction) */
     double p[2] = {o->cx + s * o->ux, o->cy + s * o->uy}, nrm[2] = {o->nx, o->ny}, c[2];
+    if (o->ground) p[0] -= f->rO[0], p[1] -= f->rO[1]; /* fixed to the ground: at C - r_O in the base frame */
     int sphere = o->kind == FB_SPHERE;
     if (sphere) {
         fb_joint(m)->to_body(m, f, p, 0, c);

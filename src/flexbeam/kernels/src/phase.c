@@ -145,16 +145,22 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
 }
 
 /* The next step's size and whether it is the phase's last: h is bounded by hmax and stretched to t_end when
- * within 1% of it (not after a cut); returns ADV_FULL, ADV_UNDERFLOW or ADV_STALLED when the phase must stop
- * here (the records are full, the step is below round-off, the step budget EFFORT_* is spent), else -1. */
-static int plan_step(double t, double t_end, double hmax, double rate, int retry, int nrec, int capacity,
-                     const double *info, double *h, int *last) {
+ * within 1% of it (not after a cut), and ends at the next knot of a base table inside it (fb_base_next_knot);
+ * returns ADV_FULL, ADV_UNDERFLOW or ADV_STALLED when the phase must stop here (the records are full, the step is
+ * below round-off, the step budget EFFORT_* is spent), else -1. */
+static int plan_step(const fb_model *m, double t, double t_end, double hmax, double rate, int retry, int nrec,
+                     int capacity, const double *info, double *h, int *last) {
     if (nrec >= capacity) return ADV_FULL;
     if (*h > hmax) *h = hmax;
     *last = 0;
     if (t + (retry ? 1.0 : 1.01) * *h >= t_end) {
         *h = t_end - t;
         *last = 1;
+    }
+    double knot = fb_base_next_knot(m, t, 1e-9 * *h);
+    if (knot < t + *h) {
+        *h = knot - t;
+        *last = 0;
     }
     if (*h < H_MIN_REL * fmax(fabs(t), 1.0)) return ADV_UNDERFLOW;
     if (info[1] + info[2] >= EFFORT_BASE + EFFORT_RATE * rate * (t - info[FB_INFO_T0])) return ADV_STALLED;
@@ -316,7 +322,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
     fb_gap gap0[FB_MAX_PAIRS];
     fb_step st;
     while (t < t_end) {
-        int last = 0, stop = plan_step(t, t_end, hmax, rate, retry, *nrec, capacity, info, &h, &last);
+        int last = 0, stop = plan_step(m, t, t_end, hmax, rate, retry, *nrec, capacity, info, &h, &last);
         if (stop >= 0) {
             code = stop;
             break;

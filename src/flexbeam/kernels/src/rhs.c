@@ -183,6 +183,8 @@ int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, d
         e.diss += e.o->cs * e.sd * e.sd;
     }
     if (accelerations(&e, tau, y, dy, &torque)) goto fail;
+    if (fb_base_moving(m)) /* the base's work and the ground obstacles' (base_motion.c) */
+        dy[size - 1] += fb_base_power(m, t, &e.fr, e.q, e.qd) + fb_ground_rate(m, &e.fr, c->mode, e.F, e.gp);
     if (F_out)
         for (int k = 0; k < S; k++) F_out[k] = e.F[k];
     if (torque_out) *torque_out = torque;

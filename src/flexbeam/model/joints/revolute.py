@@ -68,6 +68,18 @@ def initial_angle_guess(case: Case) -> float:
     return init.impact_angle
 
 
+def table_parameters(base) -> list[float]:
+    """The kernels' part of a base table (``base_motion.c``): [rows, max |T_x''|, max |T_y''|, per row t, x, y and
+    the spline's second derivatives x'', y''] ([0, 0, 0] without a table).  T'' is linear between the rows, so its
+    largest magnitude is at one."""
+    if base.spline is None:
+        return [0.0, 0.0, 0.0]
+    rows = np.asarray(base.table, float)
+    second = base.spline(rows[:, 0], 2)
+    peak = np.max(np.abs(second), axis=0)
+    return [float(len(rows)), float(peak[0]), float(peak[1]), *np.column_stack((rows, second)).ravel().tolist()]
+
+
 class RevoluteJoint(Joint):
     """A revolute joint at O with its drive."""
 
@@ -85,7 +97,8 @@ class RevoluteJoint(Joint):
 
     def parameters(self) -> list[float]:
         """[drive, profile, torque, spin rate, spin-up time, theta0] (``joint_revolute.c``), then with a moving base
-        [count, a_x, a_y, per harmonic: axis (0 x, 1 y), amplitude, 2 pi k f, phase] (``base_motion.c``)."""
+        [count, a_x, a_y, per harmonic: axis (0 x, 1 y), amplitude, 2 pi k f, phase] and the table
+        (:func:`table_parameters`; ``base_motion.c``)."""
         d = self.drive.spec
         out = [float(DRIVES[d.kind]), float(PROFILES[d.profile]), d.torque if d.kind == "torque" else 0.0,
                d.spin_rate, d.spin_up_time, self.drive.theta0]  # fmt: skip
@@ -96,6 +109,7 @@ class RevoluteJoint(Joint):
             for h in moving:
                 assert base.frequency is not None  # the Base section requires it with harmonics
                 out += [1.0 if h.axis == "y" else 0.0, h.amplitude, 2.0 * math.pi * h.order * base.frequency, h.phase]
+            out += table_parameters(base)
         return out
 
     def frame(self, t: float, y: np.ndarray, n: int) -> tuple[float, float, np.ndarray, np.ndarray]:

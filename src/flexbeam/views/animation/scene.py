@@ -46,7 +46,7 @@ class Scene:
     contact_point: np.ndarray  # (m, 2) the contact point on the lower surface
     chord: np.ndarray  # (m, 2, 2) the rigid reference line from O to r_h + L
     hub_angle: np.ndarray  # (m,) drawn hub angle
-    obstacle_shift: np.ndarray  # (m, 2) compliant support's displacement
+    obstacle_shift: np.ndarray  # (m, 2) compliant support's displacement (and -r_O of a ground obstacle)
     force: np.ndarray  # (m,) contact force at the frames (the first pair's)
     system: BeamSystem
     pair_points: np.ndarray | None = None  # (m, p, 2) each pair's contact point on the magnified band
@@ -194,11 +194,14 @@ class _Band(NamedTuple):
 
 
 def _support_shift(history: History, system: BeamSystem, times: np.ndarray, frames: int) -> np.ndarray:
-    """(frames, 2): obstacle 0's displacement [m] on a compliant support at the frame ``times`` (else zero)."""
+    """(frames, 2): obstacle 0's displacement [m] on a compliant support at the frame ``times`` (else zero), and
+    for an obstacle fixed to the ground on a moving base -r_O(t) (the base frame's view of it)."""
     shift = np.zeros((frames, 2))
     obstacle = system.contact.obstacle
     if history.support is not None and obstacle.compliant:
         shift = np.interp(times, history.time, history.support)[:, None] * np.asarray(obstacle.support[3:5])[None, :]
+    if obstacle.ground:
+        shift = shift - np.array([system.case.base.motion(float(t))[0] for t in times])
     return shift
 
 
