@@ -6,12 +6,13 @@ Following Stronge (Impact Mechanics, 2000, ch. 5; Proc. R. Soc. A 431 (1990) 169
 process in the normal impulse p >= 0, along which
 
 * **slip** in the direction s = sign(v_t): dP_t/dp = -mu_k s, so dv/dp = W (-mu_k s, 1);
-* **stick** (v_t = 0 held): dP_t/dp = r = -W_tn / W_tt, allowed while |r| <= mu_s; then dv_n/dp = W_nn - W_nt W_tn/W_tt;
-* slip that brings v_t to zero either **sticks** (|r| <= mu_s) or **reverses** (slips on in the direction
+* **stick** (v_t = 0 held): dP_t/dp = r = -W_tn / W_tt, allowed while abs(r) <= mu_s; then
+  dv_n/dp = W_nn - W_nt W_tn / W_tt;
+* slip that brings v_t to zero either **sticks** (abs(r) <= mu_s) or **reverses** (slips on in the direction
   sign(W_tn), the only one the impulse can sustain).
 
 v is piecewise linear in p.  **Compression** ends where v_n = 0, after the normal force did the work W_c = int v_n dp
-< 0; **restitution** ends where it has done e^2 |W_c| (Stronge's energetic coefficient e).  Coulomb friction
+< 0; **restitution** ends where it has done -e^2 W_c (Stronge's energetic coefficient e).  Coulomb friction
 dissipates and the normal force returns no more than it absorbed, so the kinetic energy never increases, whatever
 the slip process (unlike Newton's kinematic coefficient with friction: Kane's paradox, Kane & Levinson 1985; Stronge
 1991).  Without friction this is Newton's P_n = -(1 + e) v_n / W_nn.
@@ -61,7 +62,7 @@ def _slopes(W: tuple[float, float, float], mode: str, mu_k: float) -> tuple[floa
 
 
 def _after_stop(W: tuple[float, float, float], mu_s: float) -> str:
-    """The mode once v_t = 0: stick if the required ratio |W_tn / W_tt| <= mu_s, else slip in sign(W_tn)."""
+    """The mode once v_t = 0: stick if the required ratio abs(W_tn / W_tt) <= mu_s, else slip in sign(W_tn)."""
     Wtt, Wtn, _ = W
     if abs(Wtn) <= mu_s * Wtt:
         return "stick"
