@@ -19,7 +19,6 @@ does the rest of the kinetic-energy change.
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 import warnings
 from dataclasses import dataclass
@@ -114,21 +113,35 @@ def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs
     e = np.broadcast_to(np.asarray(restitution, float), (len(pairs),)).copy()
     if any(system.contact.pairs[k].frictional for k in pairs):
         return frictional_jump(system, t, y, e, pairs)
-    M = system.mass_matrix(t, y)
+    return _normal_jump(system, t, y, e, pairs)
+
+
+def _normal_jump(system: BeamSystem, t: float, y: np.ndarray, e: np.ndarray, pairs: list[int]) -> Jump:
+    """The frictionless map of :func:`impulse_jump`: the impact LCP of the pairs' normal velocities."""
     gaps = [system.gap(t, y, k) for k in pairs]
     J = np.array([g[3] for g in gaps])
     zd = system.velocities(t, y)
     v_minus = nm.matmul(J, zd)
     drift = obstacle_drift(system, pairs, gaps, v_minus)
     v_minus = v_minus + drift
+    y_plus, P, v_plus, T_minus, T_plus = _apply(system, t, y, J, zd, v_minus, drift,
+                                                lambda W, v: solve_impact_lcp(W, v, e))  # fmt: skip
+    return Jump(y_plus, P, v_minus, v_plus, T_minus, T_plus)
+
+
+def _apply(system: BeamSystem, t: float, y: np.ndarray, J: np.ndarray, zd: np.ndarray, v_minus: np.ndarray,
+           drift: np.ndarray, solve) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, float]:  # fmt: skip
+    """The jump of impulses P = solve(W, v-) along the rows of J (velocities v = J z' + drift, relative to the
+    obstacles), W = J M^-1 J^T over the state's coordinates: (y+, P, v+, T-, T+), with the impulses' work on the
+    dissipated energy and the change of T it does not explain (the joint's or a moving obstacle's) on the work."""
+    M = system.mass_matrix(t, y)
     free = slice(system.ngiven, None)
     Mr, Jr = M[free, free], J[:, free]
     T_minus = system.energies(t, y)["kinetic"]
     if Jr.shape[1] == 0:
-        return Jump(y.copy(), np.zeros(len(pairs)), v_minus, v_minus, T_minus, T_minus)
+        return y.copy(), np.zeros(J.shape[0]), v_minus, T_minus, T_minus
     MinvJ = nm.solve(Mr, np.ascontiguousarray(Jr.T))
-    W = nm.matmul(Jr, MinvJ)
-    P = solve_impact_lcp(W, v_minus, e)
+    P = solve(nm.matmul(Jr, MinvJ), v_minus)
     zd_plus = zd.copy()
     zd_plus[free] += nm.matmul(MinvJ, P)
     y_plus = system.with_velocities(t, y, zd_plus)
@@ -137,7 +150,7 @@ def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs
     work_contact = 0.5 * nm.dot(P, v_minus + v_plus)
     y_plus[-2] += -work_contact
     y_plus[-1] += (T_plus - T_minus) - work_contact
-    return Jump(y_plus, P, v_minus, v_plus, T_minus, T_plus)
+    return y_plus, P, v_plus, T_minus, T_plus
 
 
 def frictional_jump(system: BeamSystem, t: float, y: np.ndarray, e: np.ndarray, pairs: list[int]) -> Jump:
@@ -151,43 +164,19 @@ def frictional_jump(system: BeamSystem, t: float, y: np.ndarray, e: np.ndarray, 
             FlexbeamWarning,
             stacklevel=3,
         )
-        frictionless = [dataclasses.replace(p, friction=0.0, friction_static=0.0) for p in system.contact.pairs]
-        return impulse_jump(_Frictionless(system, frictionless), t, y, e, pairs)
-    k = pairs[0]
-    pair = system.contact.pairs[k]
-    M = system.mass_matrix(t, y)
-    _, rate, vt, Jn, Jt = system.tangent(t, y, k)
+        return _normal_jump(system, t, y, e, pairs)
+    pair = system.contact.pairs[pairs[0]]
+    _, rate, vt, Jn, Jt = system.tangent(t, y, pairs[0])
     zd = system.velocities(t, y)
-    free = slice(system.ngiven, None)
-    Mr, JJ = M[free, free], np.vstack((Jt, Jn))[:, free]
-    T_minus = system.energies(t, y)["kinetic"]
-    # relative to the obstacle (its own velocity on a moving base when fixed to the ground: impulse_jump)
+    J = np.vstack((Jt, Jn))
+    # relative to the obstacle (its own velocity on a moving base when fixed to the ground, as in _normal_jump)
     v_minus = np.array([vt, rate])
-    drift = v_minus - nm.matmul(np.vstack((Jt, Jn)), zd)
-    if JJ.shape[1] == 0:
-        return Jump(y.copy(), np.zeros(1), v_minus[1:], v_minus[1:], T_minus, T_minus, np.zeros(1))
-    MinvJ = nm.solve(Mr, np.ascontiguousarray(JJ.T))
-    W = nm.matmul(JJ, MinvJ)
-    imp = frictional_impulse((W[0, 0], W[0, 1], W[1, 1]), float(v_minus[0]), float(v_minus[1]), float(e[0]),
-                             pair.friction_static, pair.friction)  # fmt: skip
-    P = np.array([imp.tangential, imp.normal])
-    zd_plus = zd.copy()
-    zd_plus[free] += nm.matmul(MinvJ, P)
-    y_plus = system.with_velocities(t, y, zd_plus)
-    v_plus = nm.matmul(np.vstack((Jt, Jn)), zd_plus) + drift
-    T_plus = system.energies(t, y_plus)["kinetic"]
-    work_contact = 0.5 * nm.dot(P, v_minus + v_plus)
-    y_plus[-2] += -work_contact
-    y_plus[-1] += (T_plus - T_minus) - work_contact
+    drift = v_minus - nm.matmul(J, zd)
+
+    def stronge(W: np.ndarray, v: np.ndarray) -> np.ndarray:
+        imp = frictional_impulse((W[0, 0], W[0, 1], W[1, 1]), float(v[0]), float(v[1]), float(e[0]),
+                                 pair.friction_static, pair.friction)  # fmt: skip
+        return np.array([imp.tangential, imp.normal])
+
+    y_plus, P, v_plus, T_minus, T_plus = _apply(system, t, y, J, zd, v_minus, drift, stronge)
     return Jump(y_plus, P[1:], v_minus[1:], v_plus[1:], T_minus, T_plus, P[:1])
-
-
-class _Frictionless:
-    """``system`` seen with frictionless pairs (the fallback of simultaneous frictional impacts)."""
-
-    def __init__(self, system: BeamSystem, pairs: list) -> None:
-        self._system = system
-        self.contact = dataclasses.replace(system.contact, pairs=tuple(pairs))
-
-    def __getattr__(self, name: str):
-        return getattr(self._system, name)
