@@ -148,11 +148,36 @@ void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, con
         *dW += (m->ngiven ? 0.0 : h * wb) + base_boundary_at(ph, t + h, st->eta1) - base_boundary_at(ph, t, eta);
 }
 
+/* The modal state (eta, v) at t in the step of record rec and its reference-layout positions and rates y[0 .. 2 nz]
+ * (and s, s' of a compliant support); returns t's fraction of the step, clipped to [0, 1]. */
+double fb_dense_layout(const fb_phase *ph, const double *rec, double t, double *eta, double *v, double *y) {
+    const fb_basis *b = ph->b;
+    int N = b->N, nz = b->nz;
+    double x = (t - rec[0]) / rec[1];
+    if (x < 0.0) x = 0.0;
+    if (x > 1.0) x = 1.0;
+    const double *eta0 = rec + 4, *v0 = eta0 + N, *f = v0 + N;
+    double z[FB_MAXN], zd[FB_MAXN];
+    fb_dense dd = {ph, rec[0], rec[1], eta0, v0, f, 0};
+    fb_dense_state(&dd, x, eta, v);
+    fb_to_physical(b, eta, z);
+    fb_to_physical(b, v, zd);
+    for (int k = 0; k < nz; k++) {
+        y[k] = z[k];
+        y[nz + k] = zd[k];
+    }
+    if (N > nz) {
+        y[2 * nz] = z[N - 1];
+        y[2 * nz + 1] = zd[N - 1];
+    }
+    return x;
+}
+
 /* Reference-layout states [z, z', (s, s'), E_d, W] at sorted times from a phase's records (each time inside
  * [t0, t0 + h] of some record); W for a free/torque joint from the hub angle, as in fb_advance. */
 int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, int nrec, const double *times,
                   int count, double *Y) {
-    int N = b->N, nz = b->nz, S = m->npairs, R = fb_record_size(N, S), size = fb_state_size(m), r = 0;
+    int N = b->N, S = m->npairs, R = fb_record_size(N, S), size = fb_state_size(m), r = 0;
     fb_phase ph;
     fb_contacts none;
     memset(&none, 0, sizeof none);
@@ -162,24 +187,9 @@ int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, i
         double t = times[i];
         while (r + 1 < nrec && t > records[(size_t)r * R] + records[(size_t)r * R + 1]) r++;
         const double *rec = records + (size_t)r * R;
-        double x = (t - rec[0]) / rec[1];
-        if (x < 0.0) x = 0.0;
-        if (x > 1.0) x = 1.0;
-        const double *eta0 = rec + 4, *v0 = eta0 + N, *f = v0 + N, *red = f + FB_P * N + S * FB_P, *rwd = red + FB_P;
-        double eta[FB_MAXN], v[FB_MAXN], z[FB_MAXN], zd[FB_MAXN];
-        fb_dense dd = {&ph, rec[0], rec[1], eta0, v0, f, 0};
-        fb_dense_state(&dd, x, eta, v);
-        fb_to_physical(b, eta, z);
-        fb_to_physical(b, v, zd);
-        double *y = Y + (size_t)i * size;
-        for (int k = 0; k < nz; k++) {
-            y[k] = z[k];
-            y[nz + k] = zd[k];
-        }
-        if (N > nz) {
-            y[2 * nz] = z[N - 1];
-            y[2 * nz + 1] = zd[N - 1];
-        }
+        const double *eta0 = rec + 4, *v0 = eta0 + N, *red = v0 + N + FB_P * N + S * FB_P, *rwd = red + FB_P;
+        double eta[FB_MAXN], v[FB_MAXN], *y = Y + (size_t)i * size;
+        double x = fb_dense_layout(&ph, rec, t, eta, v, y);
         double Ed = rec[2], W = rec[3];
         for (int j = 0; j < FB_P; j++) {
             double li = fb_lagrange_integral(j, x);

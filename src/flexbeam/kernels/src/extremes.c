@@ -23,6 +23,7 @@ typedef struct {
     const double *y0, *y1;
     int column; /* >= 0: an output column (FB_NCOLS); < 0: the contact force of pair -1 - column */
     double sign;
+    const fb_phase *ph; /* a phase without contacts, for the tip's dense states (fb_dense_layout) */
     double g[FB_MAXN]; /* the tip's deflection per unit of each modal coordinate (tip_gains; the tip column only) */
 } probe_t;
 
@@ -73,24 +74,35 @@ static int step_of(const probe_t *p, double t) {
     return lo;
 }
 
-/* sign * output at t; the phase's ends give its exact start and end states (as the Python segments do). */
+/* sign * output at t; the phase's ends give its exact start and end states (as the Python segments do).  The tip,
+ * and a contact force given by its law, are computed alone, from the positions and rates (fb_dense_layout), with
+ * fb_outputs' arithmetic for them; any other output through fb_dense_eval and fb_outputs. */
 static double probe_value(const probe_t *p, double t) {
     double y[2 * FB_MAXN + 4], cols[FB_NCOLS], mv[FB_MAX_POINTS], pc[FB_MAX_PAIRS * FB_PAIR_COLS];
-    int size = fb_state_size(p->m);
+    const fb_model *m = p->m;
+    int size = fb_state_size(m), pair = -1 - p->column;
+    int alone = p->column == FB_COL_TIP || (pair >= 0 && p->c->mode[pair] == FB_MODE_FORCE);
     if (t <= p->t0)
         memcpy(y, p->y0, sizeof(double) * size);
     else if (t >= p->t1)
         memcpy(y, p->y1, sizeof(double) * size);
-    else
-        fb_dense_eval(p->m, p->b, p->records + (size_t)step_of(p, t) * p->R, 1, &t, 1, y);
-    if (p->column == FB_COL_TIP) { /* the tip alone, as fb_outputs computes it */
+    else if (alone) { /* the positions and rates alone: no energy bookkeeping */
+        double eta[FB_MAXN], v[FB_MAXN];
+        fb_dense_layout(p->ph, p->records + (size_t)step_of(p, t) * p->R, t, eta, v, y);
+    } else
+        fb_dense_eval(m, p->b, p->records + (size_t)step_of(p, t) * p->R, 1, &t, 1, y);
+    if (alone) {
         fb_frame fr;
         const double *q, *qd;
-        fb_state_split(p->m, t, y, &fr, &q, &qd);
-        return p->sign * fb_tip_deflection(p->m, &fr, q, qd);
+        fb_state_split(m, t, y, &fr, &q, &qd);
+        if (p->column == FB_COL_TIP) return p->sign * fb_tip_deflection(m, &fr, q, qd);
+        int nb = 2 * fb_nz(m), compliant = fb_compliant(m);
+        double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
+        fb_gap g = fb_pair_gap(m, pair, &fr, q, qd, s, sd, 0, NULL);
+        return p->sign * fb_law_force(p->c->p[pair], -g.delta, -g.rate, NULL, NULL, NULL);
     }
-    fb_outputs(p->m, &t, y, 1, p->c, cols, mv, pc);
-    double v = p->column >= 0 ? cols[p->column] : pc[(-1 - p->column) * FB_PAIR_COLS + 2];
+    fb_outputs(m, &t, y, 1, p->c, cols, mv, pc);
+    double v = p->column >= 0 ? cols[p->column] : pc[pair * FB_PAIR_COLS + 2];
     return p->sign * v;
 }
 
@@ -210,22 +222,22 @@ typedef struct { /* the open sub-intervals of a pruned search: left end, sign * 
     int count;
 } open_set;
 
-/* The tip's largest sample in [a, z] by branch and bound: 33 samples, then each sub-interval that may hold a value of
+/* The tip's largest sample in [a, z] by branch and bound: 5 samples, then each sub-interval that may hold a value of
  * at least ``top`` or the best sample yet (its larger end plus tip_slack) split in four, until the spacing is that of
  * the grid of G points.  Returns 1 with the best sample (*t_best, *v_best) and the final spacing (*dt) when some
  * sub-interval is still open, 0 when none is (the bracket cannot reach ``top``; *v_best a value the deflection
  * takes), -1 when too many are open (then search the plain grid). */
 static int pruned_grid_max(const probe_t *p, const fb_phase *ph, open_set *o, double a, double z, int G, double top,
                            double *t_best, double *v_best, double *dt) {
-    double h = (z - a) / 32.0, v_prev = probe_value(p, a);
+    double h = (z - a) / 4.0, v_prev = probe_value(p, a);
     *t_best = a, *v_best = v_prev;
-    for (int i = 0; i < 32; i++) {
-        double t = i == 31 ? z : a + (i + 1) * h, v = probe_value(p, t);
+    for (int i = 0; i < 4; i++) {
+        double t = i == 3 ? z : a + (i + 1) * h, v = probe_value(p, t);
         o->t[i] = a + i * h, o->vl[i] = v_prev, o->vr[i] = v;
         if (v > *v_best) *t_best = t, *v_best = v;
         v_prev = v;
     }
-    o->count = 32;
+    o->count = 4;
     for (;;) {
         double slack = tip_slack(p, ph, a, z, h), ref = fmax(top, *v_best);
         int kept = 0;
@@ -272,13 +284,14 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
                    double t0, double t1, const double *y0, const double *y1, int column, double sign,
                    const double *lo, const double *hi, const double *reach, double floor, int count, double xtol,
                    double *t_out, double *v_out) {
-    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, column, sign, {0}};
+    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, column, sign, NULL, {0}};
     if (column == FB_COL_TIP) tip_gains(&p);
     fb_phase ph; /* for the bounds of the tip's pruned search (fb_dense_bounds) */
     fb_contacts none;
     memset(&none, 0, sizeof none);
     none.npairs = m->npairs;
     fb_phase_init(&ph, m, b, &none, 0.0, 0.0, 0.0);
+    p.ph = &ph; /* for the dense states and the tip's bounds */
     open_set *o = column == FB_COL_TIP ? malloc(sizeof *o) : NULL; /* the tip: a pruned search */
     double top = floor;
     for (int k = 0; k < count; k++) {

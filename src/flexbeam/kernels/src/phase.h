@@ -19,6 +19,7 @@ enum { FB_REJECT_ERROR, FB_REJECT_BALANCE, FB_REJECT_COLLOCATION, FB_REJECT_EVEN
 
 int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t nctrl, double *state, double t_end,
                double *records, int capacity, int *nrec, double *info);
+double fb_dense_layout(const fb_phase *ph, const double *rec, double t, double *eta, double *v, double *y);
 int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, int nrec, const double *times,
                   int count, double *Y);
 void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, int nrec, const fb_contacts *c,
