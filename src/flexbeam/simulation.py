@@ -270,6 +270,7 @@ def provenance(
         "contact_exponent": system.law.exponent,
         "compliant_support": int(system.compliant),
         "contact_pairs": [p.label for p in system.contact.pairs],
+        **case.base.drive,
         **info,
     }
 

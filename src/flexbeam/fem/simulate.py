@@ -293,6 +293,7 @@ def provenance(
         "contact_stiffness": law.stiffness,
         "contact_exponent": law.exponent,
         "contact_pairs": [p.label for p in beam.pairs],
+        **case.base.drive,
         **info,
     }
     if beam.npairs > 1:

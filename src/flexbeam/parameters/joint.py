@@ -91,6 +91,12 @@ class Base(Section):
         table = self.table is not None and any(x != 0.0 or y != 0.0 for _, x, y in self.table)
         return any(h.amplitude != 0.0 for h in self.harmonics) or any(a != 0.0 for a in self.acceleration) or table
 
+    @property
+    def drive(self) -> dict[str, float]:
+        """``{"drive_frequency": f}`` [Hz] of a base shaken periodically (``frequency``), for the drive phase of the
+        contact records (the runs' provenance); empty without one."""
+        return {"drive_frequency": float(self.frequency)} if self.moving and self.frequency is not None else {}
+
     @cached_property
     def spline(self):
         """The table's interpolant T(t) = (x, y), scipy's not-a-knot ``CubicSpline`` through its rows (None: no

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .files import atomic_path, jsonable
+from .poincare import drive_phase
 from .records import VARIABLES
 
 if TYPE_CHECKING:
@@ -153,6 +154,13 @@ def contact_fields(sol: Solution) -> dict[str, tuple[str, str, np.ndarray]]:
     tangential = [e.tangential_impulse for e in c]
     if any(math.isfinite(v) for v in tangential):  # a run with frictional impacts (IMM with contact.friction)
         fields["contact_tangential_impulse"] = ("N s", "Frictional impulse along the contact's tangent", tangential)
+    f = sol.drive_frequency
+    if math.isfinite(f):  # a base shaken periodically: the phase of the drive at each onset
+        fields["contact_drive_phase"] = (
+            "1",
+            "Phase of the base drive at the onset, frac(f t)",
+            [drive_phase(e.onset, f) for e in c],
+        )
     return {k: (u, n, np.asarray(v, float)) for k, (u, n, v) in fields.items()}
 
 

@@ -204,6 +204,11 @@ class Solution:
         return str(self._provenance.get("method", ""))
 
     @property
+    def drive_frequency(self) -> float:
+        """The fundamental frequency f [Hz] of the base's periodic drive (``base.frequency``), NaN without one."""
+        return float(self._provenance.get("drive_frequency", math.nan))
+
+    @property
     def records(self) -> list[ContactEvent]:
         """The contact records as logged (:attr:`contacts` completes them)."""
         return self._contacts

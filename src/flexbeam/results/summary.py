@@ -15,6 +15,7 @@ from .counts import ContactCounts, classify_contacts
 from .episodes import find_episodes
 from .metrics import METRICS, OPTIONAL_SCOPES
 from .peaks import interior_maxima
+from .poincare import drive_phase
 
 if TYPE_CHECKING:
     from .solution import Solution
@@ -134,12 +135,13 @@ def events(sol: Solution, counts: ContactCounts | None = None) -> list[dict[str,
     ``duration`` [s], ``peak_force`` [N] and ``peak_time`` [s after the onset] (NaN without a force
     history: an IMM impact), ``velocity_before``, ``velocity_after`` [m/s] (P's normal velocity, negative
     approaching), ``impulse`` [N s], ``kind`` (``"contact"`` or ``"micro-impact"``) and ``chatter_episode``
-    (the micro-impact's episode, None for a contact) and ``tangential_impulse`` [N s] (a frictional impact's; NaN
-    without friction);
+    (the micro-impact's episode, None for a contact), ``tangential_impulse`` [N s] (a frictional impact's; NaN
+    without friction) and ``drive_phase`` (the onset's phase of a periodic base drive, frac(f t) in [0, 1); NaN
+    without one);
     ``counts``: :func:`contact_counts`, if already known.
     """
     counts = contact_counts(sol) if counts is None else counts
-    labels = sol.pair_labels
+    labels, f = sol.pair_labels, sol.drive_frequency
     return [
         {
             "index": i,
@@ -156,6 +158,7 @@ def events(sol: Solution, counts: ContactCounts | None = None) -> list[dict[str,
             "kind": counts.kind(i),
             "chatter_episode": counts.episode[i],
             "tangential_impulse": ev.tangential_impulse,
+            "drive_phase": drive_phase(ev.onset, f) if math.isfinite(f) else math.nan,
         }
         for i, ev in enumerate(sol.contacts)
     ]
