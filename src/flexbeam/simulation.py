@@ -168,16 +168,17 @@ def _continued(system: BeamSystem, state: np.ndarray) -> np.ndarray:
 
 def check_friction_method(case: Case, method: str) -> None:
     """A one-line ModelError naming ``contact.friction`` when a pair has friction and ``method`` does not model it:
-    today only IMM's frictional impacts do (:mod:`flexbeam.methods.friction`)."""
+    IMM's frictional impacts (:mod:`flexbeam.methods.friction`) and the FE reference's regularised law
+    (:func:`flexbeam.fem.contact_law.friction_law`) do."""
     frictional = (
         case.contact.friction > 0.0
         or (case.contact.friction_static or 0.0) > 0.0
         or any((ob.contact.friction or 0.0) > 0.0 or (ob.contact.friction_static or 0.0) > 0.0 for ob in case.obstacles)
     )
-    if frictional and method != "imm":
+    if frictional and method not in ("imm", "fem"):
         raise ModelError(
             f"contact.friction: method '{method}' does not model friction yet; use --method imm (Stronge's frictional "
-            "impact) or friction = 0"
+            "impact), --method fem (the FE reference) or friction = 0"
         )
 
 

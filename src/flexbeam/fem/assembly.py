@@ -22,10 +22,14 @@ import math
 import numpy as np
 
 from .banded import BAND, band_solve, fix_first_dof
-from .contact_law import law_force
+from .contact_law import friction_law, law_force
 from .element import corotational_element, gather, inertia_element
-from .gap import anywhere_gap, gap_at
+from .gap import anywhere_gap, anywhere_tangent, gap_at, node_tangent
 from .jit import fem_jit
+
+#: per pair, what :func:`assemble` writes: force, its elastic part, gap, gap rate, the contact point's material
+#: coordinate x, the friction force along the tangent t = (-n_y, n_x) and the slip velocity along t
+POUT_COLUMNS = 7
 
 
 @fem_jit
@@ -185,6 +189,8 @@ def _node_pair(
     F = 0.0
     Fk = 0.0
     delta, vn, _ = gap_at(X[pnode], V[pnode], A[pnode], cPs[q], okinds[q], ocentres[q], oradii[q], onormals[q], Jp)
+    Ft = 0.0
+    vt = 0.0
     if active[q] != 0:
         d = -delta
         dd = -vn
@@ -208,10 +214,19 @@ def _node_pair(
                 for b in range(3):
                     i, j = pidx[a], pidx[b]
                     ab[off + i - j, j] += pw[a] * pw[b] * coef * Jp[a] * Jp[b]
+        if lawps[q, 5] > 0.0 and F > 0.0:  # Coulomb friction (regularised) at the point
+            Jt = np.empty(3)
+            vt = node_tangent(X[pnode], V[pnode], cPs[q], Jp[0], Jp[1], Jt)
+            Ft = _friction(q, F, dFd, dFdd, vt, Jp, Jt, pidx, pw, lawps, cK, cC, want_S, R, ab)
+            if not free and pnode == 0:
+                for k in range(3):
+                    R0node[k] -= Jt[k] * Ft
     pout[q, 0] = F
     pout[q, 1] = Fk
     pout[q, 2] = delta
     pout[q, 3] = vn
+    pout[q, 5] = Ft
+    pout[q, 6] = vt
 
 
 @fem_jit
@@ -223,6 +238,8 @@ def _anywhere_pair(
     delta, vn, _, e, xi = anywhere_gap(X, V, A, l0, cPs[q], okinds[q], ocentres[q], oradii[q], onormals[q], Jg)
     F = 0.0
     Fk = 0.0
+    Ft = 0.0
+    vt = 0.0
     if active[q] != 0:
         F, Fk, dFd, dFdd = law_force(lawps[q], -delta, -vn)
         idx = np.empty(6, np.int64)
@@ -240,6 +257,13 @@ def _anywhere_pair(
             for a in range(6):
                 for b in range(6):
                     ab[off + idx[a] - idx[b], idx[b]] += wts[a] * wts[b] * coef * Jg[a] * Jg[b]
+        if lawps[q, 5] > 0.0 and F > 0.0:  # Coulomb friction (regularised) at the surface point
+            Jt = np.empty(6)
+            vt = anywhere_tangent(X, V, l0, cPs[q], e, xi, okinds[q], ocentres[q], onormals[q], Jt)
+            Ft = _friction(q, F, dFd, dFdd, vt, Jg, Jt, idx, wts, lawps, cK, cC, want_S, R, ab)
+            if e == 0:
+                for a in range(3):
+                    R0node[a] -= Jt[a] * Ft
     x = xi * l0[e]
     for k in range(e):
         x += l0[k]
@@ -248,6 +272,29 @@ def _anywhere_pair(
     pout[q, 2] = delta
     pout[q, 3] = vn
     pout[q, 4] = x
+    pout[q, 5] = Ft
+    pout[q, 6] = vt
+
+
+@fem_jit
+def _friction(q, F, dFd, dFdd, vt, J, Jt, idx, wts, lawps, cK, cC, want_S, R, ab):
+    """Pair q's friction force Ft = -F phi(v_t) along the tangent (:func:`~flexbeam.fem.contact_law.friction_law`,
+    its parameters lawps[q, 4:7]): R -= Jt^T Ft over the DOFs ``idx`` (weights ``wts``), and the iteration matrix
+    += Jt^T (phi dF/dz + F phi' dv_t/dz) = Jt^T (-phi (cK dF/dd + cC dF/dd') J + F phi' cC Jt), not symmetric (the
+    normal force's dependence on the state; the tangent's own change neglected, as the gap Hessian is).  Returns Ft."""
+    phi, dphi = friction_law(lawps[q, 4], lawps[q, 5], lawps[q, 6], vt)
+    Ft = -F * phi
+    m = idx.size
+    for a in range(m):
+        R[idx[a]] -= wts[a] * Jt[a] * Ft
+    if want_S:
+        coef = cK * dFd + cC * dFdd
+        off = 2 * BAND
+        for a in range(m):
+            for b in range(m):
+                dFt = F * dphi * cC * Jt[b] - phi * coef * J[b]
+                ab[off + idx[a] - idx[b], idx[b]] += wts[a] * wts[b] * Jt[a] * dFt
+    return Ft
 
 
 @fem_jit

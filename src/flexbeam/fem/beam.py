@@ -35,14 +35,14 @@ from ..errors import ModelError
 from ..model.joints import joint_of
 from ..model.joints.drive import JointDrive
 from ..parameters.case import Case
-from .assembly import assemble, node_states
+from .assembly import POUT_COLUMNS, assemble, node_states
 from .banded import BAND, band_to_dense
 from .contact_geometry import PairGeometry
 from .element import GAUSS_W, GAUSS_XI
 from .free import FreeBody
 from .mesh import build_mesh, locate
 from .outputs import BeamOutputs
-from .pairs import ContactState, FemPair, pair_arrays, pairs_from_setup
+from .pairs import ContactState, FemPair, friction_params, pair_arrays, pairs_from_setup
 from .statics import StaticsAndVibration
 
 #: the joint kinds the FE reference models: a revolute joint at O (free, torque-driven or with its angle prescribed)
@@ -115,6 +115,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
     measuring: list[tuple[int, float]]
     pairs: tuple[FemPair, ...] = ()
     free: bool = False
+    friction_velocity: float = 1e-4  #: v_s of the regularised friction (fem.friction_velocity)
 
     def __post_init__(self) -> None:
         """The pairs from the pair-0 fields when none are given, and the kernels' arrays of them."""
@@ -126,8 +127,8 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
                 ),
             )  # fmt: skip
         self._pair_args = pair_arrays(self.pairs)
-        self.free_state = ContactState((None,) * len(self.pairs))
-        self._pout = np.zeros((len(self.pairs), 5))
+        self.free_state = ContactState((None,) * len(self.pairs), friction_params(self.pairs, self.friction_velocity))
+        self._pout = np.zeros((len(self.pairs), POUT_COLUMNS))
 
     # ------------------------------------------------------------------ set-up
     @classmethod
@@ -174,6 +175,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
             measuring=measuring,
             pairs=pairs,
             free=case.joint.kind == "free",
+            friction_velocity=case.fem.friction_velocity,
         )
 
     # -------------------------------------------------------------- sizes
@@ -191,6 +193,16 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
     def npairs(self) -> int:
         """Number of contact pairs S."""
         return len(self.pairs)
+
+    @property
+    def frictional(self) -> bool:
+        """Has some pair Coulomb friction?"""
+        return any(p.friction_static > 0.0 for p in self.pairs)
+
+    @property
+    def pair_outputs(self) -> np.ndarray:
+        """What the last :meth:`residual` wrote per pair (S x :data:`flexbeam.fem.assembly.POUT_COLUMNS`)."""
+        return self._pout
 
     @property
     def any_anywhere(self) -> bool:

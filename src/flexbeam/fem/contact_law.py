@@ -16,6 +16,8 @@ checks them against the published expressions and the exact restitution).
 
 from __future__ import annotations
 
+import math
+
 from .jit import fem_jit
 
 
@@ -54,3 +56,23 @@ def law_potential(p, d):
     if d <= 0.0:
         return 0.0
     return p[0] * d ** (p[1] + 1.0) / (p[1] + 1.0)
+
+
+@fem_jit
+def friction_law(mu_k, mu_s, vs, v):
+    """Friction coefficient phi(v) of the regularised Coulomb law and its derivative d phi / dv.
+
+    Brown & McPhee (2016), J. Comput. Nonlinear Dynam. 11(5) 054502, without its viscous term:
+
+        phi(v) = mu_k tanh(4 v / v_s) + (mu_s - mu_k) (v / v_s) / ((v / v_s)^2 / 4 + 3 / 4)^2,
+
+    odd in the slip velocity v, rising to about mu_s at v = v_s (its second term peaks there at mu_s - mu_k;
+    tanh(4) = 0.9993) and tending to mu_k in sliding: Coulomb's law with static and kinetic coefficients as the
+    transition velocity v_s -> 0.  The tangential force on the beam is -N phi(v_t) along the contact's tangent.
+    """
+    u = v / vs
+    th = math.tanh(4.0 * u)
+    D = 0.25 * u * u + 0.75
+    phi = mu_k * th + (mu_s - mu_k) * u / (D * D)
+    dphi = (4.0 * mu_k * (1.0 - th * th) + (mu_s - mu_k) * (D - u * u) / (D * D * D)) / vs
+    return phi, dphi

@@ -271,3 +271,49 @@ def anywhere_gap(X, V, A, l0, tube, kind, centre, radius, normal, Jg):
         if f2 > 0.0:
             accel -= fxt * fxt / f2
     return delta, rate, accel, e, xi
+
+
+@fem_jit
+def node_tangent(xp, vp, c, nx, ny, Jt):
+    """Slip velocity v_t = t . r_P' of P at a node along the contact's tangent t = (-n_y, n_x) (the obstacle's
+    outward normal n turned by +90 degrees, as the modal model's), and ``Jt`` (3) = t^T dr_P/d(X, Y, psi)."""
+    _, v, dpsi, _ = surface_point(xp, vp, c)
+    tx, ty = -ny, nx
+    Jt[0] = tx
+    Jt[1] = ty
+    Jt[2] = tx * dpsi[0] + ty * dpsi[1]
+    return tx * v[0] + ty * v[1]
+
+
+@fem_jit
+def anywhere_tangent(X, V, l0, tube, e, xi, kind, centre, normal, Jt):
+    """Slip velocity and ``Jt`` (6, over element e's DOFs) of the capsule's surface point in contact, at x* (e, xi),
+    against a sphere (its normal n = (r(x*) - C) / |r(x*) - C|) or a half-plane (its normal).
+
+    The point lies at -c n from the centre line's r(x*), c = ``tube``, a material point of the section there, which
+    turns with the section's angle psi(xi) = beta + d1 theta_1 + d2 theta_2 (the chord's angle and the cubic's slope,
+    d1 = 1 - 4 xi + 3 xi^2, d2 = 3 xi^2 - 2 xi: the nodal angles at the ends): its velocity is r' - c psi' (n_y, -n_x),
+    so along t = (-n_y, n_x) v_t = t . r' - c psi' and Jt = t^T G - c d psi / dz_e, with
+    d psi / dz_e = (1 - d1 - d2) d beta / dz_e + d1 e_psi_A + d2 e_psi_B and d beta / dz_e = (s, -c, 0, -s, c, 0) / l.
+    """
+    xe = np.empty(6)
+    ve = np.empty(6)
+    ae = np.zeros(6)
+    gather(X, V, V, e, xe, ve, ae)  # (the accelerations are not needed: V stands in, ae is scratch)
+    G = np.empty((2, 6))
+    r, v, _ = point_kinematics(xe, ve, ae, l0[e], xi, G)
+    nx, ny = normal[0], normal[1]
+    if kind == SPHERE:
+        dist = math.sqrt((r[0] - centre[0]) ** 2 + (r[1] - centre[1]) ** 2)
+        nx, ny = (r[0] - centre[0]) / dist, (r[1] - centre[1]) / dist
+    _, _, ell, cb, sb, _, _ = element_chord(xe)
+    d1 = 1.0 - 4.0 * xi + 3.0 * xi * xi
+    d2 = 3.0 * xi * xi - 2.0 * xi
+    db = np.array([sb, -cb, 0.0, -sb, cb, 0.0]) / ell
+    tx, ty = -ny, nx
+    psid = 0.0
+    for b in range(6):
+        dpsi = (1.0 - d1 - d2) * db[b] + (d1 if b == 2 else 0.0) + (d2 if b == 5 else 0.0)
+        Jt[b] = tx * G[0, b] + ty * G[1, b] - tube * dpsi
+        psid += dpsi * ve[b]
+    return tx * v[0] + ty * v[1] - tube * psid

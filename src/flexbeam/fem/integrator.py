@@ -33,7 +33,7 @@ import numpy as np
 from scipy.linalg.lapack import dgbsv
 
 from ..errors import SolverError
-from .assembly import newton
+from .assembly import POUT_COLUMNS, newton
 from .banded import BAND, fix_first_dof
 from .beam import FemBeam
 from .contact_law import law_force
@@ -93,6 +93,8 @@ class StepResult:
     pair_gap: np.ndarray | None = None
     pair_gap_rate: np.ndarray | None = None
     pair_position: np.ndarray | None = None
+    pair_friction: np.ndarray | None = None  #: friction force along the tangent t = (-n_y, n_x) [N] (frictional)
+    pair_slip: np.ndarray | None = None  #: slip velocity along t [m/s] (frictional runs)
 
 
 class FemIntegrator:
@@ -113,7 +115,7 @@ class FemIntegrator:
         self._R = np.empty(n)
         self._ab = np.zeros((3 * BAND + 1, n))
         self._scale = beam.increment_scale()
-        self._pout = np.zeros((beam.npairs, 5))
+        self._pout = np.zeros((beam.npairs, POUT_COLUMNS))
         self.iterations = 0
 
     # ------------------------------------------------------------- helpers
@@ -154,13 +156,15 @@ class FemIntegrator:
             if p is not None:
                 F, Fk, _, _ = law_force(p, -d, -vn)
                 Fs[k], Fks[k] = F, Fk
-        if beam.prescribed:
+        frictional = beam.frictional
+        if beam.prescribed or frictional:  # the residual's pass also writes each pair's friction and slip
             R, _, _ = beam.residual(s.t, s.z, s.zd, s.zdd, (0.0, 0.0, 0.0), False, cs, (self._R, self._ab))
-            torque = float(R[0])
-        else:
-            torque = beam.torque(s.t)
+        torque = float(R[0]) if beam.prescribed else beam.torque(s.t)
         pos = np.array([beam.contact_point(s.z, k)[2] for k in range(S)]) if S > 1 or beam.any_anywhere else None
-        return StepResult(float(Fs[0]), float(Fks[0]), float(ds[0]), float(vns[0]), torque, Fs, Fks, ds, vns, pos)
+        out = StepResult(float(Fs[0]), float(Fks[0]), float(ds[0]), float(vns[0]), torque, Fs, Fks, ds, vns, pos)
+        if frictional:
+            out.pair_friction, out.pair_slip = beam.pair_outputs[:, 5].copy(), beam.pair_outputs[:, 6].copy()
+        return out
 
     # ---------------------------------------------------------------- step
     def step(self, s: State, h: float, lawp: ContactState | np.ndarray | None) -> State:

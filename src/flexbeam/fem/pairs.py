@@ -25,7 +25,8 @@ class FemPair:
     With ``anywhere`` the contact point is instead the point of the beam's capsule surface (radius ``offset`` = c
     about the deformed centre line, hemispherical caps at x = 0 and L) nearest the obstacle, found at every
     evaluation (:func:`flexbeam.fem.gap.anywhere_gap`); ``node`` and ``position`` are then only the mesh node at the
-    case's contact position (a start)."""
+    case's contact position (a start).  ``friction``, ``friction_static``: Coulomb friction at the point, by the
+    regularised law of :func:`flexbeam.fem.contact_law.friction_law`."""
 
     node: int
     position: float
@@ -37,6 +38,8 @@ class FemPair:
     law: ContactLaw
     label: str
     anywhere: bool = False
+    friction: float = 0.0  #: Coulomb's kinetic coefficient mu_k (contact.friction)
+    friction_static: float = 0.0  #: the static coefficient mu_s (contact.friction_static)
 
 
 def pairs_from_setup(contact: ContactSetup, x_nodes: np.ndarray, surface_offset: float) -> tuple[FemPair, ...]:
@@ -50,7 +53,7 @@ def pairs_from_setup(contact: ContactSetup, x_nodes: np.ndarray, surface_offset:
             FemPair(
                 int(np.argmin(np.abs(x_nodes - p.position))), p.position, offset, int(ob.kind),
                 np.asarray(ob.centre, float), float(ob.radius), np.asarray(ob.normal, float), p.law, p.label,
-                p.anywhere,
+                p.anywhere, p.friction, p.friction_static,
             )
         )  # fmt: skip
     return tuple(pairs)
@@ -70,22 +73,38 @@ def pair_arrays(pairs: tuple[FemPair, ...]) -> tuple[np.ndarray, ...]:
     )
 
 
+#: columns of a pair's kernel parameters: the law's [K, n, chi/d'_0, C], then friction's [mu_k, mu_s, v_s]
+LAW_COLUMNS, PARAM_COLUMNS = 4, 7
+
+
+def friction_params(pairs: tuple[FemPair, ...], velocity: float) -> np.ndarray:
+    """Each pair's friction parameters [mu_k, mu_s, v_s] (S x 3; zeros without friction), v_s = ``velocity``
+    (``fem.friction_velocity``)."""
+    return np.array(
+        [[p.friction, p.friction_static, velocity] if p.friction_static > 0.0 else [0.0, 0.0, 1.0] for p in pairs],
+        float,
+    ).reshape(len(pairs), PARAM_COLUMNS - LAW_COLUMNS)
+
+
 class ContactState:
-    """Which contact pairs are in their contact phase, and their law parameters [K, n, chi/d'_0, C].
+    """Which contact pairs are in their contact phase, their law parameters [K, n, chi/d'_0, C] and friction.
 
     ``laws[k]`` is pair k's parameter vector (None while it is free); ``active`` (int64, S) and ``params``
-    (S x 4, zeros for free pairs) are the arrays the kernels read.
+    (S x 7: the law's four, then the pair's friction [mu_k, mu_s, v_s] (``friction``, S x 3, default none); zeros for
+    free pairs) are the arrays the kernels read.
     """
 
-    __slots__ = ("active", "laws", "params")
+    __slots__ = ("active", "friction", "laws", "params")
 
-    def __init__(self, laws: tuple[np.ndarray | None, ...]) -> None:
+    def __init__(self, laws: tuple[np.ndarray | None, ...], friction: np.ndarray | None = None) -> None:
         self.laws = tuple(laws)
+        self.friction = np.zeros((len(self.laws), 3)) if friction is None else friction
         self.active = np.array([p is not None for p in self.laws], np.int64)
-        self.params = np.zeros((len(self.laws), 4))
+        self.params = np.zeros((len(self.laws), PARAM_COLUMNS))
         for k, p in enumerate(self.laws):
             if p is not None:
-                self.params[k] = p
+                self.params[k, :LAW_COLUMNS] = p
+                self.params[k, LAW_COLUMNS:] = self.friction[k]
 
     @property
     def any(self) -> bool:
@@ -96,4 +115,4 @@ class ContactState:
         """A copy with pair ``pair`` in contact under ``params`` (None: free)."""
         laws = list(self.laws)
         laws[pair] = params
-        return ContactState(tuple(laws))
+        return ContactState(tuple(laws), self.friction)

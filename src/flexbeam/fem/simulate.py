@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..parameters.case import Case
-from ..results.records import PAIR_VARIABLES
+from ..results.records import FRICTION_VARIABLES, PAIR_VARIABLES
 from ..results.solution import Solution
 from .beam import FemBeam
 from .contact_law import law_potential
@@ -38,6 +38,7 @@ class _Sampler:
         self.dissipated = 0.0
         self.work = 0.0
         self.pair_rows: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+        self.friction_rows: list[tuple[np.ndarray, np.ndarray]] = []  # frictional runs: (F_t, v_t) per pair
         # a free beam: (x_G, y_G, v_Gx, v_Gy, a_Gx, a_Gy, H_G, H_G') per sample, and the pairs' (n_x, n_y, lever)
         # where the contact state changes (flexbeam.fem.rigid_motion)
         self.rigid_rows: list[tuple[float, ...]] = []
@@ -71,6 +72,9 @@ class _Sampler:
             self.pair_rows.append(
                 (res.pair_gap.copy(), res.pair_gap_rate.copy(), res.pair_force.copy(), res.pair_position.copy())
             )
+        if res.pair_friction is not None:  # Coulomb friction dissipates -F_t v_t >= 0 per pair
+            self.friction_rows.append((res.pair_friction, res.pair_slip))
+            p_diss += float(np.sum(-res.pair_friction * res.pair_slip))
         p_drive = 0.0 if b.free else res.torque * float(s.zd[0]) + b.base_power(s.t, s.z, s.zd)
         if self._prev is not None:
             t0, pd0, pw0 = self._prev
@@ -240,6 +244,9 @@ def sample_arrays(beam: FemBeam, sampler: _Sampler) -> dict[str, np.ndarray]:
     if S > 1 or beam.any_anywhere:  # per pair (samples x pairs), as the modal model's pair_* variables
         for j, name in enumerate(PAIR_VARIABLES):
             out[name] = np.array([r[j] for r in sampler.pair_rows], float).reshape(m, S)
+    if sampler.friction_rows:  # a frictional run: the friction force along each pair's tangent and the slip
+        for j, name in enumerate(FRICTION_VARIABLES):
+            out[name] = np.array([r[j] for r in sampler.friction_rows], float).reshape(m, S)
     out["q"] = np.empty((m, 0))
     out["q_rate"] = np.empty((m, 0))
     out["total_energy"] = (
@@ -254,8 +261,9 @@ def sample_arrays(beam: FemBeam, sampler: _Sampler) -> dict[str, np.ndarray]:
 
 
 def contact_balances(rec: Record, beam: FemBeam, t: np.ndarray, phase: np.ndarray, out: dict[str, np.ndarray]) -> None:
-    """Each recorded contact's impulse (the trapezoidal integral of its pair's force over its contact samples) and
-    the mechanical energy at its first and last contact sample, set on the contact events of ``rec``."""
+    """Each recorded contact's impulse (the trapezoidal integral of its pair's force over its contact samples; with
+    friction also the tangential impulse) and the mechanical energy at its first and last contact sample, set on the
+    contact events of ``rec``."""
     m = t.size
     mech = out["kinetic_energy"] + out["elastic_energy"] + out["gravitational_energy"]
     for ev in rec.contacts:
@@ -264,6 +272,8 @@ def contact_balances(rec: Record, beam: FemBeam, t: np.ndarray, phase: np.ndarra
         if np.count_nonzero(sel) > 1:
             force = out["contact_force"] if beam.npairs == 1 else out["pair_contact_force"][:, ev.pair]
             ev.impulse = float(np.trapezoid(force[sel], t[sel]))
+            if FRICTION_VARIABLES[0] in out:  # along the pair's tangent t = (-n_y, n_x), as IMM's
+                ev.tangential_impulse = float(np.trapezoid(out[FRICTION_VARIABLES[0]][sel, ev.pair], t[sel]))
             ev.energy_before, ev.energy_after = float(mech[sel][0]), float(mech[sel][-1])
 
 

@@ -173,3 +173,8 @@ class Fem(Section):
     rho_inf: Annotated[float, Field(ge=0.0, le=1.0)] = Field(
         0.9, description="spectral radius at infinite frequency of the generalized-alpha scheme"
     )
+    friction_velocity: Annotated[float, Field(gt=0.0, le=1.0)] = Field(
+        1e-4,
+        description="transition velocity v_s [m/s] of the reference's regularised Coulomb friction (Brown & McPhee "
+        "2016; 0 < v_s <= 1 m/s): Coulomb's law as v_s -> 0",
+    )
