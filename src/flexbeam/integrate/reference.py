@@ -265,9 +265,14 @@ class ReferenceStepper:
         events = self._events(phase)
         limit = (lambda t, y: self.safe_step(t, y, phase)) if ContactMode.NONE in phase.modes else None
         cap = min(self.max_step, phase.max_step, t_end - t)
-        solver = DOP853(fun, t, y, t_end, rtol=self.rtol, atol=self.atol, max_step=cap)
-        if limit is not None:
-            solver.max_step = min(cap, limit(t, y))
+
+        def start(first_step: float | None = None) -> DOP853:
+            out = DOP853(fun, t, y, t_end, rtol=self.rtol, atol=self.atol, max_step=cap, first_step=first_step)
+            if limit is not None:
+                out.max_step = min(cap, limit(t, y))
+            return out
+
+        solver, retried = start(), False
         ts: list[float] = [t]
         pieces: list[Any] = []
         steps = 0
@@ -277,6 +282,12 @@ class ReferenceStepper:
             try:
                 msg = solver.step()
             except _FAILURES as exc:
+                if steps == 0 and not retried and rate > 1.0 / cap:
+                    # scipy's first-step guess (two rhs evaluations) can lie far beyond the explicit method's
+                    # stability bound ~1 / rate when the phase starts at rest in its fast modes, and diverge: retry
+                    # once from a first step at that bound
+                    solver, retried = start(first_step=1.0 / rate), True
+                    continue
                 return self._result(
                     ta,
                     y,
