@@ -131,26 +131,42 @@ double fb_base_speed_bound(const fb_model *m, double t0, double t1) {
     return sqrt(vx * vx + vy * vy);
 }
 
-/* A(theta) s(q): the beam's first moment int mu r dx about O in the plane's axes. */
-static void moment(const fb_model *m, const fb_frame *f, const double *q, double out[2]) {
+/* Is obstacle 0 a mass on a support carried by the base (its anchor moves with O: the mass feels -m_s a_O)? */
+static int carried_support(const fb_model *m) { return fb_compliant(m) && !m->obstacles[0].ground; }
+
+/* A(theta) s(q): the beam's first moment int mu r dx about O in the plane's axes; with a support carried by the
+ * base, plus its mass's m_s s_u u (s_u its displacement along u from the static equilibrium: the constant part of
+ * its moment does no work). */
+static void moment(const fb_model *m, const fb_frame *f, const double *q, double su, double out[2]) {
     int n = m->n;
     double sx = m->m1 - 0.5 * fb_quad(m->G, q, n), sy = fb_dot(m->sf, q, n), s, c;
     fb_sincos(f->th, &s, &c);
     out[0] = c * sx - s * sy;
     out[1] = s * sx + c * sy;
+    if (carried_support(m)) {
+        const fb_obstacle *o = &m->obstacles[0];
+        out[0] += o->ms * su * o->ux;
+        out[1] += o->ms * su * o->uy;
+    }
+}
+
+double fb_support_base_force(const fb_model *m, const fb_frame *f) {
+    if (!carried_support(m) || !fb_base_moving(m)) return 0.0;
+    const fb_obstacle *o = &m->obstacles[0];
+    return -o->ms * (f->aO[0] * o->ux + f->aO[1] * o->uy);
 }
 
 /* The integrand of the base's work, j_O(t) . A s (W_b' less the boundary term's rate). */
-double fb_base_work_rate(const fb_model *m, double t, const fb_frame *f, const double *q) {
+double fb_base_work_rate(const fb_model *m, double t, const fb_frame *f, const double *q, double su) {
     double j[2], As[2];
     fb_base_motion(m, t, NULL, NULL, NULL, j);
-    moment(m, f, q, As);
+    moment(m, f, q, su, As);
     return j[0] * As[0] + j[1] * As[1];
 }
 
 /* The rate of the base's work in its direct form, -a_O(t) . d/dt[A s] (the reference integrator's W rate),
  * d/dt[A s] = A (s_x' - theta' s_y, s_y' + theta' s_x), s_x' = -q^T G q', s_y' = s_f q'. */
-double fb_base_power(const fb_model *m, double t, const fb_frame *f, const double *q, const double *qd) {
+double fb_base_power(const fb_model *m, double t, const fb_frame *f, const double *q, const double *qd, double sud) {
     int n = m->n;
     double a[2], gq[64], sxd = 0.0, s, c;
     fb_base_motion(m, t, NULL, NULL, a, NULL);
@@ -159,7 +175,9 @@ double fb_base_power(const fb_model *m, double t, const fb_frame *f, const doubl
     double sx = m->m1 - 0.5 * fb_dot(gq, q, n), sy = fb_dot(m->sf, q, n), syd = fb_dot(m->sf, qd, n);
     double lx = sxd - f->thd * sy, ly = syd + f->thd * sx;
     fb_sincos(f->th, &s, &c);
-    return -(a[0] * (c * lx - s * ly) + a[1] * (s * lx + c * ly));
+    double p = -(a[0] * (c * lx - s * ly) + a[1] * (s * lx + c * ly));
+    if (carried_support(m)) p -= m->obstacles[0].ms * sud * (a[0] * m->obstacles[0].ux + a[1] * m->obstacles[0].uy);
+    return p;
 }
 
 /* The work rate of the obstacles fixed to the ground on the beam, -sum_k F_k n_k . v_O over the pairs touching one
@@ -174,9 +192,9 @@ double fb_ground_rate(const fb_model *m, const fb_frame *f, const int *mode, con
 }
 
 /* The boundary term of the base's work at t, -a_O(t) . A s. */
-double fb_base_boundary(const fb_model *m, double t, const fb_frame *f, const double *q) {
+double fb_base_boundary(const fb_model *m, double t, const fb_frame *f, const double *q, double su) {
     double a[2], As[2];
     fb_base_motion(m, t, NULL, NULL, a, NULL);
-    moment(m, f, q, As);
+    moment(m, f, q, su, As);
     return -(a[0] * As[0] + a[1] * As[1]);
 }

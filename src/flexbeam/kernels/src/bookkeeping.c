@@ -109,7 +109,7 @@ static double base_boundary_at(const fb_phase *ph, double t, const double *eta) 
     const double *q, *qd;
     fb_to_physical(ph->b, eta, z);
     fb_joint(ph->m)->split(ph->m, t, z, z, &fr, &q, &qd); /* the frame's rates are not needed: z for z' */
-    return fb_base_boundary(ph->m, t, &fr, q);
+    return fb_base_boundary(ph->m, t, &fr, q, fb_compliant(ph->m) ? z[ph->b->N - 1] : 0.0);
 }
 
 /* The bookkeeping over a step [t, t + h] whose nodes and end are in w and st: the nodal rates of E_d and W (red,
@@ -128,7 +128,8 @@ void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, con
             const fb_node *nd = &w->node[j];
             double Fj[FB_MAX_PAIRS];
             for (int k = 0; k < ph->c.npairs; k++) Fj[k] = w->F[k][j];
-            double r = fb_base_work_rate(m, t + tb->c[j] * h, &nd->frame, nd->z + off) +
+            double su = fb_compliant(m) ? nd->z[ph->b->N - 1] : 0.0;
+            double r = fb_base_work_rate(m, t + tb->c[j] * h, &nd->frame, nd->z + off, su) +
                        fb_ground_rate(m, &nd->frame, ph->c.mode, Fj, nd->gap);
             rwd[j] += r;
             wb += tb->w[j] * r;

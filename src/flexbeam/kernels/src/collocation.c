@@ -72,6 +72,7 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
         s = z[N - 1];
         sd = zd[N - 1];
         R[N - 1] = -o->cs * sd; /* the support's dashpot (its spring is in the linear part) */
+        if (fb_base_moving(m)) R[N - 1] += fb_support_base_force(m, &out->frame); /* a moving base's -m_s a_O . u */
     }
     fb_project(b, R, out->smooth);
     if (want == FB_WANT_NONE) return;

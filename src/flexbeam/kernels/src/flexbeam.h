@@ -127,9 +127,11 @@ int fb_base_moving(const fb_model *m);
 void fb_base_motion(const fb_model *m, double t, double *r, double *v, double *a, double *j);
 double fb_base_speed_bound(const fb_model *m, double t0, double t1);
 double fb_base_next_knot(const fb_model *m, double t, double tol);
-double fb_base_power(const fb_model *m, double t, const fb_frame *f, const double *q, const double *qd);
-double fb_base_work_rate(const fb_model *m, double t, const fb_frame *f, const double *q);
-double fb_base_boundary(const fb_model *m, double t, const fb_frame *f, const double *q);
+double fb_base_power(const fb_model *m, double t, const fb_frame *f, const double *q, const double *qd, double sud);
+double fb_base_work_rate(const fb_model *m, double t, const fb_frame *f, const double *q, double su);
+double fb_base_boundary(const fb_model *m, double t, const fb_frame *f, const double *q, double su);
+/* The inertial force -m_s a_O . u on a support's mass carried by a moving base (0 otherwise). */
+double fb_support_base_force(const fb_model *m, const fb_frame *f);
 double fb_quad(const double *A, const double *x, int n);
 void fb_symv(const double *A, const double *x, int n, double *out);
 void fb_matvec(const double *A, const double *x, int n, double *out);

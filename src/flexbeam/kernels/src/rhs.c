@@ -55,6 +55,7 @@ static double assemble(rhs_eval *e, const fb_model *m, const fb_contacts *c, dou
     e->s = e->compliant ? y[nb] : 0.0;
     e->sd = e->compliant ? y[nb + 1] : 0.0;
     e->Fsup = e->compliant ? -e->o->ks * e->s - e->o->cs * e->sd : 0.0; /* the force on the support's mass */
+    if (e->compliant && fb_base_moving(m)) e->Fsup += fb_support_base_force(m, &e->fr); /* carried by the base */
     double tau = jt->torque(m, t);
     jt->mass(m, e->q, e->M);
     jt->forces(m, &e->fr, e->q, e->qd, tau, 1, e->Q);
@@ -184,7 +185,7 @@ int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, d
     }
     if (accelerations(&e, tau, y, dy, &torque)) goto fail;
     if (fb_base_moving(m)) /* the base's work and the ground obstacles' (base_motion.c) */
-        dy[size - 1] += fb_base_power(m, t, &e.fr, e.q, e.qd) + fb_ground_rate(m, &e.fr, c->mode, e.F, e.gp);
+        dy[size - 1] += fb_base_power(m, t, &e.fr, e.q, e.qd, e.sd) + fb_ground_rate(m, &e.fr, c->mode, e.F, e.gp);
     if (F_out)
         for (int k = 0; k < S; k++) F_out[k] = e.F[k];
     if (torque_out) *torque_out = torque;
