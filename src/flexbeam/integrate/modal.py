@@ -35,7 +35,8 @@ _ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED = 
 _INFO_T0, _INFO_REJECT = 5, 6
 _REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
 _INFO_SIZE = _INFO_REJECT + len(_REJECT_CAUSES)
-_EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4}
+_EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4, EventKind.STOP: 8,
+               EventKind.UNSTICK_PLUS: 16, EventKind.UNSTICK_MINUS: 32}  # fmt: skip
 #: floats at the end of a step record that summarise the step (FB_RECORD_SUMMARY in kernels/src/phase.h): the total
 #: and kinetic energy at its end, the tip deflection at its FB_P Gauss nodes
 SUMMARY = 6
@@ -183,6 +184,16 @@ class ModalDense:
         multiplier)."""
         c, w = gauss_nodes()
         return nm.fsum(self.records[:, 1] * nm.matmul(np.ascontiguousarray(self._forces(pair)), w))
+
+    def tangential_impulse(self, pair: int, sigma: float) -> float:
+        """int F_t dt of a pair over the phase, F_t = sigma F + lambda_t: its slip's kinetic friction (``sigma``, 0
+        unless it slips) and its stick's tangential multiplier (zero unless it sticks), by each step's Gauss
+        quadrature of the nodal values."""
+        _, w = gauss_nodes()
+        N, S = self.stepper.basis.N, self.stepper.system.pairs
+        off = 4 + 6 * N + 4 * S + 8 + 4 * pair
+        lam = np.ascontiguousarray(self.records[:, off : off + 4])
+        return sigma * self.impulse(pair) + nm.fsum(self.records[:, 1] * nm.matmul(lam, w))
 
     def step_energies(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(each step's end time, the total energy T + V_e + V_g + U_c + E_d - W there, the kinetic energy there), as

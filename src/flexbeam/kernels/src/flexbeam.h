@@ -89,9 +89,18 @@ typedef struct {
     int mode[FB_MAX_PAIRS];
     double p[FB_MAX_PAIRS][4];
     double alpha, beta;
+    /* Coulomb friction of a FORCE pair (friction.c): slip[k] = sigma_k, the tangential force sigma_k F_k along the
+     * tangent t = (-n_y, n_x) of a slipping pair (sigma = -mu_k sign(v_t); 0: none); stick[k]: the pair is held
+     * tangentially by a multiplier lambda_t (|lambda_t| <= mus[k] (F_k + the forces of its followers), mus the static
+     * coefficient); follow[k] >= 0: the pair sticks along with pair follow[k], its tangential row dependent on that
+     * pair's (two points of a rigid bar on two stops), which holds for both (-1: none). */
+    int friction; /* some pair slips or sticks */
+    double slip[FB_MAX_PAIRS], mus[FB_MAX_PAIRS];
+    int stick[FB_MAX_PAIRS], follow[FB_MAX_PAIRS];
 } fb_contacts;
 
-/* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair]. */
+/* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair],
+ * with friction [npairs, alpha, beta, (mode, p0, p1, p2, p3, sigma, stick, mu_s) per pair]. */
 int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf);
 
 /* The bending modes' count (the flexible coordinates without the axial ones). */

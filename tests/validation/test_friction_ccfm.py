@@ -1,0 +1,196 @@
+"""Coulomb friction under CCFM (issue 28): slip, stop, stick and unstick as located events, against closed forms.
+
+**A bar sliding to rest.**  The rigid steel bar of ``test_free_beam_two_stops.py`` (``joint.kind = "free"``, no
+modes, 20 cm, 12.7 mm across) lies horizontal on two identical hemispherical stops beneath its material points
+x = L/2 -+ a L, under gravity g, and slides along its axis at v0.  Both contacts slip in the same direction, so the
+friction forces are -mu_k F_1 and -mu_k F_2 along the bar and G's momentum balances read
+
+    m (v_x(t) - v0) = -mu_k int_0^t (F_1 + F_2) dt,      m (v_y(t) - v_y(0)) = int_0^t (F_1 + F_2) dt - m g t
+
+(the stops' normals vertical; the friction's moment about G, mu_k (F_1 + F_2) c, only shares the load unequally
+between the stops).  Eliminating the normal impulse, v_x(t) = v0 - mu_k (g t + v_y(t) - v_y(0)): the slip stops at
+
+    T = (v0 / mu_k - v_y(T) + v_y(0)) / g,
+
+exactly as long as the normals stay vertical, and G has slid d = int_0^T v_x dt = v0^2 / (2 mu_k g) - mu_k int_0^T
+(v_y - v_y(0)) dt.  The bar, started touching, settles on the stops and bounces a little while it slides; the terms
+in v_y carry that.  The neglected ones are the normals' tilt: the bar turns by at most theta_max during the slide,
+tilting each normal by as much and adding at most theta_max (F_1 + F_2) along the bar and mu_k theta_max
+(F_1 + F_2) across it, so T and d are as above to within a relative theta_max (1/mu_k + mu_k) (the test bounds it by
+twice that).  At T the slip stops as a located event (it is never stepped over) and the bar sticks: both points lie
+on one rigid line, so the second stop follows the first's multiplier (:func:`flexbeam.methods.coulomb.grouped`).
+
+**Stick on an incline.**  The same bar resting on two stops along a line inclined at alpha: the tangential load
+m g sin(alpha) and the normal load m g cos(alpha) leave it at rest for tan(alpha) < mu_s.  It settles (slips a little
+while the normal forces ring), then sticks: its contact points creep less than 1e-9 m over 1 s (the slip velocity
+integrated on the dense output).
+
+**Rough ground, stiff contact vs IMM.**  The rigid line bar of ``test_friction_impact.py`` strikes rough ground: CCFM
+with an elastic Hertz contact (no tangential compliance) and Coulomb friction against IMM's Stronge process with
+e = 1.  Both integrate the same slip/stick process over the normal impulse; they differ only by the bar's motion
+during the contact, which turns it by omega t_c and changes its inverse mass matrix to first order in that angle, so
+the velocities after agree to within (omega t_c) v0 -- and the difference shrinks as the contact stiffens.
+
+**Friction power.**  F_t v_t <= 0 at every step's nodes of every run here, but for the kernel's rest noise: a slipping
+pair's kinetic force opposes its slip velocity (its sign is fixed for the phase and the slip ends at the located
+stop), except that a slip starting from rest (a stick that ended) may run back by up to 1e-9 m/s before its stop
+fires; a sticking pair's multiplier works only on the stick's velocity residual, held below the same 1e-9 m/s.  The
+allowance is therefore abs(F_t) 1e-9 m/s.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flexbeam as fb
+from flexbeam.errors import ModelError
+from flexbeam.integrate.phases import ContactMode
+from flexbeam.model.system import BeamSystem
+
+sys.path.insert(0, str(Path(__file__).parent))
+from test_friction_impact import after, rough_bar  # noqa: E402
+
+STEEL = {"length": 0.2, "density": 7870.0, "youngs_modulus": 200e9, "poisson_ratio": 0.29, "section": "circle",
+         "radius": 0.00635}  # fmt: skip
+A, R_STOP, G = 0.3, 0.01, 9.81
+#: the kernel's stick noise: the slip velocity a stick holds to, and a slip starting from rest may run back (m/s)
+VT_NOISE = 1e-9
+
+
+def bar_on_stops(mu: float, v0: float, t_end: float, alpha: float = 0.0, mu_s: float | None = None) -> fb.Case:
+    """The rigid bar with G at (0, 0.1 m) and its axis at ``alpha``, touching two stops beneath x = L/2 -+ a L, moving
+    along its axis at ``v0``; Coulomb friction mu_k = ``mu`` (mu_s = ``mu_s``, default mu)."""
+    L, c, yG = STEEL["length"], STEEL["radius"], 0.1
+    ca, sa, r = math.cos(alpha), math.sin(alpha), c + R_STOP
+    stops = [(s * A * L * ca + r * sa, yG + s * A * L * sa - r * ca) for s in (-1.0, 1.0)]
+    return fb.load_case({
+        "name": "bar-on-stops", "beam": dict(STEEL), "joint": {"kind": "free"}, "model": {"modes": 0, "gravity": G},
+        "obstacle": {"kind": "sphere", "centre": list(stops[0]), "radius": R_STOP},
+        "obstacles": [{"kind": "sphere", "centre": list(stops[1]), "radius": R_STOP,
+                       "contact": {"position": (0.5 + A) * L}}],
+        "contact": {"law": "lankarani_nikravesh", "position": (0.5 - A) * L, "stiffness": 1.16e10, "side": "below",
+                    "restitution": 0.5, "anywhere": True, "friction": mu,
+                    "friction_static": mu if mu_s is None else mu_s},
+        "initial": {"kind": "state", "position": [0.0, yG], "velocity": [v0 * ca, v0 * sa], "angle": alpha,
+                    "rate": 0.0},
+        "solver": {"t_end": t_end},
+    })  # fmt: skip
+
+
+def states(sol, times: np.ndarray) -> np.ndarray:
+    """The run's states at sorted ``times`` (each in the first segment holding it)."""
+    out = np.empty((times.size, sol.source.run.segments[0].y0.size))
+    for seg in sol.source.run.segments:
+        inside = (times >= seg.t0) & (times <= seg.t1)
+        if inside.any():
+            out[inside] = seg.states(times[inside])
+    return out
+
+
+def friction_power(sol, system: BeamSystem) -> list[tuple[float, float, float]]:
+    """(F_t v_t, its allowance abs(F_t) VT_NOISE, t) of every frictional pair at every step's Gauss nodes: F_t =
+    sigma F (slip) or lambda_t (stick)."""
+    out = []
+    for seg in sol.source.run.segments:
+        fr, dense = seg.phase.friction, seg.dense
+        if fr is None or dense is None:
+            continue
+        N, S = dense.stepper.basis.N, system.pairs
+        c = np.array([0.5 - math.sqrt(525 + 70 * math.sqrt(30)) / 70, 0.5 - math.sqrt(525 - 70 * math.sqrt(30)) / 70])
+        c = np.concatenate((c, 1.0 - c[::-1]))
+        recs = dense.records
+        t = (recs[:, 0:1] + recs[:, 1:2] * c[None, :]).ravel()
+        inner = (t > seg.t0) & (t < seg.t1)
+        y = seg.dense(t[inner])
+        for k in range(S):
+            if seg.phase.modes[k] != ContactMode.FORCE or not (fr[k, 0] or fr[k, 1] == 1.0):
+                continue
+            F = recs[:, 4 + 6 * N + 4 * k : 4 + 6 * N + 4 * k + 4].ravel()[inner]
+            lam = recs[:, 4 + 6 * N + 4 * S + 8 + 4 * k : 4 + 6 * N + 4 * S + 8 + 4 * k + 4].ravel()[inner]
+            vt = np.array([system.tangent(ti, yi, k)[2] for ti, yi in zip(t[inner], y)])
+            Ft = fr[k, 0] * F + lam
+            out += [(float(p), float(a), float(ti)) for p, a, ti in zip(Ft * vt, np.abs(Ft) * VT_NOISE, t[inner])]
+    return out
+
+
+@pytest.mark.parametrize("mu", [0.3, 0.6])
+def test_a_bar_sliding_on_two_stops_stops_at_the_closed_form(mu):
+    """The slip's stop time T and G's slide d against the module docstring's momentum balance, within the bound
+    2 theta_max (1/mu_k + mu_k) on the normals' tilt; then the bar sticks (both pairs, one holding) till t_end."""
+    v0 = 0.1
+    T0 = v0 / (mu * G)
+    case = bar_on_stops(mu, v0, 1.5 * T0)
+    sol = fb.simulate(case, "ccfm")
+    assert sol.status == "success", sol.message
+    segs = sol.source.run.segments
+    slip_end = [s.t1 for s in segs if s.phase.friction is not None and s.phase.friction[0, 0] != 0.0][-1]
+    stuck = [s for s in segs if s.t0 >= slip_end]
+    assert stuck and all(s.phase.friction is not None and (s.phase.friction[:, 1] != 0.0).all() for s in stuck)
+    t = np.linspace(0.0, slip_end, 4001)
+    y = states(sol, t)
+    vy0, vyT = y[0, 4], y[-1, 4]
+    theta_max = float(np.max(np.abs(y[:, 2])))
+    rel = 2.0 * theta_max * (1.0 / mu + mu)
+    T = (v0 / mu - vyT + vy0) / G
+    assert abs(slip_end - T) <= rel * T, (slip_end, T, rel)
+    d = v0**2 / (2.0 * mu * G) - mu * np.trapezoid(y[:, 4] - vy0, t)
+    quad = np.max(np.abs(np.diff(y[:, 4]))) * slip_end  # the trapezoidal rule's error bound on the v_y term
+    assert abs((y[-1, 0] - y[0, 0]) - d) <= rel * d + mu * quad, (y[-1, 0], d)
+    assert abs(y[-1, 3]) <= 1e-6 * v0  # at rest along the bar at the located stop
+    assert max(p - a for p, a, _ in friction_power(sol, BeamSystem.from_case(case))) <= 0.0
+
+
+def test_a_bar_on_an_incline_below_the_friction_angle_sticks():
+    """tan(alpha) = 0.1 < mu_s = 0.3: after it settles (t > 0.2 s) the contact points creep less than 1e-9 m over
+    1 s (the slip velocity integrated by Simpson's rule on 20001 samples of the dense output)."""
+    from scipy.integrate import simpson
+
+    case = bar_on_stops(0.2, 0.0, 1.2, alpha=math.atan(0.1), mu_s=0.3)
+    sol = fb.simulate(case, "ccfm")
+    assert sol.status == "success", sol.message
+    system = BeamSystem.from_case(case)
+    t = np.linspace(0.2, 1.2, 20001)
+    y = states(sol, t)
+    for k in range(2):
+        vt = np.array([system.tangent(ti, yi, k)[2] for ti, yi in zip(t, y)])
+        assert abs(simpson(vt, x=t)) < 1e-9
+    assert max(p - a for p, a, _ in friction_power(sol, system)) <= 0.0
+
+
+@pytest.mark.parametrize(("angle", "mu"), [(45.0, 0.1), (45.0, 2.0), (20.0, 0.3), (70.0, 0.5)])
+def test_stiff_frictional_contact_agrees_with_stronges_impact(angle, mu):
+    """Rough ground (test_friction_impact.py's rigid bar dropped straight): CCFM with an elastic Hertz contact and
+    Coulomb friction leaves G's velocity and the spin of IMM's Stronge process with e = 1 to within omega t_c v0
+    (module docstring; omega the larger spin, t_c the contact's duration); a contact 100 times stiffer comes closer."""
+    case = rough_bar(angle, mu, 1.0)
+    imm = after(fb.simulate(case, "imm"))
+    diffs = []
+    for K in (1e10, 1e12):
+        stiff = fb.load_case(case.model_dump(), {"contact.stiffness": K})
+        sol = fb.simulate(stiff, "ccfm")
+        assert sol.status == "success", sol.message
+        ev = sol.contacts[0]
+        got = after(sol)
+        L = 0.5
+        scale = max(abs(got[2]), abs(imm[2])) * (ev.end - ev.onset)
+        diff = np.abs(got - imm) * np.array([1.0, 1.0, 0.5 * L])  # the spin as the end's speed
+        assert diff.max() <= scale * 1.0, (diff, scale)
+        diffs.append(diff.max())
+        assert max(p - a for p, a, _ in friction_power(sol, BeamSystem.from_case(stiff))) <= 0.0
+    assert diffs[1] < 0.5 * diffs[0]
+
+
+def test_ccm_still_refuses_friction():
+    with pytest.raises(ModelError, match=r"^contact\.friction: method 'ccm'"):
+        fb.simulate(fb.load_case("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 1e-3}), "ccm")
+
+
+def test_ccfm_friction_needs_the_exponential_integrator():
+    case = fb.load_case(rough_bar(45.0, 0.3, 1.0).model_dump(), {"solver.integrator": "reference"})
+    with pytest.raises(ModelError, match=r"^contact\.friction: CCFM's friction runs on the exponential"):
+        fb.simulate(case, "ccfm")
