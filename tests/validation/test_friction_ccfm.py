@@ -185,6 +185,35 @@ def test_stiff_frictional_contact_agrees_with_stronges_impact(angle, mu):
     assert diffs[1] < 0.5 * diffs[0]
 
 
+def test_outputs_and_the_contact_records_tangential_impulse(tmp_path):
+    """The Dataset holds each pair's tangential force, slip velocity and friction state (with units); a contact that
+    slips throughout (rough_bar at 45 degrees, mu = 0.1: slip in one direction) has the tangential impulse sigma P
+    (its normal impulse P, sigma = -mu_k sign(v_t)) to round-off, and it matches IMM's within the impact test's
+    bound; the result file keeps them."""
+    case = rough_bar(45.0, 0.1, 1.0)
+    sol = fb.simulate(case, "ccfm")
+    ev = sol.contacts[0]
+    sigma = sol.source.run.segments[-2].phase.friction[0, 0]
+    assert abs(sigma) == 0.1
+    assert ev.tangential_impulse == pytest.approx(sigma * ev.impulse, rel=1e-12)
+    imm = fb.simulate(case, "imm").contacts[0]
+    assert abs(ev.tangential_impulse - imm.tangential_impulse) <= 0.1 * abs(imm.tangential_impulse)
+    ds = sol.to_xarray()
+    assert ds["pair_tangential_force"].attrs["units"] == "N"
+    assert ds["pair_slip_velocity"].attrs["units"] == "m/s"
+    state = ds["pair_friction_state"].values[:, 0]
+    force = ds["contact_force"].values  # one pair: its force is the case's contact force
+    slipping = state == 1.0
+    assert slipping.any() and np.allclose(ds["pair_tangential_force"].values[slipping, 0], sigma * force[slipping])
+    assert np.all(ds["pair_slip_velocity"].values[slipping, 0] * sigma <= 0.0)
+    path = tmp_path / "rough.nc"
+    sol.to_xarray().to_netcdf(path)
+    import xarray as xr
+
+    with xr.open_dataset(path) as back:
+        assert "pair_friction_state" in back and "contact_tangential_impulse" in back
+
+
 def test_ccm_still_refuses_friction():
     with pytest.raises(ModelError, match=r"^contact\.friction: method 'ccm'"):
         fb.simulate(fb.load_case("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 1e-3}), "ccm")

@@ -195,6 +195,24 @@ class ModalDense:
         lam = np.ascontiguousarray(self.records[:, off : off + 4])
         return sigma * self.impulse(pair) + nm.fsum(self.records[:, 1] * nm.matmul(lam, w))
 
+    def multipliers(self, pair: int, times: np.ndarray) -> np.ndarray:
+        """A pair's tangential multiplier lambda_t (stick; zero otherwise) at ``times`` inside the phase: the Lagrange
+        interpolant of its step's nodal values."""
+        c, _ = gauss_nodes()
+        N, S = self.stepper.basis.N, self.stepper.system.pairs
+        off = 4 + 6 * N + 4 * S + 8 + 4 * pair
+        i = np.clip(np.searchsorted(self.records[:, 0], times, side="right") - 1, 0, self.records.shape[0] - 1)
+        x = (np.asarray(times, float) - self.records[i, 0]) / self.records[i, 1]
+        lam = self.records[i, off : off + 4]
+        out = np.zeros(x.size)
+        for j in range(4):
+            lj = np.ones(x.size)
+            for m in range(4):
+                if m != j:
+                    lj *= (x - c[m]) / (c[j] - c[m])
+            out += lj * lam[:, j]
+        return out
+
     def step_energies(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(each step's end time, the total energy T + V_e + V_g + U_c + E_d - W there, the kinetic energy there), as
         the integrator booked them for its energy balance (the last floats of a record, ``FB_RECORD_SUMMARY``)."""
