@@ -48,6 +48,7 @@ import numpy as np
 import pytest
 
 import flexbeam as fb
+from flexbeam.contact.laws import threlfall
 from flexbeam.errors import ModelError
 from flexbeam.integrate.phases import ContactMode
 from flexbeam.model.system import BeamSystem
@@ -94,7 +95,7 @@ def states(sol, times: np.ndarray) -> np.ndarray:
 
 def friction_power(sol, system: BeamSystem) -> list[tuple[float, float, float]]:
     """(F_t v_t, its allowance abs(F_t) VT_NOISE, t) of every frictional pair at every step's Gauss nodes: F_t =
-    sigma F (slip) or lambda_t (stick)."""
+    sigma F (slip; sigma(v_t) under the regularised law) or lambda_t (stick)."""
     out = []
     for seg in sol.source.run.segments:
         fr, dense = seg.phase.friction, seg.dense
@@ -113,7 +114,8 @@ def friction_power(sol, system: BeamSystem) -> list[tuple[float, float, float]]:
             F = recs[:, 4 + 6 * N + 4 * k : 4 + 6 * N + 4 * k + 4].ravel()[inner]
             lam = recs[:, 4 + 6 * N + 4 * S + 8 + 4 * k : 4 + 6 * N + 4 * S + 8 + 4 * k + 4].ravel()[inner]
             vt = np.array([system.tangent(ti, yi, k)[2] for ti, yi in zip(t[inner], y)])
-            Ft = fr[k, 0] * F + lam
+            sigma = threlfall(fr[k, 0], fr[k, 2], vt) if fr[k, 1] < 0.0 else fr[k, 0]  # [mu_k, -1, v_0]: regularised
+            Ft = sigma * F + lam
             out += [(float(p), float(a), float(ti)) for p, a, ti in zip(Ft * vt, np.abs(Ft) * VT_NOISE, t[inner])]
     return out
 
@@ -212,6 +214,51 @@ def test_outputs_and_the_contact_records_tangential_impulse(tmp_path):
 
     with xr.open_dataset(path) as back:
         assert "pair_friction_state" in back and "contact_tangential_impulse" in back
+
+
+@pytest.mark.parametrize("v0", [1e-3, 1e-4])
+def test_threlfalls_regularised_law_creeps_at_its_closed_form_speed(v0):
+    """``contact.friction_model = "threlfall"`` (Threlfall 1978): no stick, so the bar on the incline of the stick test
+    creeps.  Both points slip at the same v_t and carry m g sin(alpha) on m g cos(alpha), so mu_k (1 - exp(-3 v / v_0))
+    = tan(alpha): v = -(v_0 / 3) ln(1 - tan(alpha) / mu_k).  The normal forces still ring about their static values
+    and the law is nonlinear in v, so the mean slip speed over [0.1, 0.3] s departs from v by the square of the
+    ringing's relative amplitude (vmax - vmin) / (vmax + vmin) at most (measured: 1/15 of that)."""
+    from scipy.integrate import simpson
+
+    mu, tan_a = 0.2, 0.1
+    base = bar_on_stops(mu, 0.0, 0.3, alpha=math.atan(tan_a), mu_s=0.3).model_dump()
+    case = fb.load_case(base, {"contact.friction_model": "threlfall", "contact.friction_velocity": v0})
+    sol = fb.simulate(case, "ccfm")
+    assert sol.status == "success", sol.message
+    system = BeamSystem.from_case(case)
+    t = np.linspace(0.1, 0.3, 4001)
+    y = states(sol, t)
+    vt = np.array([system.tangent(ti, yi, 0)[2] for ti, yi in zip(t, y)])
+    v = -(v0 / 3.0) * math.log(1.0 - tan_a / mu)
+    mean = simpson(vt, x=t) / (t[-1] - t[0])
+    ringing = (vt.max() - vt.min()) / (vt.max() + vt.min())
+    assert abs(mean / v - 1.0) <= ringing**2, (mean, v, ringing)
+    assert max(p - a for p, a, _ in friction_power(sol, system)) <= 0.0
+
+
+@pytest.mark.parametrize(
+    ("setting", "field"),
+    [
+        ("contact.friction=-0.1", "contact.friction"),
+        ("contact.friction_model=viscous", "contact.friction_model"),
+        ("contact.friction_velocity=0", "contact.friction_velocity"),
+    ],
+)
+def test_bad_friction_input_is_one_line_exit_2(setting, field):
+    """The CLI names the field on one line and exits 2 (mu_k > mu_s: test_friction_impact.py)."""
+    import subprocess
+
+    r = subprocess.run(
+        [sys.executable, "-m", "flexbeam.cli", "run", "seed-experiment", "--json", "--set", setting],
+        capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert r.returncode == 2 and len(r.stderr.splitlines()) == 1, r.stderr
+    assert r.stderr.startswith(f"error: {field}"), r.stderr
 
 
 def test_ccm_still_refuses_friction():

@@ -18,6 +18,11 @@ slip speed is below :data:`REST_SPEED` starts sticking, and so is decided the sa
 
 Each row of :attr:`~flexbeam.integrate.phases.Phase.friction` is [sigma, stick, mu_s] with sigma = -mu_k sign(v_t)
 (0 unless slipping); a pair with mu_k = 0 slips without friction and is not watched for stops.
+
+``contact.friction_model = "threlfall"`` replaces the switching by Threlfall's regularised law (Threlfall,
+Mechanism and Machine Theory 13 (1978) 475-483), F_t = -mu_k F (1 - exp(-3 abs(v_t) / v_0)) sign(v_t) with
+v_0 = ``contact.friction_velocity``: no events, no stick (a body on an incline creeps at a speed ~ v_0 tan(alpha) /
+(3 mu_k)); its row is [mu_k, -1, v_0].
 """
 
 from __future__ import annotations
@@ -46,6 +51,8 @@ def onset_row(system: BeamSystem, t: float, y: np.ndarray, pair: int) -> np.ndar
     p = system.contact.pairs[pair]
     if not p.frictional:
         return np.zeros(3)
+    if p.friction_model == "threlfall":
+        return np.array([p.friction, -1.0, p.friction_velocity])
     vt = system.tangent(t, y, pair)[2]
     if abs(vt) > REST_SPEED:
         return np.array([-p.friction * np.sign(vt), 0.0, p.friction_static])
@@ -68,7 +75,7 @@ def stop(system: BeamSystem, phase: Phase, t: float, y: np.ndarray, pair: int) -
     out = rows(phase, system.pairs)
     out[pair] = after_event(system, EventKind.STOP, pair)
     for k in range(system.pairs):
-        if k != pair and out[k, 0] != 0.0 and abs(system.tangent(t, y, k)[2]) <= REST_SPEED:
+        if k != pair and out[k, 0] != 0.0 and out[k, 1] == 0.0 and abs(system.tangent(t, y, k)[2]) <= REST_SPEED:
             out[k] = after_event(system, EventKind.STOP, k)
     return out
 
@@ -79,7 +86,7 @@ def grouped(system: BeamSystem, t: float, y: np.ndarray, friction: np.ndarray) -
     stops move together -- so h holds both, within mu_s times their summed normal forces), by the Schur complement of
     the tangential Delassus matrix on the holders kept so far."""
     out = np.array(friction, float)
-    sticking = [k for k in range(out.shape[0]) if out[k, 1] != 0.0]
+    sticking = [k for k in range(out.shape[0]) if out[k, 1] > 0.0]
     if len(sticking) < 2:
         out[sticking, 1] = 1.0
         return out
@@ -112,8 +119,8 @@ def unstick(system: BeamSystem, phase: Phase, event: EventKind, pair: int) -> np
 
 
 def state(phase: Phase, pair: int) -> int:
-    """The pair's friction state in ``phase``: 0 no frictional contact, 1 slip, 2 stick."""
+    """The pair's friction state in ``phase``: 0 no frictional contact, 1 slip (or the regularised law), 2 stick."""
     if phase.friction is None:
         return 0
     sigma, stick = phase.friction[pair, 0], phase.friction[pair, 1]
-    return 2 if stick != 0.0 else (1 if sigma != 0.0 else 0)
+    return 2 if stick > 0.0 else (1 if sigma != 0.0 else 0)

@@ -153,7 +153,9 @@ class Solution:
         if end > ev.onset:
             ev.impulse = (ev.jump_impulse if jumped else 0.0) + src.impulse(ev.onset, end, ev.pair)
             if math.isnan(ev.tangential_impulse):  # CCFM's friction: int F_t dt over the contact
-                ev.tangential_impulse = tangential_impulse(getattr(src, "segments", []), ev.onset, end, ev.pair)
+                ev.tangential_impulse = tangential_impulse(
+                    getattr(src, "segments", []), ev.onset, end, ev.pair, getattr(src, "system", None)
+                )
             if not jumped:
                 ev.energy_before = src.mechanical_energy(ev.onset, after=True)
             ev.energy_after = src.mechanical_energy(end)

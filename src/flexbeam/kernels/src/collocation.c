@@ -100,7 +100,7 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
         } else {
             memcpy(out->b[k], out->jm[k], sizeof(double) * N);
         }
-        if (ph->c.friction && (ph->c.slip[k] != 0.0 || ph->c.stick[k]))
+        if (ph->c.friction && (ph->c.slip[k] != 0.0 || ph->c.stick[k] || ph->c.regv[k] > 0.0))
             fb_node_friction(ph, k, &out->frame, q, qd, s, sd, &up, out);
     }
 }

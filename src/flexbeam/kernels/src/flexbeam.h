@@ -93,11 +93,15 @@ typedef struct {
      * tangent t = (-n_y, n_x) of a slipping pair (sigma = -mu_k sign(v_t); 0: none); stick[k]: the pair is held
      * tangentially by a multiplier lambda_t (|lambda_t| <= mus[k] (F_k + the forces of its followers), mus the static
      * coefficient); follow[k] >= 0: the pair sticks along with pair follow[k], its tangential row dependent on that
-     * pair's (two points of a rigid bar on two stops), which holds for both (-1: none). */
-    int friction; /* some pair slips or sticks */
-    double slip[FB_MAX_PAIRS], mus[FB_MAX_PAIRS];
+     * pair's (two points of a rigid bar on two stops), which holds for both (-1: none).  regv[k] > 0: the pair's
+     * friction is Threlfall's regularised law sigma(v_t) = -regmu[k] (1 - exp(-3 |v_t| / regv[k])) sign(v_t). */
+    int friction; /* some pair slips, sticks or is under the regularised law */
+    double slip[FB_MAX_PAIRS], mus[FB_MAX_PAIRS], regmu[FB_MAX_PAIRS], regv[FB_MAX_PAIRS];
     int stick[FB_MAX_PAIRS], follow[FB_MAX_PAIRS];
 } fb_contacts;
+
+/* The tangential force per unit normal force of pair k slipping at v_t (friction.c). */
+double fb_slip_coefficient(const fb_contacts *c, int k, double vt);
 
 /* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair],
  * with friction [npairs, alpha, beta, (mode, p0, p1, p2, p3, sigma, stick, mu_s) per pair]. */

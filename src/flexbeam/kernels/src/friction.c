@@ -60,9 +60,17 @@ void fb_node_friction(const fb_phase *ph, int k, const fb_frame *fr, const doubl
     } else {
         memcpy(out->bt[k], out->jt[k], sizeof(double) * N);
     }
-    double sigma = ph->c.slip[k];
+    double sigma = fb_slip_coefficient(&ph->c, k, vt);
     if (sigma != 0.0)
         for (int i = 0; i < N; i++) out->b[k][i] += sigma * out->bt[k][i];
+}
+
+/* sigma_k of a slipping pair, or Threlfall's regularised coefficient -mu_k (1 - exp(-3 |v_t| / v_0)) sign(v_t)
+ * (Threlfall, Mechanism and Machine Theory 13 (1978) 475-483), 0 at v_t = 0. */
+double fb_slip_coefficient(const fb_contacts *c, int k, double vt) {
+    if (!(c->regv[k] > 0.0)) return c->slip[k];
+    double s = c->regmu[k] * fb_expm1(-3.0 * fabs(vt) / c->regv[k]);
+    return vt > 0.0 ? s : (vt < 0.0 ? -s : 0.0);
 }
 
 /* sign(v_t) of the slip times v_t at the fraction x of the step (> 0 while the pair slips its way). */
@@ -173,7 +181,7 @@ double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *k
 /* Friction's dissipation rate -(sigma F + lambda_t) v_t of pair k at an evaluated node (normal force F, tangential
  * multiplier Ft); 0 for a frictionless pair. */
 double fb_friction_rate(const fb_phase *ph, const fb_node *nd, int k, double F, double Ft) {
-    if (ph->c.slip[k] != 0.0) return -ph->c.slip[k] * F * nd->vt[k];
+    if (ph->c.slip[k] != 0.0 || ph->c.regv[k] > 0.0) return -fb_slip_coefficient(&ph->c, k, nd->vt[k]) * F * nd->vt[k];
     if (ph->c.stick[k]) return -Ft * nd->vt[k];
     return 0.0;
 }

@@ -117,31 +117,6 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     return fb_joint(m)->unpack(m) ? -4 : 0;
 }
 
-int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf) {
-    if (nbuf < 3) return -1;
-    c->npairs = (int)buf[0];
-    c->alpha = buf[1];
-    c->beta = buf[2];
-    size_t S = (size_t)c->npairs, width = nbuf == 3 + 8 * S ? 8 : 5;
-    if (c->npairs != m->npairs || c->npairs < 0 || nbuf != 3 + width * S) return -1;
-    c->friction = 0;
-    for (int k = 0; k < c->npairs; k++) {
-        const double *r = buf + 3 + width * k;
-        c->mode[k] = (int)r[0];
-        if (c->mode[k] < FB_MODE_NONE || c->mode[k] > FB_MODE_CONSTRAINT) return -1;
-        for (int j = 0; j < 4; j++) c->p[k][j] = r[1 + j];
-        c->slip[k] = width == 8 ? r[5] : 0.0;
-        int held = width == 8 ? (int)r[6] : 0; /* 0 none, 1 stick, 2 + h: stick following pair h */
-        c->stick[k] = held == 1;
-        c->follow[k] = held >= 2 ? held - 2 : -1;
-        c->mus[k] = width == 8 ? r[7] : 0.0;
-        if (held < 0 || c->follow[k] >= c->npairs) return -1;
-        if (c->mode[k] != FB_MODE_FORCE && (c->slip[k] != 0.0 || held)) return -1;
-        c->friction |= c->slip[k] != 0.0 || c->stick[k];
-    }
-    return 0;
-}
-
 /* The frame and the modal coordinates of a reference-layout state [z, z', ...] (z: the state's nz coordinates). */
 void fb_state_split(const fb_model *m, double t, const double *y, fb_frame *f, const double **q, const double **qd) {
     fb_joint(m)->split(m, t, y, y + fb_nz(m), f, q, qd);
