@@ -122,16 +122,16 @@ def pack_contacts(
 ) -> np.ndarray:
     """The contacts buffer: per pair its :class:`~flexbeam.integrate.phases.ContactMode` and law parameters
     [K, n, chi/d'_0, C] (rows of ``parameters``), and the constraints' Baumgarte alpha, beta; with ``friction``
-    (pairs x 3: [sigma, stick, mu_s] per pair, some row nonzero) each pair's row carries them too."""
+    (pairs x 4: [sigma, stick, mu_s, v_rest] per pair, some row nonzero) each pair's row carries them too."""
     S = len(modes)
-    fric = None if friction is None else np.asarray(friction, float).reshape(S, 3)
-    width = 5 if fric is None or not fric.any() else 8
+    fric = None if friction is None else np.asarray(friction, float).reshape(S, 4)
+    width = 5 if fric is None or not fric.any() else 9
     out = np.empty(3 + width * S)
     out[:3] = S, alpha, beta
     rows = out[3:].reshape(S, width)
     rows[:, 0] = modes
     rows[:, 1:5] = np.asarray(parameters, float).reshape(S, 4)
-    if width == 8:
+    if width == 9:
         rows[:, 5:] = fric
     return out
 

@@ -52,7 +52,7 @@ class CCFM(ImpactMethod):
         if event == EventKind.STOP:
             friction = coulomb.stop(self.system, phase, t, y, pair)
         elif event in FRICTION_EVENTS:
-            friction = coulomb.unstick(self.system, phase, event, pair)
+            friction = coulomb.unstick(self.system, phase, event, pair, t, y)
         else:
             phase, y = super().transition(phase, event, t, y, pair)
             if phase.friction is None:

@@ -14,15 +14,18 @@ to the obstacle):
 
 A stop always enters the stick: if the multiplier that would hold it already exceeds mu_s F the stick ends at once
 and the slip reverses (the direction of lambda_t is the only one the force can sustain).  A contact whose onset
-slip speed is below :data:`REST_SPEED` starts sticking, and so is decided the same way.
+slip speed is below :data:`REST_SPEED` starts sticking if the stick's ratio lambda_t / F = -W_tn / W_tt of its
+inverse mass matrix [J_t; J] M^-1 [J_t; J]^T is within mu_s (Stronge's stick condition at the onset of an impact),
+else slips in the direction the normal force drives it (:func:`onset_row`).
 
-Each row of :attr:`~flexbeam.integrate.phases.Phase.friction` is [sigma, stick, mu_s] with sigma = -mu_k sign(v_t)
-(0 unless slipping); a pair with mu_k = 0 slips without friction and is not watched for stops.
+Each row of :attr:`~flexbeam.integrate.phases.Phase.friction` is [sigma, stick, mu_s, v_rest] with sigma = -mu_k
+sign(v_t) (0 unless slipping) and v_rest the residual slip speed a slip starting from a stick may run back by
+(:func:`unstick`); a pair with mu_k = 0 slips without friction and is not watched for stops.
 
 ``contact.friction_model = "threlfall"`` replaces the switching by Threlfall's regularised law (Threlfall,
 Mechanism and Machine Theory 13 (1978) 475-483), F_t = -mu_k F (1 - exp(-3 abs(v_t) / v_0)) sign(v_t) with
 v_0 = ``contact.friction_velocity``: no events, no stick (a body on an incline creeps at a speed ~ v_0 tan(alpha) /
-(3 mu_k)); its row is [mu_k, -1, v_0].
+(3 mu_k)); its row is [mu_k, -1, v_0, 0].
 """
 
 from __future__ import annotations
@@ -42,21 +45,37 @@ DEPENDENT = 1e-9
 
 def rows(phase: Phase, pairs: int) -> np.ndarray:
     """A copy of ``phase``'s friction rows (pairs x 3; zeros without friction)."""
-    return np.zeros((pairs, 3)) if phase.friction is None else phase.friction.copy()
+    return np.zeros((pairs, 4)) if phase.friction is None else phase.friction.copy()
 
 
 def onset_row(system: BeamSystem, t: float, y: np.ndarray, pair: int) -> np.ndarray:
-    """The friction row of a pair whose contact starts at (t, y): slip against its slip velocity, or stick when it
-    barely slips; zeros for a frictionless pair."""
+    """The friction row of a pair whose contact starts at (t, y): slip against its slip velocity; when it barely
+    slips, stick if the stick's ratio -W_tn / W_tt is within mu_s, else slip in the direction sign(W_tn) the normal
+    force drives it (Stronge 2000, Impact Mechanics, ch. 5); zeros for a frictionless pair."""
     p = system.contact.pairs[pair]
     if not p.frictional:
-        return np.zeros(3)
+        return np.zeros(4)
     if p.friction_model == "threlfall":
-        return np.array([p.friction, -1.0, p.friction_velocity])
+        return np.array([p.friction, -1.0, p.friction_velocity, 0.0])
     vt = system.tangent(t, y, pair)[2]
     if abs(vt) > REST_SPEED:
-        return np.array([-p.friction * np.sign(vt), 0.0, p.friction_static])
-    return np.array([0.0, 1.0, p.friction_static])
+        return np.array([-p.friction * np.sign(vt), 0.0, p.friction_static, 0.0])
+    W = inverse_mass(system, t, y, [pair])  # [[W_tt, W_tn], [W_nt, W_nn]]
+    r = -W[0, 1] / W[0, 0] if W[0, 0] > 0.0 else 0.0
+    if abs(r) <= p.friction_static:  # the stick's ratio lambda_t / F (Stronge's stick condition)
+        return np.array([0.0, 1.0, p.friction_static, 0.0])
+    return np.array([p.friction * np.sign(r), 0.0, p.friction_static, 0.0])
+
+
+def inverse_mass(system: BeamSystem, t: float, y: np.ndarray, pairs: list[int]) -> np.ndarray:
+    """[J_t; J] M^-1 [J_t; J]^T of ``pairs`` (their tangential rows first, then their normal rows) over the coordinates
+    solved for (bordered by the support's mass m_s with a compliant support)."""
+    rows = [system.tangent(t, y, k) for k in pairs]
+    J = np.array([r[4] for r in rows] + [r[3] for r in rows])
+    M = system.mass_matrix(t, y)
+    g = system.ngiven
+    J, M = J[:, g:], M[g:, g:]
+    return nm.matmul(J, nm.solve(M, np.ascontiguousarray(J.T)))
 
 
 def after_event(system: BeamSystem, event: EventKind, pair: int) -> np.ndarray:
@@ -64,9 +83,9 @@ def after_event(system: BeamSystem, event: EventKind, pair: int) -> np.ndarray:
     kinetic force in the direction of the multiplier that last held it."""
     p = system.contact.pairs[pair]
     if event == EventKind.STOP:
-        return np.array([0.0, 1.0, p.friction_static])
+        return np.array([0.0, 1.0, p.friction_static, 0.0])
     sign = 1.0 if event == EventKind.UNSTICK_PLUS else -1.0
-    return np.array([sign * p.friction, 0.0, p.friction_static])
+    return np.array([sign * p.friction, 0.0, p.friction_static, 0.0])
 
 
 def stop(system: BeamSystem, phase: Phase, t: float, y: np.ndarray, pair: int) -> np.ndarray:
@@ -90,11 +109,8 @@ def grouped(system: BeamSystem, t: float, y: np.ndarray, friction: np.ndarray) -
     if len(sticking) < 2:
         out[sticking, 1] = 1.0
         return out
-    Jt = np.array([system.tangent(t, y, k)[4] for k in sticking])
-    M = system.mass_matrix(t, y)
-    g = system.ngiven  # (bordered by the support's mass m_s with a compliant support)
-    Jt, M = Jt[:, g:], M[g:, g:]
-    W = nm.matmul(Jt, nm.solve(M, np.ascontiguousarray(Jt.T)))
+    n = len(sticking)
+    W = inverse_mass(system, t, y, sticking)[:n, :n]
     kept: list[int] = []
     for i, k in enumerate(sticking):
         w = W[i, i]
@@ -109,12 +125,16 @@ def grouped(system: BeamSystem, t: float, y: np.ndarray, friction: np.ndarray) -
     return out
 
 
-def unstick(system: BeamSystem, phase: Phase, event: EventKind, pair: int) -> np.ndarray:
-    """The friction rows after holder ``pair``'s stick ended: it and its followers slip on (:func:`after_event`)."""
+def unstick(system: BeamSystem, phase: Phase, event: EventKind, pair: int, t: float, y: np.ndarray) -> np.ndarray:
+    """The friction rows after holder ``pair``'s stick ended at (t, y): it and its followers slip on
+    (:func:`after_event`), each from the stick's residual slip speed, which its slip may run back by twice before
+    a stop is declared (v_rest: the stick holds v_t only to its collocation error, 3e-11 m/s on a rigid bar, up to
+    1e-6 m/s at a flexible beam's ringing tip)."""
     out = rows(phase, system.pairs)
     for k in range(system.pairs):
         if k == pair or out[k, 1] == 2.0 + pair:
             out[k] = after_event(system, event, k)
+            out[k, 3] = 2.0 * abs(system.tangent(t, y, k)[2])
     return out
 
 

@@ -49,7 +49,7 @@ def friction_columns(system: BeamSystem, seg: Segment, times: np.ndarray, Y: np.
 def _regularised_impulse(system: BeamSystem, seg: Segment, pair: int) -> float:
     """int F_t dt of a pair under the regularised law over ``seg``: each step's Gauss quadrature of its nodal
     sigma(v_t) F (the slip velocity at the nodes from the dense output)."""
-    dense, (mu, _, v0) = seg.dense, seg.phase.friction[pair]
+    dense, (mu, _, v0) = seg.dense, seg.phase.friction[pair, :3]
     t, F = dense.nodal_forces(pair)
     inner = (t > seg.t0) & (t < seg.t1)
     Y = dense(t[inner])

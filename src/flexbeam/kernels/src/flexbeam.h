@@ -97,6 +97,7 @@ typedef struct {
      * friction is Threlfall's regularised law sigma(v_t) = -regmu[k] (1 - exp(-3 |v_t| / regv[k])) sign(v_t). */
     int friction; /* some pair slips, sticks or is under the regularised law */
     double slip[FB_MAX_PAIRS], mus[FB_MAX_PAIRS], regmu[FB_MAX_PAIRS], regv[FB_MAX_PAIRS];
+    double vrest[FB_MAX_PAIRS]; /* a slip that starts from a stick: the stick's residual slip speed it may run back */
     int stick[FB_MAX_PAIRS], follow[FB_MAX_PAIRS];
 } fb_contacts;
 
@@ -104,7 +105,7 @@ typedef struct {
 double fb_slip_coefficient(const fb_contacts *c, int k, double vt);
 
 /* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair],
- * with friction [npairs, alpha, beta, (mode, p0, p1, p2, p3, sigma, stick, mu_s) per pair]. */
+ * with friction [npairs, alpha, beta, (mode, p0, p1, p2, p3, sigma, stick, mu_s, v_rest) per pair]. */
 int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf);
 
 /* The bending modes' count (the flexible coordinates without the axial ones). */

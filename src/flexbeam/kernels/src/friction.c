@@ -94,15 +94,16 @@ static double bisect(const fb_dense *d, double a, double b, double shift) {
 }
 
 /* Where the slip of pair d->pair stops -- its slip velocity, positive along its direction, reaches zero -- or, for a
- * slip that started at rest (|v_t| < VT_NOISE), where it runs backwards beyond VT_NOISE; FB_NO_EVENT if neither. */
+ * slip that started at rest, where it runs backwards beyond VT_NOISE or the stick's residual v_rest it started from
+ * (the pair's vrest); FB_NO_EVENT if neither. */
 double fb_find_stop(const fb_dense *d) {
-    double start = slip_x(d, 0.0);
+    double start = slip_x(d, 0.0), noise = fmax(VT_NOISE, d->ph->c.vrest[d->pair]);
     int forward = start > 0.0;
-    if (start < -VT_NOISE) return 0.0;
+    if (start < -noise) return 0.0;
     for (int i = 1; i <= STOP_SAMPLES; i++) {
         double x = (double)i / STOP_SAMPLES, cur = slip_x(d, x);
         if (forward && cur <= 0.0) return bisect(d, (i - 1.0) / STOP_SAMPLES, x, 0.0);
-        if (!forward && cur < -VT_NOISE) return bisect(d, (i - 1.0) / STOP_SAMPLES, x, VT_NOISE);
+        if (!forward && cur < -noise) return bisect(d, (i - 1.0) / STOP_SAMPLES, x, noise);
         forward |= cur > 0.0;
     }
     return FB_NO_EVENT;

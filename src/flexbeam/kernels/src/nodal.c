@@ -3,6 +3,9 @@
 #include "integrator.h"
 
 #define NEWTON_MAX 30 /* Newton iterations for the nodal contact forces */
+/* A sticking pair's slip velocity decays from its value at the step's start (the stick's residual: the located stop's
+ * and each step end's collocation error) at the rate max(kappa, STICK_DECAY / h): to 2 % of it at the step's end */
+#define STICK_DECAY 4.0
 
 /* The contact unknowns of a step: (pair, node) for the pairs in contact, pair-major, then the sticking pairs'
  * tangential multipliers (row 1). */
@@ -52,7 +55,7 @@ static void contact_response(const fb_phase *ph, const fb_work *w, const fb_unkn
 /* The contact unknowns, each gap and rate linear in them through (A, B): a FORCE pair's F = law(-delta(F),
  * -rate(F)) and a CONSTRAINT pair's multiplier keeping g = delta' + kappa delta on g(t0) exp(-kappa (t - t0)) at
  * the nodes, by Newton's method (one linear solve when no pair is under a law); a sticking pair's tangential
- * multiplier keeps its slip velocity on g0t exp(-kappa (t - t0)) (friction.c). */
+ * multiplier keeps its slip velocity on g0t exp(-max(kappa, STICK_DECAY / h) (t - t0)) (friction.c). */
 static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u, const double *A, const double *B,
                            double h, const double *g0, const double *g0t) {
     const fb_tables *tb = fb_gauss();
@@ -89,7 +92,7 @@ static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u,
                 r += B[a * U + c] * (F[c] - F0[c]);
             }
             if (u->row[a]) {
-                res[a] = g0t[k] * fb_exp(-kappa * tb->c[i] * h) - r;
+                res[a] = g0t[k] * fb_exp(-fmax(kappa, STICK_DECAY / h) * tb->c[i] * h) - r;
                 for (int c = 0; c < U; c++) Jac[a * U + c] = B[a * U + c];
                 big = fmax(big, fabs(F[a]));
             } else if (ph->c.mode[k] == FB_MODE_FORCE) {
