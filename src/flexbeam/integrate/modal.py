@@ -272,6 +272,7 @@ class ModalStepper:
         #: set by a streamed run's loop: called with each finished part of a long phase (t0, y0, t1, y1, dense,
         #: opens), which is then dropped (:func:`flexbeam.integrate.loop.run_phases`)
         self.hand_on = None
+        self._modes: tuple = ()  # the contact modes of the last phase advanced
 
     # state conversion between the reference layout [z, z', (s, s'), E_d, W] and modal (eta, v)
     def to_modal(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -303,7 +304,10 @@ class ModalStepper:
         state = np.zeros(self.state_size)
         # a contact starts with a short step (the force grows as d^n from zero: not polynomial at the onset),
         # free flight where the last phase left off; the controller grows either by up to 5x per step
-        h = min(self.h, FIRST_STEP) if phase.in_contact else self.h
+        # (a friction event -- the same pairs in contact, the friction switched -- keeps the step: no new contact)
+        switched = phase.friction is not None and self._modes == phase.modes
+        h = min(self.h, FIRST_STEP) if phase.in_contact and not switched else self.h
+        self._modes = phase.modes
         state[:5] = t, h, y[-2], y[-1], 0.0
         state[5 : 5 + N], state[5 + N : 5 + 2 * N] = eta, v
         # the phase's step bound holds up to phase.max_step_until (an impact's force pulse); the rest of the phase

@@ -44,7 +44,7 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
         if (ph->c.mode[k] == FB_MODE_NONE) continue;
         if (ph->c.friction && (ph->c.slip[k] != 0.0 || ph->c.stick[k] || ph->c.regv[k] > 0.0)) { /* friction's share */
             double Jt[FB_MAXN], vt;
-            fb_pair_tangent(m, k, &nd->frame, q, qd, 0.0, 0.0, J, Jt, &vt);
+            fb_pair_tangent(m, k, &nd->frame, q, qd, 0.0, 0.0, 0, J, Jt, &vt);
             JF += Jt[0] * (fb_slip_coefficient(&ph->c, k, vt) * F[k][j] + (ph->c.stick[k] ? Ft[k][j] : 0.0));
         } else {
             fb_pair_gap(m, k, &nd->frame, q, qd, 0.0, 0.0, 0, J);

@@ -77,8 +77,10 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
     for (int k = 0; k < m->npairs; k++) {
         int active = ph->c.mode[k] != FB_MODE_NONE, jac = active || want == FB_WANT_JM;
         if (!active && want == FB_WANT_ACTIVE) continue;
-        double J[FB_MAXN], Jx[FB_MAXN];
-        out->gap[k] = fb_pair_gap(m, k, &out->frame, q, qd, s, sd, want_acc, jac ? J : NULL);
+        int rough = active && ph->c.friction && (ph->c.slip[k] != 0.0 || ph->c.stick[k] || ph->c.regv[k] > 0.0);
+        double J[FB_MAXN], Jx[FB_MAXN], Jt[FB_MAXN], vt = 0.0;
+        out->gap[k] = rough ? fb_pair_tangent(m, k, &out->frame, q, qd, s, sd, want_acc, J, Jt, &vt)
+                            : fb_pair_gap(m, k, &out->frame, q, qd, s, sd, want_acc, jac ? J : NULL);
         if (!jac) continue;
         /* J in the integrator's coordinates: the full ones without the given ([theta, q] or q), then the support */
         for (int i = 0; i < nz; i++) Jx[i] = J[i + ng];
@@ -100,8 +102,7 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
         } else {
             memcpy(out->b[k], out->jm[k], sizeof(double) * N);
         }
-        if (ph->c.friction && (ph->c.slip[k] != 0.0 || ph->c.stick[k] || ph->c.regv[k] > 0.0))
-            fb_node_friction(ph, k, &out->frame, q, qd, s, sd, &up, out);
+        if (rough) fb_node_friction(ph, k, Jt, vt, &up, out);
     }
 }
 

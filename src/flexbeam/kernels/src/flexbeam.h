@@ -156,7 +156,7 @@ double fb_ground_rate(const fb_model *m, const fb_frame *f, const int *mode, con
 fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                    double sd, int want_acc, double *J);
 fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
-                       double sd, double *J, double *Jt, double *vt);
+                       double sd, int want_acc, double *J, double *Jt, double *vt);
 
 /* ------------------------------------------------------------------ axial.c (the axial modes, na > 0) */
 double fb_axial_row(const fb_model *m, const double *q, double *u);

@@ -19,6 +19,7 @@
 #define VT_NOISE 1e-9 /* [m/s] a slip that starts at rest counts as reversed only this far beyond it (a stick holds v_t
                        * to ~3e-11 m/s, measured on the rough bar of tests/validation/test_friction_ccfm.py) */
 #define STOP_SAMPLES 16           /* slip-velocity samples per step */
+#define STOP_CLEAR 2.0            /* no samples where the known slip velocities clear zero by this times their spread */
 #define UNSTICK_SAMPLES 32        /* samples of the stick margin mu_s F - |lambda_t| per step */
 /* The stick margin's band: the collocated multiplier's own accuracy, which its error control holds to
  * max(MULTIPLIER_RTOL rtol, MULTIPLIER_NOISE) of its scale (collocation.c) */
@@ -36,23 +37,22 @@ fb_gap fb_tangent_at(const fb_phase *ph, int pair, double t, const double *eta, 
     fb_to_physical(b, eta, z);
     fb_to_physical(b, v, zd);
     fb_joint(m)->split(m, t, z, zd, &fr, &q, &qd);
-    return fb_pair_tangent(m, pair, &fr, q, qd, compliant ? z[N - 1] : 0.0, compliant ? zd[N - 1] : 0.0, J, Jt, vt);
+    return fb_pair_tangent(m, pair, &fr, q, qd, compliant ? z[N - 1] : 0.0, compliant ? zd[N - 1] : 0.0, 0, J, Jt, vt);
 }
 
-/* A frictional pair k in contact at an evaluated node (its b[k] already the normal force's direction): its slip
- * velocity, jt = Psi^T Jt^T, bt = Psi^T M0 M^-1 Jt^T (the update up of the node's mass matrix), and a slipping
- * pair's force direction b[k] += sigma bt. */
-void fb_node_friction(const fb_phase *ph, int k, const fb_frame *fr, const double *q, const double *qd, double s,
-                      double sd, const fb_update *up, fb_node *out) {
+/* A frictional pair k in contact at an evaluated node (its b[k] already the normal force's direction), its tangent
+ * Jacobian Jt and slip velocity vt (fb_pair_tangent): jt = Psi^T Jt^T, bt = Psi^T M0 M^-1 Jt^T (the update up of the
+ * node's mass matrix), and a slipping pair's force direction b[k] += sigma bt. */
+void fb_node_friction(const fb_phase *ph, int k, const double *Jt, double vt, const fb_update *up, fb_node *out) {
     const fb_model *m = ph->m;
     const fb_basis *b = ph->b;
     const fb_obstacle *o = &m->obstacles[m->pairs[k].obstacle];
+    const fb_gap *g = &out->gap[k];
     int N = b->N, nz = b->nz, ng = m->ngiven;
-    double J[FB_MAXN], Jt[FB_MAXN], Jx[FB_MAXN], vt;
-    fb_gap g = fb_pair_tangent(m, k, fr, q, qd, s, sd, J, Jt, &vt);
+    double Jx[FB_MAXN];
     out->vt[k] = vt;
     for (int i = 0; i < nz; i++) Jx[i] = Jt[i + ng];
-    if (fb_compliant(m)) Jx[N - 1] = o->ms > 0.0 ? -(-g.ny * o->ux + g.nx * o->uy) : 0.0;
+    if (fb_compliant(m)) Jx[N - 1] = o->ms > 0.0 ? -(-g->ny * o->ux + g->nx * o->uy) : 0.0;
     fb_project(b, Jx, out->jt[k]);
     if (up->active) {
         fb_joint(m)->correct(m, b, up, Jx);
@@ -165,6 +165,16 @@ double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *k
     int k = d->pair;
     if (ph->c.slip[k] != 0.0 && (events & EV_STOP)) {
         *kind = FB_EVENT_STOP;
+        /* the slip velocity at the step's start, nodes and end: clear of zero by twice its spread there, the slip
+         * goes on (no samples); else the samples of fb_find_stop decide */
+        double sg = ph->c.slip[k] < 0.0 ? 1.0 : -1.0, vt, lo, hi;
+        fb_tangent_at(ph, k, d->t0, d->eta0, d->v0, &vt);
+        lo = hi = sg * vt;
+        for (int j = 0; j <= FB_P; j++) {
+            double f = sg * (j < FB_P ? w->node[j].vt[k] : w->end.vt[k]);
+            lo = fmin(lo, f), hi = fmax(hi, f);
+        }
+        if (lo > STOP_CLEAR * (hi - lo)) return FB_NO_EVENT;
         return fb_find_stop(d);
     }
     if (ph->c.stick[k] && (events & EV_UNSTICK))

@@ -296,11 +296,11 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double 
  * Jacobian Jt = t . dr/dz (nfull entries) and the slip velocity *vt = t . (v - the obstacle's velocity): Coulomb
  * friction's kinematics (flexbeam.methods.friction). */
 fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
-                       double sd, double *J, double *Jt, double *vt) {
+                       double sd, int want_acc, double *J, double *Jt, double *vt) {
     const fb_pair *pr = &m->pairs[pair];
     const fb_obstacle *o = &m->obstacles[pr->obstacle];
     double dr[2 * MAXZ];
-    fb_kin k = {.want_acc = 0};
+    fb_kin k = {.want_acc = want_acc};
     if (o->ms <= 0.0) s = sd = 0.0;
     int N = fb_nfull(m);
     double x = pair_point(m, pr, o, f, q, qd, s, &k, dr);
