@@ -295,6 +295,19 @@ def test_bad_friction_input_is_one_line_exit_2(setting, field):
     assert r.stderr.startswith(f"error: {field}"), r.stderr
 
 
+def test_the_friction_figure(tmp_path):
+    """``sol.plot("friction")`` draws each frictional pair's tangential force, its bounds and its slip velocity; a run
+    without friction arrays is refused in one line."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    sol = fb.simulate(bar_on_stops(0.3, 0.1, 0.01), "ccfm")
+    assert sol.plot("friction", tmp_path / "friction.png").stat().st_size > 0
+    plain = fb.simulate(rough_bar(45.0, 0.0, 1.0), "ccfm")
+    with pytest.raises(ValueError, match="contact.friction"):
+        plain.plot("friction", tmp_path / "none.png")
+
+
 def test_ccm_still_refuses_friction():
     with pytest.raises(ModelError, match=r"^contact\.friction: method 'ccm'"):
         fb.simulate(fb.load_case("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 1e-3}), "ccm")
