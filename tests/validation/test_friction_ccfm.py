@@ -25,6 +25,10 @@ m g sin(alpha) and the normal load m g cos(alpha) leave it at rest for tan(alpha
 while the normal forces ring), then sticks: its contact points creep less than 1e-9 m over 1 s (the slip velocity
 integrated on the dense output).
 
+Steeper than the friction angle (tan(alpha) > mu_s) the same bar's stick ends as its normal forces build up, and it
+slides down at v_d(t) = g t (sin(alpha) - mu_k cos(alpha)) - mu_k (v_n(t) - v_n(0)) (the momentum balances along and
+across the incline), within the same tilt bound.
+
 **Rough ground, stiff contact vs IMM.**  The rigid line bar of ``test_friction_impact.py`` strikes rough ground: CCFM
 with an elastic Hertz contact (no tangential compliance) and Coulomb friction against IMM's Stronge process with
 e = 1.  Both integrate the same slip/stick process over the normal impulse; they differ only by the bar's motion
@@ -166,6 +170,27 @@ def test_a_bar_on_an_incline_below_the_friction_angle_sticks():
         vt = np.array([system.tangent(ti, yi, k)[2] for ti, yi in zip(t, y)])
         assert abs(simpson(vt, x=t)) < 1e-9
     assert max(p - a for p, a, _ in friction_power(sol, system)) <= 0.0
+
+
+def test_a_bar_on_an_incline_above_the_friction_angle_unsticks_and_slides():
+    """tan(alpha) = 0.5 > mu_s = 0.3: the bar set down on the incline starts sticking (at rest, lying along the
+    incline: W_tn = 0), its stick ends as soon as the normal forces build up, and it slides down.  Along the bar's
+    axis d (downhill) and across it, the momentum balances give, as for the sliding bar above,
+    v_d(t) = g t (sin(alpha) - mu_k cos(alpha)) - mu_k (v_n(t) - v_n(0)), to within the normals' tilt
+    2 theta_max (1/mu_k + mu_k) relative (theta_max: the bar's turn off the incline)."""
+    alpha, mu = math.atan(0.5), 0.2
+    sol = fb.simulate(bar_on_stops(mu, 0.0, 0.05, alpha=alpha, mu_s=0.3), "ccfm")
+    assert sol.status == "success", sol.message
+    rows = [s.phase.friction for s in sol.source.run.segments if s.phase.friction is not None]
+    assert rows[0][0, 1] > 0.0 and rows[-1][0, 0] != 0.0  # it stuck first, it slips at the end
+    t = np.linspace(0.0, 0.05, 2001)
+    y = states(sol, t)
+    ca, sa = math.cos(alpha), math.sin(alpha)
+    v_d = -(y[:, 3] * ca + y[:, 4] * sa)
+    v_n = -y[:, 3] * sa + y[:, 4] * ca
+    closed = G * t * (sa - mu * ca) - mu * (v_n - v_n[0])
+    theta_max = float(np.max(np.abs(y[:, 2] - alpha)))
+    assert abs(v_d[-1] - closed[-1]) <= 2.0 * theta_max * (1.0 / mu + mu) * closed[-1], (v_d[-1], closed[-1])
 
 
 @pytest.mark.parametrize(("angle", "mu"), [(45.0, 0.1), (45.0, 2.0), (20.0, 0.3), (70.0, 0.5)])
