@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 import flexbeam as fb
+from flexbeam.fem.beam import FemBeam
 from flexbeam.fem.contact_law import friction_law
 
 L, R, RHO = 0.1, 0.01, 7800.0
@@ -122,6 +123,27 @@ def test_a_frictional_fe_run_balances_its_energy_and_keeps_its_outputs():
     assert np.all(np.diff(sol.arrays["dissipated_energy"]) >= -1e-12 * T0)
     assert sol.arrays["dissipated_energy"][-1] > 1e-3 * T0  # the slip did dissipate
     ds = sol.to_xarray()
-    Ft, vt = ds["pair_friction_force"].values[:, 0], ds["pair_slip_velocity"].values[:, 0]
+    Ft, vt = ds["pair_tangential_force"].values[:, 0], ds["pair_slip_velocity"].values[:, 0]
+    state = ds["pair_friction_state"].values[:, 0]
     assert np.all(Ft * vt <= 0.0)  # friction opposes the slip at every sample
+    # it slips throughout (mu = 0.1), from rest along t at the onset (within the law's band there, state 2)
+    ev = sol.contacts[0]
+    late = (sol.time > ev.onset + 0.1 * (ev.end - ev.onset)) & (sol.time < ev.end)
+    assert np.all(state[late] == 1.0) and np.all(state[sol.arrays["contact_force"] == 0.0] == 0.0)
     assert sol.contacts[0].tangential_impulse == pytest.approx(np.trapezoid(Ft, sol.time), rel=1e-9)
+
+
+def test_threlfalls_law_for_a_case_that_names_it():
+    """``contact.friction_model = "threlfall"``: the FE uses the case's law, mu_k (1 - exp(-3 v / v_0)) sign(v) (as
+    CCFM does), with its v_0, not the Brown & McPhee stand-in for exact Coulomb friction."""
+    mu_k, v0 = 0.4, 2e-3
+    for v in (-5e-3, -1e-4, 1e-4, 3e-3):
+        phi, dphi = friction_law(mu_k, mu_k, v0, v, 1.0)
+        assert phi == pytest.approx(mu_k * math.copysign(1.0 - math.exp(-3.0 * abs(v) / v0), v), rel=1e-15)
+        assert dphi == pytest.approx(3.0 * mu_k / v0 * math.exp(-3.0 * abs(v) / v0), rel=1e-15)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the stubby bar's slender-beam warning
+        case = fb.load_case(rough_stiff_bar(45.0, 0.4, 4.4e9).model_dump(),
+                            {"contact.friction_model": "threlfall", "contact.friction_velocity": v0})  # fmt: skip
+    beam = FemBeam.from_case(case)
+    assert beam.free_state.friction[0].tolist() == [0.4, 0.4, v0, 1.0]

@@ -198,7 +198,7 @@ def test_bad_friction_names_the_field(overrides, fragment):
         fb.load_case("seed-experiment", overrides)
 
 
-@pytest.mark.parametrize("method", ["ccfm", "ccm"])
+@pytest.mark.parametrize("method", ["ccm"])
 def test_methods_without_friction_refuse_it(method):
     with pytest.raises(ModelError, match=r"^contact\.friction: method"):
         fb.simulate(fb.load_case("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 1e-3}), method)

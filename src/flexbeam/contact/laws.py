@@ -207,3 +207,10 @@ def law_potential(p: np.ndarray, d: float) -> float:
     if d <= 0.0:
         return 0.0
     return p[0] * nm.pow(d, p[1] + 1.0) / (p[1] + 1.0)
+
+
+def threlfall(mu: float, v0: float, vt):
+    """Threlfall's regularised friction coefficient -mu_k (1 - exp(-3 abs(v_t) / v_0)) sign(v_t) (Threlfall,
+    Mechanism and Machine Theory 13 (1978) 475-483): 95 % of mu_k at abs(v_t) = v_0, linear below."""
+    vt = np.asarray(vt, float)
+    return mu * np.expm1(-3.0 * np.abs(vt) / v0) * np.sign(vt)

@@ -65,6 +65,8 @@ class ContactPair:
     anywhere: bool = False  #: the contact point is found on the deformed beam (position, offset: a start)
     friction_static: float = 0.0  #: Coulomb's static coefficient mu_s (IMM's frictional impacts)
     friction: float = 0.0  #: the kinetic coefficient mu_k
+    friction_model: str = "coulomb"  #: CCFM's law: "coulomb" (stick and slip) or "threlfall" (regularised)
+    friction_velocity: float = 1e-3  #: the regularised law's v_0 [m/s]
 
     @property
     def frictional(self) -> bool:
@@ -131,6 +133,8 @@ class ContactSetup:
                 raise ParameterError(str(exc)) from None
             pairs.append(ContactPair(float(x), float(SIDES[side] * c), i + 1, law, e, f"obstacles[{i}]", anywhere,
                                      float(static), float(kinetic)))  # fmt: skip
+        law = {"friction_model": case.contact.friction_model, "friction_velocity": case.contact.friction_velocity}
+        pairs = [replace(p, **law) for p in pairs]
         r_O = case.base.motion(0.0)[0]
         check_overlaps([o.seen_from(r_O) for o in obstacles])
         return cls(tuple(pairs), tuple(obstacles))

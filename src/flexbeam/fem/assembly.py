@@ -279,10 +279,10 @@ def _anywhere_pair(
 @fem_jit
 def _friction(q, F, dFd, dFdd, vt, J, Jt, idx, wts, lawps, cK, cC, want_S, R, ab):
     """Pair q's friction force Ft = -F phi(v_t) along the tangent (:func:`~flexbeam.fem.contact_law.friction_law`,
-    its parameters lawps[q, 4:7]): R -= Jt^T Ft over the DOFs ``idx`` (weights ``wts``), and the iteration matrix
+    its parameters lawps[q, 4:8]): R -= Jt^T Ft over the DOFs ``idx`` (weights ``wts``), and the iteration matrix
     += Jt^T (phi dF/dz + F phi' dv_t/dz) = Jt^T (-phi (cK dF/dd + cC dF/dd') J + F phi' cC Jt), not symmetric (the
     normal force's dependence on the state; the tangent's own change neglected, as the gap Hessian is).  Returns Ft."""
-    phi, dphi = friction_law(lawps[q, 4], lawps[q, 5], lawps[q, 6], vt)
+    phi, dphi = friction_law(lawps[q, 4], lawps[q, 5], lawps[q, 6], vt, lawps[q, 7])
     Ft = -F * phi
     m = idx.size
     for a in range(m):

@@ -59,17 +59,23 @@ def law_potential(p, d):
 
 
 @fem_jit
-def friction_law(mu_k, mu_s, vs, v):
-    """Friction coefficient phi(v) of the regularised Coulomb law and its derivative d phi / dv.
+def friction_law(mu_k, mu_s, vs, v, model=0.0):
+    """Friction coefficient phi(v) of a regularised Coulomb law and its derivative d phi / dv.
 
-    Brown & McPhee (2016), J. Comput. Nonlinear Dynam. 11(5) 054502, without its viscous term:
+    ``model`` 0: Brown & McPhee (2016), J. Comput. Nonlinear Dynam. 11(5) 054502, without its viscous term,
 
         phi(v) = mu_k tanh(4 v / v_s) + (mu_s - mu_k) (v / v_s) / ((v / v_s)^2 / 4 + 3 / 4)^2,
 
     odd in the slip velocity v, rising to about mu_s at v = v_s (its second term peaks there at mu_s - mu_k;
     tanh(4) = 0.9993) and tending to mu_k in sliding: Coulomb's law with static and kinetic coefficients as the
-    transition velocity v_s -> 0.  The tangential force on the beam is -N phi(v_t) along the contact's tangent.
+    transition velocity v_s -> 0 (the FE's stand-in for exact stick and slip).  ``model`` 1: Threlfall's law
+    (Mechanism and Machine Theory 13 (1978) 475), phi(v) = mu_k (1 - exp(-3 abs(v) / v_s)) sign(v), the case's
+    ``contact.friction_model = "threlfall"`` with v_s its ``contact.friction_velocity``.  The tangential force on the
+    beam is -N phi(v_t) along the contact's tangent.
     """
+    if model == 1.0:
+        e = math.exp(-3.0 * abs(v) / vs)
+        return mu_k * math.copysign(1.0 - e, v), 3.0 * mu_k * e / vs
     u = v / vs
     th = math.tanh(4.0 * u)
     D = 0.25 * u * u + 0.75

@@ -40,6 +40,9 @@ class FemPair:
     anywhere: bool = False
     friction: float = 0.0  #: Coulomb's kinetic coefficient mu_k (contact.friction)
     friction_static: float = 0.0  #: the static coefficient mu_s (contact.friction_static)
+    #: the case's law: "coulomb" (the FE regularises it, fem.friction_velocity) or "threlfall" (its friction_velocity)
+    friction_model: str = "coulomb"
+    friction_velocity: float = 1e-3
 
 
 def pairs_from_setup(contact: ContactSetup, x_nodes: np.ndarray, surface_offset: float) -> tuple[FemPair, ...]:
@@ -53,7 +56,7 @@ def pairs_from_setup(contact: ContactSetup, x_nodes: np.ndarray, surface_offset:
             FemPair(
                 int(np.argmin(np.abs(x_nodes - p.position))), p.position, offset, int(ob.kind),
                 np.asarray(ob.centre, float), float(ob.radius), np.asarray(ob.normal, float), p.law, p.label,
-                p.anywhere, p.friction, p.friction_static,
+                p.anywhere, p.friction, p.friction_static, p.friction_model, p.friction_velocity,
             )
         )  # fmt: skip
     return tuple(pairs)
@@ -73,32 +76,38 @@ def pair_arrays(pairs: tuple[FemPair, ...]) -> tuple[np.ndarray, ...]:
     )
 
 
-#: columns of a pair's kernel parameters: the law's [K, n, chi/d'_0, C], then friction's [mu_k, mu_s, v_s]
-LAW_COLUMNS, PARAM_COLUMNS = 4, 7
+#: columns of a pair's kernel parameters: the law's [K, n, chi/d'_0, C], then friction's [mu_k, mu_s, v_s, model]
+LAW_COLUMNS, PARAM_COLUMNS = 4, 8
 
 
 def friction_params(pairs: tuple[FemPair, ...], velocity: float) -> np.ndarray:
-    """Each pair's friction parameters [mu_k, mu_s, v_s] (S x 3; zeros without friction), v_s = ``velocity``
-    (``fem.friction_velocity``)."""
-    return np.array(
-        [[p.friction, p.friction_static, velocity] if p.friction_static > 0.0 else [0.0, 0.0, 1.0] for p in pairs],
-        float,
-    ).reshape(len(pairs), PARAM_COLUMNS - LAW_COLUMNS)
+    """Each pair's friction parameters [mu_k, mu_s, v_s, model] (S x 4; zeros without friction) for
+    :func:`flexbeam.fem.contact_law.friction_law`: Coulomb's law regularised by Brown & McPhee's (model 0) with
+    v_s = ``velocity`` (``fem.friction_velocity``), or Threlfall's law (model 1) with the case's v_0."""
+
+    def row(p: FemPair) -> list[float]:
+        if p.friction_static <= 0.0:
+            return [0.0, 0.0, 1.0, 0.0]
+        if p.friction_model == "threlfall":
+            return [p.friction, p.friction_static, p.friction_velocity, 1.0]
+        return [p.friction, p.friction_static, velocity, 0.0]
+
+    return np.array([row(p) for p in pairs], float).reshape(len(pairs), PARAM_COLUMNS - LAW_COLUMNS)
 
 
 class ContactState:
     """Which contact pairs are in their contact phase, their law parameters [K, n, chi/d'_0, C] and friction.
 
     ``laws[k]`` is pair k's parameter vector (None while it is free); ``active`` (int64, S) and ``params``
-    (S x 7: the law's four, then the pair's friction [mu_k, mu_s, v_s] (``friction``, S x 3, default none); zeros for
-    free pairs) are the arrays the kernels read.
+    (S x 8: the law's four, then the pair's friction [mu_k, mu_s, v_s, model] (``friction``, S x 4, default none);
+    zeros for free pairs) are the arrays the kernels read.
     """
 
     __slots__ = ("active", "friction", "laws", "params")
 
     def __init__(self, laws: tuple[np.ndarray | None, ...], friction: np.ndarray | None = None) -> None:
         self.laws = tuple(laws)
-        self.friction = np.zeros((len(self.laws), 3)) if friction is None else friction
+        self.friction = np.zeros((len(self.laws), PARAM_COLUMNS - LAW_COLUMNS)) if friction is None else friction
         self.active = np.array([p is not None for p in self.laws], np.int64)
         self.params = np.zeros((len(self.laws), PARAM_COLUMNS))
         for k, p in enumerate(self.laws):

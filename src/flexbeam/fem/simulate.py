@@ -38,7 +38,9 @@ class _Sampler:
         self.dissipated = 0.0
         self.work = 0.0
         self.pair_rows: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
-        self.friction_rows: list[tuple[np.ndarray, np.ndarray]] = []  # frictional runs: (F_t, v_t) per pair
+        # frictional runs: (F_t, v_t, state) per pair, the state 0 (no frictional contact), 1 slip, 2 stick (within
+        # the regularised law's band |v_t| <= v_s), as CCFM's pair_friction_state
+        self.friction_rows: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
         # a free beam: (x_G, y_G, v_Gx, v_Gy, a_Gx, a_Gy, H_G, H_G') per sample, and the pairs' (n_x, n_y, lever)
         # where the contact state changes (flexbeam.fem.rigid_motion)
         self.rigid_rows: list[tuple[float, ...]] = []
@@ -73,7 +75,10 @@ class _Sampler:
                 (res.pair_gap.copy(), res.pair_gap_rate.copy(), res.pair_force.copy(), res.pair_position.copy())
             )
         if res.pair_friction is not None:  # Coulomb friction dissipates -F_t v_t >= 0 per pair
-            self.friction_rows.append((res.pair_friction, res.pair_slip))
+            mu_s, vs = b.free_state.friction[:, 1], b.free_state.friction[:, 2]
+            touching = (mu_s > 0.0) & (res.pair_force > 0.0)
+            state = np.where(touching, np.where(np.abs(res.pair_slip) <= vs, 2.0, 1.0), 0.0)
+            self.friction_rows.append((res.pair_friction, res.pair_slip, state))
             p_diss += float(np.sum(-res.pair_friction * res.pair_slip))
         p_drive = 0.0 if b.free else res.torque * float(s.zd[0]) + b.base_power(s.t, s.z, s.zd)
         if self._prev is not None:
@@ -244,7 +249,7 @@ def sample_arrays(beam: FemBeam, sampler: _Sampler) -> dict[str, np.ndarray]:
     if S > 1 or beam.any_anywhere:  # per pair (samples x pairs), as the modal model's pair_* variables
         for j, name in enumerate(PAIR_VARIABLES):
             out[name] = np.array([r[j] for r in sampler.pair_rows], float).reshape(m, S)
-    if sampler.friction_rows:  # a frictional run: the friction force along each pair's tangent and the slip
+    if sampler.friction_rows:  # a frictional run: the friction force along each pair's tangent, the slip, the state
         for j, name in enumerate(FRICTION_VARIABLES):
             out[name] = np.array([r[j] for r in sampler.friction_rows], float).reshape(m, S)
     out["q"] = np.empty((m, 0))

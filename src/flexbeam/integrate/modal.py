@@ -35,7 +35,8 @@ _ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED = 
 _INFO_T0, _INFO_REJECT = 5, 6
 _REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
 _INFO_SIZE = _INFO_REJECT + len(_REJECT_CAUSES)
-_EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4}
+_EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4, EventKind.STOP: 8,
+               EventKind.UNSTICK_PLUS: 16, EventKind.UNSTICK_MINUS: 32}  # fmt: skip
 #: floats at the end of a step record that summarise the step (FB_RECORD_SUMMARY in kernels/src/phase.h): the total
 #: and kinetic energy at its end, the tip deflection at its FB_P Gauss nodes
 SUMMARY = 6
@@ -184,6 +185,34 @@ class ModalDense:
         c, w = gauss_nodes()
         return nm.fsum(self.records[:, 1] * nm.matmul(np.ascontiguousarray(self._forces(pair)), w))
 
+    def tangential_impulse(self, pair: int, sigma: float) -> float:
+        """int F_t dt of a pair over the phase, F_t = sigma F + lambda_t: its slip's kinetic friction (``sigma``, 0
+        unless it slips) and its stick's tangential multiplier (zero unless it sticks), by each step's Gauss
+        quadrature of the nodal values."""
+        _, w = gauss_nodes()
+        N, S = self.stepper.basis.N, self.stepper.system.pairs
+        off = 4 + 6 * N + 4 * S + 8 + 4 * pair
+        lam = np.ascontiguousarray(self.records[:, off : off + 4])
+        return sigma * self.impulse(pair) + nm.fsum(self.records[:, 1] * nm.matmul(lam, w))
+
+    def multipliers(self, pair: int, times: np.ndarray) -> np.ndarray:
+        """A pair's tangential multiplier lambda_t (stick; zero otherwise) at ``times`` inside the phase: the Lagrange
+        interpolant of its step's nodal values."""
+        c, _ = gauss_nodes()
+        N, S = self.stepper.basis.N, self.stepper.system.pairs
+        off = 4 + 6 * N + 4 * S + 8 + 4 * pair
+        i = np.clip(np.searchsorted(self.records[:, 0], times, side="right") - 1, 0, self.records.shape[0] - 1)
+        x = (np.asarray(times, float) - self.records[i, 0]) / self.records[i, 1]
+        lam = self.records[i, off : off + 4]
+        out = np.zeros(x.size)
+        for j in range(4):
+            lj = np.ones(x.size)
+            for m in range(4):
+                if m != j:
+                    lj *= (x - c[m]) / (c[j] - c[m])
+            out += lj * lam[:, j]
+        return out
+
     def step_energies(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(each step's end time, the total energy T + V_e + V_g + U_c + E_d - W there, the kinetic energy there), as
         the integrator booked them for its energy balance (the last floats of a record, ``FB_RECORD_SUMMARY``)."""
@@ -243,6 +272,7 @@ class ModalStepper:
         #: set by a streamed run's loop: called with each finished part of a long phase (t0, y0, t1, y1, dense,
         #: opens), which is then dropped (:func:`flexbeam.integrate.loop.run_phases`)
         self.hand_on = None
+        self._modes: tuple = ()  # the contact modes of the last phase advanced
 
     # state conversion between the reference layout [z, z', (s, s'), E_d, W] and modal (eta, v)
     def to_modal(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -274,7 +304,10 @@ class ModalStepper:
         state = np.zeros(self.state_size)
         # a contact starts with a short step (the force grows as d^n from zero: not polynomial at the onset),
         # free flight where the last phase left off; the controller grows either by up to 5x per step
-        h = min(self.h, FIRST_STEP) if phase.in_contact else self.h
+        # (a friction event -- the same pairs in contact, the friction switched -- keeps the step: no new contact)
+        switched = phase.friction is not None and self._modes == phase.modes
+        h = min(self.h, FIRST_STEP) if phase.in_contact and not switched else self.h
+        self._modes = phase.modes
         state[:5] = t, h, y[-2], y[-1], 0.0
         state[5 : 5 + N], state[5 + N : 5 + 2 * N] = eta, v
         # the phase's step bound holds up to phase.max_step_until (an impact's force pulse); the rest of the phase

@@ -35,6 +35,13 @@ class EventKind(IntEnum):
     IMPACT = 1  #: the gap closes (crosses zero downwards)
     SEPARATION = 2  #: the gap opens (crosses zero upwards) during a force-law contact
     RELEASE = 3  #: the constraint's multiplier turns tensile
+    STOP = 4  #: a slipping pair's slip velocity reaches zero (Coulomb friction, CCFM)
+    UNSTICK_PLUS = 5  #: a sticking pair's tangential multiplier reaches +mu_s F (it slips towards -t)
+    UNSTICK_MINUS = 6  #: ... reaches -mu_s F (it slips towards +t)
+
+
+#: the events of Coulomb friction (a phase with a slipping or sticking pair watches them)
+FRICTION_EVENTS = (EventKind.STOP, EventKind.UNSTICK_PLUS, EventKind.UNSTICK_MINUS)
 
 
 @dataclass(frozen=True)
@@ -48,6 +55,9 @@ class Phase:
     (after it the integrator's own bound and error control alone set the step: a contact under its law that has
     outlasted its impact, see :data:`flexbeam.methods.base.RESTING_DURATIONS`; the compiled
     :class:`~flexbeam.integrate.modal.ModalStepper` lifts it there, the reference integrator keeps it).
+    ``friction`` (pairs x 4, None without): per pair [sigma, stick, mu_s, v_rest] of Coulomb friction under CCFM: a
+    slipping pair's tangential force sigma F along its tangent (sigma = -mu_k sign(v_t)), a sticking pair (stick = 1)
+    held tangentially while its multiplier stays within mu_s F (:mod:`flexbeam.methods.coulomb`).
     """
 
     name: str
@@ -59,6 +69,7 @@ class Phase:
     baumgarte: tuple[float, float] = (0.0, 0.0)
     max_step: float = math.inf
     max_step_until: float = math.inf
+    friction: np.ndarray | None = None
 
     @property
     def mode(self) -> ContactMode:
@@ -80,7 +91,7 @@ class Phase:
         """The kernels' contacts buffer of this phase (:func:`flexbeam.kernels.pack_contacts`)."""
         from ..kernels import pack_contacts
 
-        return pack_contacts([int(m) for m in self.modes], self.parameters, *self.baumgarte)
+        return pack_contacts([int(m) for m in self.modes], self.parameters, *self.baumgarte, friction=self.friction)
 
     def with_pair(self, pair: int, mode: ContactMode, parameters=None, record: ContactEvent | None = None,
                   **changes) -> Phase:  # fmt: skip

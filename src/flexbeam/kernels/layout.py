@@ -117,15 +117,22 @@ def pack_model(
     return np.ascontiguousarray(np.concatenate(parts))
 
 
-def pack_contacts(modes: Sequence[int], parameters: np.ndarray, alpha: float = 0.0, beta: float = 0.0) -> np.ndarray:
+def pack_contacts(
+    modes: Sequence[int], parameters: np.ndarray, alpha: float = 0.0, beta: float = 0.0, friction=None
+) -> np.ndarray:
     """The contacts buffer: per pair its :class:`~flexbeam.integrate.phases.ContactMode` and law parameters
-    [K, n, chi/d'_0, C] (rows of ``parameters``), and the constraints' Baumgarte alpha, beta."""
+    [K, n, chi/d'_0, C] (rows of ``parameters``), and the constraints' Baumgarte alpha, beta; with ``friction``
+    (pairs x 4: [sigma, stick, mu_s, v_rest] per pair, some row nonzero) each pair's row carries them too."""
     S = len(modes)
-    out = np.empty(3 + 5 * S)
+    fric = None if friction is None else np.asarray(friction, float).reshape(S, 4)
+    width = 5 if fric is None or not fric.any() else 9
+    out = np.empty(3 + width * S)
     out[:3] = S, alpha, beta
-    rows = out[3:].reshape(S, 5)
+    rows = out[3:].reshape(S, width)
     rows[:, 0] = modes
-    rows[:, 1:] = np.asarray(parameters, float).reshape(S, 4)
+    rows[:, 1:5] = np.asarray(parameters, float).reshape(S, 4)
+    if width == 9:
+        rows[:, 5:] = fric
     return out
 
 

@@ -14,7 +14,7 @@ import numpy as np
 from .. import numerics as nm
 from ..contact.hertz import rigid_hertz_impact
 from ..integrate.loop import Stop
-from ..integrate.phases import ContactMode, EventKind, Phase
+from ..integrate.phases import FRICTION_EVENTS, ContactMode, EventKind, Phase
 from ..model.system import BeamSystem
 from ..parameters.case import Case
 from ..results.records import ContactEvent
@@ -69,8 +69,9 @@ class ImpactMethod:
         return Phase("free", (ContactMode.NONE,) * S, ALL_EVENTS, self.case.sample_steps()[0], np.zeros((S, 4)),
                      (None,) * S, self.baumgarte)  # fmt: skip
 
-    def phase(self, modes, parameters: np.ndarray, records) -> Phase:
-        """The phase with the pairs in ``modes`` (their law ``parameters``, their contact ``records``).
+    def phase(self, modes, parameters: np.ndarray, records, friction: np.ndarray | None = None) -> Phase:
+        """The phase with the pairs in ``modes`` (their law ``parameters``, their contact ``records``; ``friction``:
+        CCFM's Coulomb friction rows, :class:`~flexbeam.integrate.phases.Phase`, watched by its events).
 
         Held pairs are constrained with Baumgarte stabilisation (Baumgarte 1972; Hairer & Wanner, Solving ODEs II,
         Sec. VII.2), alpha = beta = ``solver.baumgarte_frequency``; a held pair starts consistent (delta = 0 at the
@@ -91,8 +92,10 @@ class ImpactMethod:
         young = [r for m, r in zip(modes, records) if m == ContactMode.FORCE and r]
         steps = [r.time_scale / CONTACT_STEPS for r in young]
         until = max((r.onset + RESTING_DURATIONS * r.time_scale for r in young), default=math.inf)
-        return Phase(name, modes, ALL_EVENTS, sample, np.asarray(parameters, float), tuple(records), self.baumgarte,
-                     min(steps, default=math.inf), until)  # fmt: skip
+        rough = friction is not None and bool(np.any(friction))
+        events = ALL_EVENTS + FRICTION_EVENTS if rough else ALL_EVENTS
+        return Phase(name, modes, events, sample, np.asarray(parameters, float), tuple(records), self.baumgarte,
+                     min(steps, default=math.inf), until, np.array(friction, float) if rough else None)  # fmt: skip
 
     # events -----------------------------------------------------------------
     def gap_event(self, t: float, y: np.ndarray, pair: int = 0) -> tuple[float, float]:
@@ -243,7 +246,10 @@ class ImpactMethod:
         records[pair] = None
         params = phase.parameters.copy()
         params[pair] = 0.0
-        return self.phase(modes, params, records)
+        friction = None if phase.friction is None else phase.friction.copy()
+        if friction is not None:
+            friction[pair] = 0.0
+        return self.phase(modes, params, records, friction)
 
     def transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
                    ) -> tuple[Phase, np.ndarray]:  # fmt: skip

@@ -13,13 +13,17 @@ once it has lasted RESTING_DURATIONS = 20 t_c (the impacts of every preset last 
 on the obstacle under its law and the bound lifts: the same law, the same state, the step set by the error
 control alone.  The force at rest is the static one (the seed beam: F_s = m g L / (2 x_P) and
 d_s = (F_s / K)^(1/n), ``tests/validation/test_resting_contact.py``) plus whatever the beam's modes still ring.
+
+With ``contact.friction`` each pair in contact also slips or sticks under Coulomb's law, its switches located as
+events (:mod:`flexbeam.methods.coulomb`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..integrate.phases import ContactMode, Phase
+from ..integrate.phases import FRICTION_EVENTS, ContactMode, EventKind, Phase
+from . import coulomb
 from .base import ImpactMethod
 
 
@@ -30,6 +34,7 @@ class CCFM(ImpactMethod):
 
     def on_impact(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int]) -> tuple[Phase, np.ndarray]:
         modes, params, records = list(phase.modes), phase.parameters.copy(), list(phase.records)
+        friction = coulomb.rows(phase, self.system.pairs)
         for k in pairs:
             ev = self.new_contact(t, y, k)
             m_eff = self.system.effective_mass(t, y, k)
@@ -37,4 +42,21 @@ class CCFM(ImpactMethod):
             params[k] = law.parameters(-ev.velocity_before, m_eff)
             ev.time_scale = self.contact_time(-ev.velocity_before, m_eff, float(params[k][0]), float(params[k][1]))
             modes[k], records[k] = ContactMode.FORCE, ev
-        return self.phase(modes, params, records), y
+            friction[k] = coulomb.onset_row(self.system, t, y, k)
+        return self.phase(modes, params, records, coulomb.grouped(self.system, t, y, friction)), y
+
+    def transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
+                   ) -> tuple[Phase, np.ndarray]:  # fmt: skip
+        """A friction event of a pair (a stop, the end of a stick) switches its friction row; the others as for
+        every method, the sticking pairs then sorted into holders and followers again."""
+        if event == EventKind.STOP:
+            friction = coulomb.stop(self.system, phase, t, y, pair)
+        elif event in FRICTION_EVENTS:
+            friction = coulomb.unstick(self.system, phase, event, pair, t, y)
+        else:
+            phase, y = super().transition(phase, event, t, y, pair)
+            if phase.friction is None:
+                return phase, y
+            friction = phase.friction
+        friction = coulomb.grouped(self.system, t, y, friction)
+        return self.phase(phase.modes, phase.parameters, phase.records, friction), y

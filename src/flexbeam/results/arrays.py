@@ -18,7 +18,9 @@ from .. import numerics as nm
 from ..integrate.loop import RunResult, Segment
 from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
 from ..model.system import SUPPORT_COLUMNS, BeamSystem
+from .friction import friction_columns, has_friction
 from .limits import check_samples
+from .records import FRICTION_VARIABLES
 from .samplegrid import sample_count, sample_grid
 
 #: force evaluations per step when searching a contact's force for local maxima
@@ -78,10 +80,13 @@ class RunSource:
         for seg in self.segments:
             counts[seg.phase.sample_step == fine] += sample_count(seg.t0, seg.t1, seg.phase.sample_step)
         check_samples(sysm.case, sysm.pairs, counts[False], counts[True])  # the exact count, before evaluating
-        times, phases, parts = [], [], []
+        times, phases, parts, rough = [], [], [], has_friction(self.segments)
+        fparts = []
         for seg in self.segments:
             t = sample_grid(seg.t0, seg.t1, seg.phase.sample_step)
             cols, mv, pc, Y = self.evaluate_pairs(seg, t)
+            if rough:
+                fparts.append(friction_columns(sysm, seg, t, Y, pc[:, :, 2]))
             qs = Y[:, nz - n : nz]
             qds = Y[:, 2 * nz - n : 2 * nz]
             times.append(t)
@@ -106,6 +111,8 @@ class RunSource:
             pc = np.concatenate([p[4] for p in parts])
             for j, name in enumerate(PAIR_COLUMNS):
                 out[f"pair_{name}"] = pc[:, :, j]
+        for j, name in enumerate(FRICTION_VARIABLES if rough else ()):
+            out[name] = np.concatenate([p[j] for p in fparts])
         return np.concatenate(times), np.concatenate(phases), out
 
     # ---------------------------------------------------------------- contact force on the dense output

@@ -41,7 +41,7 @@ QUANTIZED = frozenset(
         "theta_rate", "q", "q_rate", "gap", "normal_velocity", "contact_force", "contact_energy", "kinetic_energy",
         "elastic_energy", "gravitational_energy", "dissipated_energy", "drive_work", "joint_torque",
         "tip_deflection", "measuring_velocity", "support_displacement", "sensor_force", "pair_gap",
-        "pair_normal_velocity", "pair_contact_force",
+        "pair_normal_velocity", "pair_contact_force", "pair_tangential_force", "pair_slip_velocity",
     }
 )  # fmt: skip
 #: a rounded value moves by at most this fraction of the integrator's relative tolerance (of its own size)

@@ -33,13 +33,15 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "pair_normal_velocity": ("m/s", "Normal velocity of each contact pair's point"),
     "pair_contact_force": ("N", "Contact force of each contact pair"),
     "pair_contact_position": ("m", "Material coordinate x of each contact pair's point (moves for contact anywhere)"),
-    "pair_friction_force": ("N", "Friction force of each contact pair along its tangent t = (-n_y, n_x)"),
-    "pair_slip_velocity": ("m/s", "Slip velocity of each contact pair's point along its tangent t = (-n_y, n_x)"),
+    "pair_tangential_force": ("N", "Friction force of each contact pair along its tangent t = (-n_y, n_x)"),
+    "pair_slip_velocity": ("m/s", "Slip velocity of each contact pair's point along its tangent"),
+    "pair_friction_state": ("1", "Friction state of each contact pair: 0 no frictional contact, 1 slip, 2 stick"),
 }
 #: variables (time x pair) present only when a case has several contact pairs or a contact anywhere
 PAIR_VARIABLES = ("pair_gap", "pair_normal_velocity", "pair_contact_force", "pair_contact_position")
-#: variables (time x pair) present only in a frictional run (the FE reference's today)
-FRICTION_VARIABLES = ("pair_friction_force", "pair_slip_velocity")
+#: variables (time x pair) present only in a frictional run: CCFM's Coulomb friction (:mod:`flexbeam.methods.coulomb`)
+#: and the FE reference's regularised law
+FRICTION_VARIABLES = ("pair_tangential_force", "pair_slip_velocity", "pair_friction_state")
 
 
 @dataclass

@@ -21,6 +21,7 @@ import numpy as np
 from . import export, summary
 from .counts import ContactCounts
 from .episodes import Episode, find_episodes, is_free
+from .friction import tangential_impulse
 from .peaks import PEAK_XTOL, golden_max, interior_maxima
 from .records import ContactEvent
 
@@ -151,6 +152,10 @@ class Solution:
             ev.energy_after += potential
         if end > ev.onset:
             ev.impulse = (ev.jump_impulse if jumped else 0.0) + src.impulse(ev.onset, end, ev.pair)
+            if math.isnan(ev.tangential_impulse):  # CCFM's friction: int F_t dt over the contact
+                ev.tangential_impulse = tangential_impulse(
+                    getattr(src, "segments", []), ev.onset, end, ev.pair, getattr(src, "system", None)
+                )
             if not jumped:
                 ev.energy_before = src.mechanical_energy(ev.onset, after=True)
             ev.energy_after = src.mechanical_energy(end)

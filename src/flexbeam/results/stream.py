@@ -37,8 +37,9 @@ from ..model.system import SUPPORT_COLUMNS, BeamSystem
 from ..parameters.case import Case
 from . import export
 from .arrays import RunSource, sample_grid, total_energy
+from .friction import friction_columns
 from .long_contact import LongContact
-from .records import ContactEvent
+from .records import FRICTION_VARIABLES, ContactEvent
 from .samplefile import SampleFile
 from .solution import Solution
 from .tallies import EnergyTally, SensorPulse
@@ -135,9 +136,11 @@ class RunStream:
     ) -> None:
         self.system, self.case, self.contacts, self.provenance = system, case, contacts, provenance
         self.per_pair = system.pairs > 1 or any(p.anywhere for p in system.contact.pairs)
+        #: CCFM with Coulomb friction: the friction variables (time x pair) from the first sample on
+        self.rough = provenance.get("method") == "ccfm" and any(p.frictional for p in system.contact.pairs)
         self.names = [c for c in OUTPUT_COLUMNS if system.compliant or c not in SUPPORT_COLUMNS]
         nsb = export.precision_bits(provenance) if quantize else None
-        labels = [p.label for p in system.contact.pairs] if self.per_pair else None
+        labels = [p.label for p in system.contact.pairs] if self.per_pair or self.rough else None
         self.file = SampleFile(
             path,
             system.n,
@@ -206,6 +209,9 @@ class RunStream:
         if self.per_pair:
             for j, name in enumerate(PAIR_COLUMNS):
                 out[f"pair_{name}"] = np.ascontiguousarray(pc[:, :, j])
+        if self.rough:
+            for name, value in zip(FRICTION_VARIABLES, friction_columns(sysm, seg, t, Y, pc[:, :, 2])):
+                out[name] = np.ascontiguousarray(value)
         return out
 
     def _tally(self, seg: Segment) -> None:

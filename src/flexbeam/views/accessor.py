@@ -11,7 +11,7 @@ from typing import Any
 
 from ..results.solution import Solution
 
-FIGURES = ("contact_force", "normal_velocity", "tip_deflection")
+FIGURES = ("contact_force", "normal_velocity", "tip_deflection", "friction")
 
 
 class SolutionViews:
@@ -47,6 +47,13 @@ class SolutionViews:
         from .plotting import plot_tip_deflection
 
         return plot_tip_deflection([self.sol], self._path(path, "tip_deflection"), **options)
+
+    def friction(self, path: str | Path | None = None, **options: Any) -> Path:
+        """Coulomb friction's tangential force and slip velocity per pair
+        (:func:`flexbeam.views.friction.plot_friction`, a CCFM run with ``contact.friction``)."""
+        from .friction import plot_friction
+
+        return plot_friction(self.sol, self._path(path, "friction"), **options)
 
     def animate(self, path: str | Path, **options: Any) -> Path:
         """An animation of the run (:func:`flexbeam.views.animation.animate`)."""

@@ -14,15 +14,18 @@
 #include "integrator.h"
 #include "phase.h"
 
-/* Node j's rates of E_d and (prescribed theta) of W, with the nodal contact forces F[k][j] and their elastic parts
- * Fk[k][j] of the pairs. */
-void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P], const double Fk[][FB_P], int j,
-                   double *ed, double *wd) {
+/* Node j's rates of E_d and (prescribed theta) of W, with the nodal contact forces F[k][j], their elastic parts
+ * Fk[k][j] and the tangential multipliers Ft[k][j] (stick) of the pairs; friction dissipates too (friction.c). */
+void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P], const double Fk[][FB_P],
+                   const double Ft[][FB_P], int j, double *ed, double *wd) {
     const fb_model *m = ph->m;
     int n = m->n, S = ph->c.npairs;
     *ed = 0.0;
     for (int k = 0; k < S; k++)
-        if (ph->c.mode[k] == FB_MODE_FORCE) *ed += (F[k][j] - Fk[k][j]) * (-nd->gap[k].rate);
+        if (ph->c.mode[k] == FB_MODE_FORCE) {
+            *ed += (F[k][j] - Fk[k][j]) * (-nd->gap[k].rate);
+            if (ph->c.friction) *ed += fb_friction_rate(ph, nd, k, F[k][j], Ft[k][j]);
+        }
     if (fb_compliant(m)) {
         double sd = nd->zd[ph->b->N - 1];
         *ed += m->obstacles[0].cs * sd * sd;
@@ -39,7 +42,13 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
     for (int i = 0; i < n; i++) mq += M[nr + i] * qd[i];
     for (int k = 0; k < S; k++) {
         if (ph->c.mode[k] == FB_MODE_NONE) continue;
-        fb_pair_gap(m, k, &nd->frame, q, qd, 0.0, 0.0, 0, J);
+        if (ph->c.friction && (ph->c.slip[k] != 0.0 || ph->c.stick[k] || ph->c.regv[k] > 0.0)) { /* friction's share */
+            double Jt[FB_MAXN], vt;
+            fb_pair_tangent(m, k, &nd->frame, q, qd, 0.0, 0.0, 0, J, Jt, &vt);
+            JF += Jt[0] * (fb_slip_coefficient(&ph->c, k, vt) * F[k][j] + (ph->c.stick[k] ? Ft[k][j] : 0.0));
+        } else {
+            fb_pair_gap(m, k, &nd->frame, q, qd, 0.0, 0.0, 0, J);
+        }
         JF += J[0] * F[k][j];
     }
     *wd = (Mtt * nd->frame.thdd - Q[0] - JF) * nd->frame.thd - mq * nd->frame.thdd;
@@ -102,6 +111,29 @@ double fb_node_energy_parts(const fb_phase *ph, const fb_node *nd, double *scale
     return E;
 }
 
+/* Forcing guess for a phase's first step: the forcing at its start, constant (each law's force at the start, F's
+ * first S rows; the tangential multipliers, its next S rows, zero). */
+void fb_start_guess(const fb_phase *ph, double t, const double *eta, const double *v, double *f,
+                        double F[][FB_P]) {
+    fb_node nd;
+    int N = ph->b->N, S = ph->c.npairs;
+    fb_eval_node(ph, t, eta, v, ph->contact ? FB_WANT_ACTIVE : FB_WANT_NONE, &nd);
+    double F0[FB_MAX_PAIRS];
+    for (int k = 0; k < S; k++) {
+        F0[k] = 0.0;
+        if (ph->c.mode[k] == FB_MODE_FORCE)
+            F0[k] = fb_law_force(ph->c.p[k], -nd.gap[k].delta, -nd.gap[k].rate, NULL, NULL, NULL);
+        for (int j = 0; j < FB_P; j++) F[k][j] = F0[k], F[S + k][j] = 0.0;
+    }
+    for (int j = 0; j < FB_P; j++)
+        for (int i = 0; i < N; i++) {
+            double x = nd.smooth[i];
+            for (int k = 0; k < S; k++)
+                if (ph->c.mode[k] != FB_MODE_NONE) x += nd.b[k][i] * F0[k];
+            f[j * N + i] = x;
+        }
+}
+
 /* The boundary term -a_O(t) . A s of a moving base's work (base_motion.c) at the modal state eta at t. */
 static double base_boundary_at(const fb_phase *ph, double t, const double *eta) {
     double z[FB_MAXN];
@@ -123,7 +155,7 @@ void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, con
     int moving = fb_base_moving(m), off = m->nrigid - m->ngiven;
     double ed = 0.0, wd = 0.0, wb = 0.0;
     for (int j = 0; j < FB_P; j++) {
-        fb_node_rates(ph, &w->node[j], w->F, w->Fk, j, &red[j], &rwd[j]);
+        fb_node_rates(ph, &w->node[j], w->F, w->Fk, w->Ft, j, &red[j], &rwd[j]);
         if (moving) {
             const fb_node *nd = &w->node[j];
             double Fj[FB_MAX_PAIRS];

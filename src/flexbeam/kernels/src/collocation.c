@@ -20,7 +20,6 @@
 #define ITER_TOL 1e-3   /* converged when the last sweep moved the step end by this much of the tolerance */
 #define STAGNATION 1e-2 /* ... or it stops contracting within this much of the tolerance */
 #define ROUNDOFF 1e-13  /* ... or it moves the end by less than this of the forcing's own effect (round-off) */
-#define NEWTON_MAX 30   /* Newton iterations for the nodal contact forces */
 /* The collocated multiplier (CCM) is an algebraic variable the state's error estimate does not see: its
  * interpolant's top Legendre term is held to MULTIPLIER_RTOL rtol of the phase's largest multiplier so far, but not
  * below MULTIPLIER_NOISE, its round-off (the multiplier is a velocity defect divided by the step's response
@@ -79,8 +78,10 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
     for (int k = 0; k < m->npairs; k++) {
         int active = ph->c.mode[k] != FB_MODE_NONE, jac = active || want == FB_WANT_JM;
         if (!active && want == FB_WANT_ACTIVE) continue;
-        double J[FB_MAXN], Jx[FB_MAXN];
-        out->gap[k] = fb_pair_gap(m, k, &out->frame, q, qd, s, sd, want_acc, jac ? J : NULL);
+        int rough = active && ph->c.friction && (ph->c.slip[k] != 0.0 || ph->c.stick[k] || ph->c.regv[k] > 0.0);
+        double J[FB_MAXN], Jx[FB_MAXN], Jt[FB_MAXN], vt = 0.0;
+        out->gap[k] = rough ? fb_pair_tangent(m, k, &out->frame, q, qd, s, sd, want_acc, J, Jt, &vt)
+                            : fb_pair_gap(m, k, &out->frame, q, qd, s, sd, want_acc, jac ? J : NULL);
         if (!jac) continue;
         /* J in the integrator's coordinates: the full ones without the given ([theta, q] or q), then the support */
         for (int i = 0; i < nz; i++) Jx[i] = J[i + ng];
@@ -102,6 +103,7 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
         } else {
             memcpy(out->b[k], out->jm[k], sizeof(double) * N);
         }
+        if (rough) fb_node_friction(ph, k, Jt, vt, &up, out);
     }
 }
 
@@ -131,108 +133,29 @@ static void ensure_weights(const fb_phase *ph, fb_work *w, double h) {
     w->h = h;
 }
 
-/* The contact unknowns of a step: (pair, node) for the pairs in contact, pair-major. */
-typedef struct {
-    int count, pair[FB_MAX_PAIRS * FB_P], node[FB_MAX_PAIRS * FB_P];
-} unknowns;
-
-static void list_unknowns(const fb_phase *ph, unknowns *u) {
-    u->count = 0;
-    for (int k = 0; k < ph->c.npairs; k++)
-        if (ph->c.mode[k] != FB_MODE_NONE)
-            for (int i = 0; i < FB_P; i++) {
-                u->pair[u->count] = k;
-                u->node[u->count++] = i;
-            }
-}
-
-#define MAXU (FB_MAX_PAIRS * FB_P)
-
-/* The modal response of unknown a's gap (pair k at node i, seen through jm_k at node i) to unknown b's force (pair l
- * at node j, along b_l at node j): A[a][b] (gap) and B[a][b] (gap rate). */
-static void contact_response(const fb_phase *ph, const fb_work *w, const unknowns *u, double *A, double *B) {
-    int N = ph->b->N, U = u->count;
-    for (int a = 0; a < U; a++) {
-        int k = u->pair[a], i = u->node[a];
-        const double *jm = w->node[i].jm[k];
-        for (int c = 0; c < U; c++) {
-            int l = u->pair[c], j = u->node[c];
-            const double *bj = w->node[j].b[l];
-            double sa = 0.0, sb = 0.0;
-            for (int q = 0; q < N; q++) {
-                double x = jm[q] * bj[q];
-                sa += x * w->W[q][i].RE[j];
-                sb += x * w->W[q][i].RV[j];
-            }
-            A[a * U + c] = sa;
-            B[a * U + c] = sb;
-        }
-    }
-}
-
-/* The contact unknowns, each gap and rate linear in them through (A, B): a FORCE pair's F = law(-delta(F),
- * -rate(F)) and a CONSTRAINT pair's multiplier keeping g = delta' + kappa delta on g(t0) exp(-kappa (t - t0)) at
- * the nodes, by Newton's method (one linear solve when no pair is under a law). */
-static void solve_contacts(const fb_phase *ph, fb_work *w, const unknowns *u, const double *A, const double *B,
-                           double h, const double *g0) {
+/* A multiplier is algebraic, unseen by the state's error estimate: the step's error ``err`` raised to its
+ * interpolant's top Legendre term over MULTIPLIER_* of its scale, for each held pair's (CCM) and each sticking pair's
+ * tangential one (friction.c). */
+static double multiplier_error(const fb_phase *ph, const fb_work *w, double err) {
     const fb_tables *tb = fb_gauss();
-    int U = u->count;
-    double kappa = ph->c.alpha, F0[MAXU], F[MAXU], d0[MAXU], r0[MAXU];
-    for (int a = 0; a < U; a++) {
-        int k = u->pair[a], i = u->node[a];
-        F0[a] = F[a] = w->F[k][i];
-        d0[a] = w->node[i].gap[k].delta;
-        r0[a] = w->node[i].gap[k].rate;
-    }
-    if (!ph->force) { /* only constraints: linear, M F = target - g(F0) + M F0 in one solve */
-        double M[MAXU * MAXU], rhs[MAXU];
-        for (int a = 0; a < U; a++) {
-            int k = u->pair[a], i = u->node[a];
-            rhs[a] = g0[k] * fb_exp(-kappa * tb->c[i] * h) - (r0[a] + kappa * d0[a]);
-            for (int c = 0; c < U; c++) {
-                M[a * U + c] = B[a * U + c] + kappa * A[a * U + c];
-                rhs[a] += M[a * U + c] * F0[c];
+    for (int l = 0; l < ph->c.npairs; l++) {
+        if (ph->c.friction && ph->c.stick[l]) {
+            double L = 0.0, big = 0.0;
+            for (int j = 0; j < FB_P; j++) {
+                L += tb->top[j] * w->Ft[l][j];
+                big = fmax(big, fmax(fabs(w->Ft[l][j]), w->F[l][j]));
             }
-            w->Fk[k][i] = 0.0;
+            err = fmax(err, fabs(L) / (ph->atol + fmax(MULTIPLIER_RTOL * ph->rtol, MULTIPLIER_NOISE) * big));
         }
-        if (fb_solve(M, rhs, U) == 0)
-            for (int a = 0; a < U; a++) w->F[u->pair[a]][u->node[a]] = rhs[a];
-        return;
-    }
-    for (int it = 0; it < NEWTON_MAX; it++) {
-        double Jac[MAXU * MAXU], res[MAXU], big = 0.0, step = 0.0;
-        for (int a = 0; a < U; a++) {
-            int k = u->pair[a], i = u->node[a];
-            double d = d0[a], r = r0[a];
-            for (int c = 0; c < U; c++) {
-                d += A[a * U + c] * (F[c] - F0[c]);
-                r += B[a * U + c] * (F[c] - F0[c]);
-            }
-            if (ph->c.mode[k] == FB_MODE_FORCE) {
-                double gd, gr, fk;
-                double law = fb_law_force(ph->c.p[k], -d, -r, &fk, &gd, &gr);
-                w->Fk[k][i] = fk;
-                res[a] = -(F[a] - law);
-                for (int c = 0; c < U; c++)
-                    Jac[a * U + c] = (a == c ? 1.0 : 0.0) + gd * A[a * U + c] + gr * B[a * U + c];
-                big = fmax(big, fabs(law));
-            } else {
-                res[a] = g0[k] * fb_exp(-kappa * tb->c[i] * h) - (r + kappa * d);
-                for (int c = 0; c < U; c++) Jac[a * U + c] = B[a * U + c] + kappa * A[a * U + c];
-                w->Fk[k][i] = 0.0;
-            }
+        if (ph->c.mode[l] != FB_MODE_CONSTRAINT) continue;
+        double L = 0.0, big = w->lambda_scale;
+        for (int j = 0; j < FB_P; j++) {
+            L += tb->top[j] * w->F[l][j];
+            big = fmax(big, fabs(w->F[l][j]));
         }
-        if (fb_solve(Jac, res, U)) break;
-        for (int a = 0; a < U; a++) {
-            F[a] += res[a];
-            step = fmax(step, fabs(res[a]));
-        }
-        if (step <= 1e-13 * big || big == 0.0) break;
+        err = fmax(err, fabs(L) / (ph->atol + fmax(MULTIPLIER_RTOL * ph->rtol, MULTIPLIER_NOISE) * big));
     }
-    for (int a = 0; a < U; a++) {
-        int k = u->pair[a];
-        w->F[k][u->node[a]] = ph->c.mode[k] == FB_MODE_FORCE && F[a] < 0.0 ? 0.0 : F[a];
-    }
+    return err;
 }
 
 /* One step from (eta0, v0) over [t0, t0 + h].  f (FB_P x N) holds the guess of the nodal forcing and returns the
@@ -242,14 +165,16 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
     const fb_tables *tb = fb_gauss();
     int N = ph->b->N, S = ph->c.npairs;
     ensure_weights(ph, w, h);
-    double g0[FB_MAX_PAIRS];
-    for (int k = 0; k < S; k++)
+    double g0[FB_MAX_PAIRS], g0t[FB_MAX_PAIRS];
+    for (int k = 0; k < S; k++) {
         if (ph->c.mode[k] == FB_MODE_CONSTRAINT) {
             fb_gap gp = fb_gap_at(ph, k, t0, eta0, v0);
             g0[k] = gp.rate + ph->c.alpha * gp.delta;
         }
-    unknowns u;
-    list_unknowns(ph, &u);
+        if (ph->c.friction && ph->c.stick[k]) fb_tangent_at(ph, k, t0, eta0, v0, &g0t[k]);
+    }
+    fb_unknowns u;
+    fb_list_unknowns(ph, &u);
     double tol = fb_tolerance(ph, eta0, v0, eta0, v0), prev = INFINITY;
     out->converged = 0;
     for (int it = 0; it < ITER_MAX; it++) {
@@ -259,19 +184,17 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
             fb_propagate(ph->b, &w->W[0][i], FB_NPTS, eta0, v0, f, eta, v);
             fb_eval_node(ph, t0 + tb->c[i] * h, eta, v, ph->contact ? FB_WANT_ACTIVE : FB_WANT_NONE, &w->node[i]);
         }
-        if (u.count) {
-            double A[MAXU * MAXU], B[MAXU * MAXU];
-            contact_response(ph, w, &u, A, B);
-            solve_contacts(ph, w, &u, A, B, h, g0);
-        }
+        if (u.count) fb_nodal_contacts(ph, w, &u, h, g0, g0t);
         /* new forcing, how far it moves the step end and how far the forcing itself does (energy norm) */
         double change = 0.0, size = 0.0;
         for (int k = 0; k < N; k++) {
             double de = 0.0, dv = 0.0, fe = 0.0, fv = 0.0;
             for (int j = 0; j < FB_P; j++) {
                 double fn = w->node[j].smooth[k];
-                for (int l = 0; l < S; l++)
+                for (int l = 0; l < S; l++) {
                     if (ph->c.mode[l] != FB_MODE_NONE) fn += w->node[j].b[l][k] * w->F[l][j];
+                    if (ph->c.friction && ph->c.stick[l]) fn += w->node[j].bt[l][k] * w->Ft[l][j];
+                }
                 double df = fn - f[j * N + k];
                 f[j * N + k] = fn;
                 de += w->W[k][FB_P].RE[j] * df;
@@ -303,9 +226,11 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
      * so this estimate is conservative. */
     fb_node *end = &w->end;
     fb_eval_node_acc(ph, t0 + h, out->eta1, out->v1, FB_WANT_GAP, 1, end);
-    double Fe[FB_MAX_PAIRS];
+    double Fe[FB_MAX_PAIRS], Fte[FB_MAX_PAIRS];
     for (int l = 0; l < S; l++) {
-        Fe[l] = 0.0;
+        Fe[l] = Fte[l] = 0.0;
+        if (ph->c.friction && ph->c.stick[l])
+            for (int j = 0; j < FB_P; j++) Fte[l] += fb_lagrange(j, 1.0) * w->Ft[l][j];
         if (ph->c.mode[l] == FB_MODE_FORCE) {
             Fe[l] = fb_law_force(ph->c.p[l], -end->gap[l].delta, -end->gap[l].rate, NULL, NULL, NULL);
         } else if (ph->c.mode[l] == FB_MODE_CONSTRAINT) {
@@ -315,8 +240,10 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
     double e2 = 0.0, lim0 = h * h / ((FB_P + 1.0) * (FB_P + 2.0));
     for (int k = 0; k < N; k++) {
         double d = end->smooth[k];
-        for (int l = 0; l < S; l++)
+        for (int l = 0; l < S; l++) {
             if (ph->c.mode[l] != FB_MODE_NONE) d += end->b[l][k] * Fe[l];
+            if (ph->c.friction && ph->c.stick[l]) d += end->bt[l][k] * Fte[l];
+        }
         for (int j = 0; j < FB_P; j++) d -= tb->lend[j] * f[j * N + k];
         double om = ph->b->omega[k], lim = om > 0.0 ? fmin(lim0, 2.0 / (om * om)) : lim0;
         double dv = h * fabs(d) / (FB_P + 1.0), de = fabs(d) * lim;
@@ -325,15 +252,7 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
     }
     tol = fb_tolerance(ph, eta0, v0, out->eta1, out->v1);
     out->err = sqrt(e2) / tol;
-    for (int l = 0; l < S; l++) { /* a multiplier is algebraic: hold its interpolant's top term too */
-        if (ph->c.mode[l] != FB_MODE_CONSTRAINT) continue;
-        double L = 0.0, big = w->lambda_scale;
-        for (int j = 0; j < FB_P; j++) {
-            L += tb->top[j] * w->F[l][j];
-            big = fmax(big, fabs(w->F[l][j]));
-        }
-        out->err = fmax(out->err, fabs(L) / (ph->atol + fmax(MULTIPLIER_RTOL * ph->rtol, MULTIPLIER_NOISE) * big));
-    }
+    out->err = multiplier_error(ph, w, out->err);
     return 0;
 }
 

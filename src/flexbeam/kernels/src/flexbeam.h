@@ -89,9 +89,23 @@ typedef struct {
     int mode[FB_MAX_PAIRS];
     double p[FB_MAX_PAIRS][4];
     double alpha, beta;
+    /* Coulomb friction of a FORCE pair (friction.c): slip[k] = sigma_k, the tangential force sigma_k F_k along the
+     * tangent t = (-n_y, n_x) of a slipping pair (sigma = -mu_k sign(v_t); 0: none); stick[k]: the pair is held
+     * tangentially by a multiplier lambda_t (|lambda_t| <= mus[k] (F_k + the forces of its followers), mus the static
+     * coefficient); follow[k] >= 0: the pair sticks along with pair follow[k], its tangential row dependent on that
+     * pair's (two points of a rigid bar on two stops), which holds for both (-1: none).  regv[k] > 0: the pair's
+     * friction is Threlfall's regularised law sigma(v_t) = -regmu[k] (1 - exp(-3 |v_t| / regv[k])) sign(v_t). */
+    int friction; /* some pair slips, sticks or is under the regularised law */
+    double slip[FB_MAX_PAIRS], mus[FB_MAX_PAIRS], regmu[FB_MAX_PAIRS], regv[FB_MAX_PAIRS];
+    double vrest[FB_MAX_PAIRS]; /* a slip that starts from a stick: the stick's residual slip speed it may run back */
+    int stick[FB_MAX_PAIRS], follow[FB_MAX_PAIRS];
 } fb_contacts;
 
-/* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair]. */
+/* The tangential force per unit normal force of pair k slipping at v_t (friction.c). */
+double fb_slip_coefficient(const fb_contacts *c, int k, double vt);
+
+/* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair],
+ * with friction [npairs, alpha, beta, (mode, p0, p1, p2, p3, sigma, stick, mu_s, v_rest) per pair]. */
 int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf);
 
 /* The bending modes' count (the flexible coordinates without the axial ones). */
@@ -144,7 +158,7 @@ double fb_ground_rate(const fb_model *m, const fb_frame *f, const int *mode, con
 fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                    double sd, int want_acc, double *J);
 fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
-                       double sd, double *J, double *Jt, double *vt);
+                       double sd, int want_acc, double *J, double *Jt, double *vt);
 
 /* ------------------------------------------------------------------ axial.c (the axial modes, na > 0) */
 double fb_axial_row(const fb_model *m, const double *q, double *u);

@@ -146,7 +146,7 @@ PyObject *py_tangent(PyObject *self, PyObject *args) {
     fb_state_split(&m, t, y, &fr, &q, &qd);
     int nb = 2 * fb_nz(&m);
     double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
-    fb_gap g = fb_pair_tangent(&m, pair, &fr, q, qd, s, sd, J, Jt, &vt);
+    fb_gap g = fb_pair_tangent(&m, pair, &fr, q, qd, s, sd, 0, J, Jt, &vt);
     if (compliant) {
         const fb_obstacle *o = &m.obstacles[m.pairs[pair].obstacle];
         J[N] = g.Js;

@@ -48,6 +48,9 @@ typedef struct {
     double jb[FB_MAX_PAIRS][FB_MAXN]; /* a bound on |jm_k| wherever the pair's point may be (|jm| for a fixed one) */
     fb_gap gap[FB_MAX_PAIRS];         /* every pair's gap state (delta, rate, gamma = delta'' at z'' = 0, ...) */
     double z[FB_MAXN], zd[FB_MAXN];
+    /* a frictional pair in contact (friction.c): Psi^T Jt_k^T, Psi^T M0 M^-1 Jt_k^T (b above then holds the slip's
+     * force direction Psi^T M0 M^-1 (J_k + sigma_k Jt_k)^T) and the slip velocity v_t */
+    double jt[FB_MAX_PAIRS][FB_MAXN], bt[FB_MAX_PAIRS][FB_MAXN], vt[FB_MAX_PAIRS];
 } fb_node;
 
 void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double *v, int want, fb_node *out);
@@ -63,6 +66,7 @@ typedef struct {
     fb_node end;                   /* the model at the step end (error estimate, events) */
     double F[FB_MAX_PAIRS][FB_P];  /* contact force (or multiplier) of each pair at the nodes */
     double Fk[FB_MAX_PAIRS][FB_P]; /* its elastic part (FORCE) */
+    double Ft[FB_MAX_PAIRS][FB_P]; /* a sticking pair's tangential multiplier lambda_t (friction.c) */
     double lambda_scale;           /* the largest multiplier of the phase so far (CONSTRAINT) */
     int iterations;
 } fb_work;
@@ -73,6 +77,16 @@ typedef struct {
     double err;     /* error estimate in units of the tolerance (accept <= 1) */
     int converged;
 } fb_step;
+
+/* The contact unknowns of a step (nodal.c): (pair, node, row) -- row 0 the normal force or multiplier, row 1 a
+ * sticking pair's tangential multiplier */
+#define FB_MAXU (2 * FB_MAX_PAIRS * FB_P)
+typedef struct {
+    int count, pair[FB_MAXU], node[FB_MAXU], row[FB_MAXU];
+} fb_unknowns;
+void fb_list_unknowns(const fb_phase *ph, fb_unknowns *u);
+void fb_nodal_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u, double h, const double *g0,
+                       const double *g0t);
 
 int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const double *eta0, const double *v0,
                  double *f, fb_step *out);
@@ -88,6 +102,9 @@ double fb_next_step(double h, double err, int accepted);
 #define FB_NO_EVENT 2.0
 #define FB_UNDECIDED -1.0
 enum { FB_EVENT_IMPACT = 1, FB_EVENT_SEPARATION = 2, FB_EVENT_RELEASE = 3 };
+/* Coulomb friction's events (friction.c): the slip velocity reaches zero; a stick ends with lambda_t = +mu_s F
+ * (PLUS) or -mu_s F (MINUS) */
+enum { FB_EVENT_STOP = 4, FB_EVENT_UNSTICK_PLUS = 5, FB_EVENT_UNSTICK_MINUS = 6 };
 
 typedef struct { /* a step's dense output, for the event search of one pair */
     const fb_phase *ph;
@@ -105,5 +122,13 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
                          const double *eta_known, const double *jm, const double *jb, double *beyond);
 double fb_find_release(const double *lam);
 double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, int count);
+
+/* Coulomb friction (friction.c) */
+fb_gap fb_tangent_at(const fb_phase *ph, int pair, double t, const double *eta, const double *v, double *vt);
+void fb_node_friction(const fb_phase *ph, int k, const double *Jt, double vt, const fb_update *up, fb_node *out);
+double fb_find_stop(const fb_dense *d);
+double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *kind);
+double fb_find_unstick(const fb_phase *ph, int k, const double *F, const double *Ft, double scale, int *kind);
+double fb_friction_rate(const fb_phase *ph, const fb_node *nd, int k, double F, double Ft);
 
 #endif

@@ -117,21 +117,6 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     return fb_joint(m)->unpack(m) ? -4 : 0;
 }
 
-int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf) {
-    if (nbuf < 3) return -1;
-    c->npairs = (int)buf[0];
-    c->alpha = buf[1];
-    c->beta = buf[2];
-    if (c->npairs != m->npairs || nbuf != 3 + 5 * (size_t)c->npairs) return -1;
-    for (int k = 0; k < c->npairs; k++) {
-        const double *r = buf + 3 + 5 * k;
-        c->mode[k] = (int)r[0];
-        if (c->mode[k] < FB_MODE_NONE || c->mode[k] > FB_MODE_CONSTRAINT) return -1;
-        for (int j = 0; j < 4; j++) c->p[k][j] = r[1 + j];
-    }
-    return 0;
-}
-
 /* The frame and the modal coordinates of a reference-layout state [z, z', ...] (z: the state's nz coordinates). */
 void fb_state_split(const fb_model *m, double t, const double *y, fb_frame *f, const double **q, const double **qd) {
     fb_joint(m)->split(m, t, y, y + fb_nz(m), f, q, qd);
@@ -311,11 +296,11 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double 
  * Jacobian Jt = t . dr/dz (nfull entries) and the slip velocity *vt = t . (v - the obstacle's velocity): Coulomb
  * friction's kinematics (flexbeam.methods.friction). */
 fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
-                       double sd, double *J, double *Jt, double *vt) {
+                       double sd, int want_acc, double *J, double *Jt, double *vt) {
     const fb_pair *pr = &m->pairs[pair];
     const fb_obstacle *o = &m->obstacles[pr->obstacle];
     double dr[2 * MAXZ];
-    fb_kin k = {.want_acc = 0};
+    fb_kin k = {.want_acc = want_acc};
     if (o->ms <= 0.0) s = sd = 0.0;
     int N = fb_nfull(m);
     double x = pair_point(m, pr, o, f, q, qd, s, &k, dr);

@@ -33,9 +33,9 @@
 enum { ADV_END = 0, ADV_EVENT = 1, ADV_FULL = 2, ADV_UNDERFLOW = 3, ADV_NONFINITE = 4, ADV_STALLED = 5 };
 enum { EV_IMPACT = 1, EV_SEPARATION = 2, EV_RELEASE = 4 };
 
-int fb_record_size(int N, int S) { return 4 + 2 * N + FB_P * N + S * FB_P + 2 * FB_P + FB_RECORD_SUMMARY; }
+int fb_record_size(int N, int S) { return 4 + 2 * N + FB_P * N + 2 * S * FB_P + 2 * FB_P + FB_RECORD_SUMMARY; }
 
-int fb_state_buffer_size(int N, int S) { return 5 + 2 * N + FB_P * N + S * FB_P + 1; }
+int fb_state_buffer_size(int N, int S) { return 5 + 2 * N + FB_P * N + 2 * S * FB_P + 1; }
 
 /* The step's energy-balance residual r = E(t + h) - E(t) + dE_d - dW against BALANCE_SHARE of the energy error the
  * state tolerance admits: a state error e in the energy norm (|x|^2 = 2 (T + V_e) = 2 scale) moves the energy by
@@ -49,28 +49,6 @@ static double balance_error(const fb_phase *ph, double r, double scale, double s
 static void reject(double *info, int cause) {
     info[2] += 1;
     info[FB_INFO_REJECT + cause] += 1;
-}
-
-/* Forcing guess for a phase's first step: the forcing at its start, constant (each law's force at the start). */
-static void start_guess(const fb_phase *ph, double t, const double *eta, const double *v, double *f,
-                        double F[][FB_P]) {
-    fb_node nd;
-    int N = ph->b->N, S = ph->c.npairs;
-    fb_eval_node(ph, t, eta, v, ph->contact ? FB_WANT_ACTIVE : FB_WANT_NONE, &nd);
-    double F0[FB_MAX_PAIRS];
-    for (int k = 0; k < S; k++) {
-        F0[k] = 0.0;
-        if (ph->c.mode[k] == FB_MODE_FORCE)
-            F0[k] = fb_law_force(ph->c.p[k], -nd.gap[k].delta, -nd.gap[k].rate, NULL, NULL, NULL);
-        for (int j = 0; j < FB_P; j++) F[k][j] = F0[k];
-    }
-    for (int j = 0; j < FB_P; j++)
-        for (int i = 0; i < N; i++) {
-            double x = nd.smooth[i];
-            for (int k = 0; k < S; k++)
-                if (ph->c.mode[k] != FB_MODE_NONE) x += nd.b[k][i] * F0[k];
-            f[j * N + i] = x;
-        }
 }
 
 /* The earliest event of the accepted step [t, t + h] over the pairs, as a fraction of the step (FB_NO_EVENT if
@@ -126,6 +104,9 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
             xk = fb_find_release(w->F[k]);
             if (xk <= 1.0 && xk < x) x = xk, *kind = FB_EVENT_RELEASE, *pair = k;
         }
+        int fk = 0; /* Coulomb friction's events (friction.c) */
+        double xf = mode == FB_MODE_FORCE && ph->c.friction ? fb_friction_event(&dd, w, events, &fk) : FB_NO_EVENT;
+        if (xf <= 1.0 && xf < x && xk != FB_UNDECIDED) x = xf, *kind = fk, *pair = k;
         if (xk == FB_UNDECIDED) {
             undecided = 1;
             *beyond = fmin(*beyond, bk);
@@ -168,7 +149,8 @@ static int plan_step(const fb_model *m, double t, double t_end, double hmax, dou
 }
 
 /* One step's record (layout: fb_record_size): [t, h, E_d, W, eta, v, the nodal forcing f, the pairs' nodal forces
- * F, the dissipation and drive-work rates at the nodes, the summary FB_RECORD_SUMMARY]; books = [E_d, W at the
+ * F, the dissipation and drive-work rates at the nodes, the pairs' nodal tangential multipliers (stick), the summary
+ * FB_RECORD_SUMMARY]; books = [E_d, W at the
  * step's start, their increments over it, the energy and the kinetic energy at its end].  A constrained pair's
  * multipliers raise the phase's multiplier scale. */
 static void write_record(const fb_phase *ph, fb_work *w, double *rec, double t, double h, const double *books,
@@ -187,13 +169,17 @@ static void write_record(const fb_phase *ph, fb_work *w, double *rec, double t, 
     memcpy(rF, w->F, sizeof(double) * S * FB_P);
     memcpy(rF + S * FB_P, red, sizeof(double) * FB_P);
     memcpy(rF + S * FB_P + FB_P, rwd, sizeof(double) * FB_P);
-    double *sum = rF + S * FB_P + 2 * FB_P; /* the step's summary: energy balance and tip at the end, tip at nodes */
+    memcpy(rF + S * FB_P + 2 * FB_P, w->Ft, sizeof(double) * S * FB_P);
+    double *sum = rF + 2 * S * FB_P + 2 * FB_P; /* the step's summary: energy balance and tip at the end, tip at nodes */
     sum[0] = E1 + (Ed + dEd) - (W + dW);
     sum[1] = T1;
     for (int j = 0; j < FB_P; j++) sum[2 + j] = fb_node_tip(ph, &w->node[j]);
-    for (int k = 0; k < S; k++)
+    for (int k = 0; k < S; k++) {
         if (ph->c.mode[k] == FB_MODE_CONSTRAINT)
             for (int j = 0; j < FB_P; j++) w->lambda_scale = fmax(w->lambda_scale, fabs(w->F[k][j]));
+        if (ph->c.friction && ph->c.stick[k]) /* a sticking pair's (CCFM holds no other) */
+            for (int j = 0; j < FB_P; j++) w->lambda_scale = fmax(w->lambda_scale, fabs(w->Ft[k][j]));
+    }
 }
 
 /* Collocate a step of size h from (t, eta, v), the iteration starting from the last nodal values (f, F); the
@@ -203,6 +189,7 @@ static int collocate_from(const fb_phase *ph, fb_work *w, double t, double h, co
     int N = ph->b->N, S = ph->m->npairs;
     memcpy(trial, f, sizeof(double) * FB_P * N);
     memcpy(w->F, F, sizeof(double) * S * FB_P);
+    memcpy(w->Ft, F + S, sizeof(double) * S * FB_P); /* the tangential multipliers' guess follows F (fb_advance) */
     int bad = fb_collocate(ph, w, t, h, eta, v, trial, st);
     info[3] += FB_P * w->iterations;
     return bad;
@@ -278,6 +265,7 @@ static void move_to_end(int N, int S, const fb_work *w, const fb_step *st, const
     memcpy(v, st->v1, sizeof(double) * N);
     memcpy(f, trial, sizeof(double) * FB_P * N);
     memcpy(F, w->F, sizeof(double) * S * FB_P);
+    memcpy(F + S, w->Ft, sizeof(double) * S * FB_P);
     memcpy(gap0, w->end.gap, sizeof(fb_gap) * S);
 }
 
@@ -289,7 +277,7 @@ static fb_work *begin_call(const fb_phase *ph, double *state, double t, const do
     if (!w) return NULL;
     w->h = -1.0;
     if (state[4] == 0.0) { /* the phase starts */
-        start_guess(ph, t, eta, v, f, F);
+        fb_start_guess(ph, t, eta, v, f, F);
         info[FB_INFO_T0] = t;
         *lambda_scale = 0.0;
     }
@@ -311,8 +299,8 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
     int events = (int)ctrl[4], N = b->N, S = m->npairs, R = fb_record_size(N, S);
     double t = state[0], h = state[1], Ed = state[2], W = state[3];
     double *eta = state + 5, *v = eta + N, *f = v + N;
-    double(*F)[FB_P] = (double(*)[FB_P])(f + FB_P * N);
-    double *lambda_scale = f + FB_P * N + S * FB_P; /* kept in the state: a resumed phase goes on with its scale */
+    double(*F)[FB_P] = (double(*)[FB_P])(f + FB_P * N); /* S rows F, then S rows of tangential multipliers */
+    double *lambda_scale = f + FB_P * N + 2 * S * FB_P; /* kept in the state: a resumed phase goes on with its scale */
     fb_work *w = begin_call(&ph, state, t, eta, v, f, F, lambda_scale, info);
     if (!w) return ADV_NONFINITE;
     *nrec = 0;
@@ -386,6 +374,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
         retry = 0;
         double hn = fb_next_step(h, st.err, 1);
         fb_extrapolate(N, S, hn / h, f, F);
+        if (ph.c.friction) fb_extrapolate(0, S, hn / h, f, F + S); /* the tangential multipliers */
         h = hn;
     }
     state[0] = t, state[1] = h, state[2] = Ed, state[3] = W;

@@ -4,9 +4,11 @@
 
 #include "integrator.h"
 
-/* record row: [t0, h, Ed0, W0, eta0 (N), v0 (N), f (P x N), F (S x P), Ed rates (P), W rates (P)], S pairs */
+/* record row: [t0, h, Ed0, W0, eta0 (N), v0 (N), f (P x N), F (S x P), Ed rates (P), W rates (P), the tangential
+ * multipliers (S x P), the summary], S pairs */
 int fb_record_size(int N, int S);
-/* state buffer: [t, h, Ed, W, have_guess, eta (N), v (N), f (P x N), F (S x P), the largest multiplier so far] */
+/* state buffer: [t, h, Ed, W, have_guess, eta (N), v (N), f (P x N), F (S x P), the tangential multipliers (S x P),
+ * the largest multiplier so far] */
 int fb_state_buffer_size(int N, int S);
 /* control buffer: [rtol, atol, hmax, omega_rigid, events (bits), contacts (fb_contacts_unpack)] */
 #define FB_CTRL_HEAD 5
@@ -27,8 +29,9 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
                    const double *lo, const double *hi, const double *reach, double floor, int count, double xtol,
                    double *t_out, double *v_out);
 
-void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P], const double Fk[][FB_P], int j,
-                   double *ed, double *wd);
+void fb_start_guess(const fb_phase *ph, double t, const double *eta, const double *v, double *f, double F[][FB_P]);
+void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P], const double Fk[][FB_P],
+                   const double Ft[][FB_P], int j, double *ed, double *wd);
 double fb_boundary_work(const fb_phase *ph, double t, const double *eta, const double *v);
 double fb_hub_angle(const fb_phase *ph, const double *eta);
 double fb_node_energy(const fb_phase *ph, const fb_node *nd, double *scale);

@@ -1,0 +1,94 @@
+"""Coulomb friction under CCFM (issue 28): what a frictional run costs per step against the same frictionless run.
+
+Runs each case with CCFM frictionless and with ``contact.friction`` in one process, ``--runs`` times each, and prints
+a Markdown table: the steps, the events, the median integration time (the phase loop's wall time, without the
+outputs) and its time per step, and the ratio of the frictional run's time per step to the frictionless one's (issue
+28's target: at most 1.3).  A step costs the same with friction (the sliding bar: sustained slip); a friction event
+(a stop, a stick's end) costs a phase's restart, which runs that switch often between stick and slip pay per step.
+The machine it ran on is printed below the table.
+
+    python benchmarks/friction.py [--runs 5] [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import statistics
+
+import flexbeam as fb
+
+#: a flexible steel bar (4 modes) sliding along its axis on two hemispherical stops, contact anywhere: sustained slip
+#: with two events (the rigid bar of tests/validation/test_friction_ccfm.py, bar_on_stops)
+SLIDING_BAR = {
+    "name": "sliding-bar",
+    "joint": {"kind": "free"},
+    "model": {"modes": 4, "gravity": 9.81},
+    "beam": {
+        "length": 0.2,
+        "density": 7870.0,
+        "youngs_modulus": 200e9,
+        "poisson_ratio": 0.29,
+        "section": "circle",
+        "radius": 0.00635,
+    },
+    "obstacle": {"kind": "sphere", "centre": [-0.06, 0.08365], "radius": 0.01},
+    "obstacles": [{"kind": "sphere", "centre": [0.06, 0.08365], "radius": 0.01, "contact": {"position": 0.16}}],
+    "contact": {
+        "law": "lankarani_nikravesh",
+        "position": 0.04,
+        "stiffness": 1.16e10,
+        "side": "below",
+        "restitution": 0.5,
+        "anywhere": True,
+    },
+    "initial": {"kind": "state", "position": [0.0, 0.1], "velocity": [0.1, 0.0], "angle": 0.0, "rate": 0.0},
+    "solver": {"t_end": 0.03},
+}
+
+CASES = [
+    ("sliding bar", SLIDING_BAR, {"contact.friction": 0.3}),
+    ("free-bar-drop", "tests/validation/data/free-bar-drop.toml", {"contact.friction": 0.3}),
+    ("two-stops", "two-stops", {"contact.friction": 0.5}),
+    ("tip-wall", "tip-wall", {"contact.friction": 0.3}),
+    ("seed-experiment", "seed-experiment", {"contact.friction": 0.3, "solver.t_end": 0.02}),
+    ("seed-experiment (threlfall)", "seed-experiment",
+     {"contact.friction": 0.3, "contact.friction_model": "threlfall", "solver.t_end": 0.02}),
+]  # fmt: skip
+
+
+def measure(source: str | dict, overrides: dict, runs: int) -> tuple[int, int, float]:
+    """(steps, events, median integration wall time [s]) of ``runs`` CCFM runs of the case."""
+    walls, steps, events = [], 0, 0
+    case = fb.load_case(source, overrides)
+    for _ in range(runs):
+        sol = fb.simulate(case, "ccfm")
+        walls.append(sol.source.run.wall_time)
+        steps, events = sol.source.run.steps, sol.source.run.events
+    return steps, events, statistics.median(walls)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--quick", action="store_true", help="one run of the first case")
+    args = parser.parse_args()
+    cases = CASES[:1] if args.quick else CASES
+    runs = 1 if args.quick else args.runs
+    print("| case | friction | steps | events | integration [ms] | per step [us] | ratio per step |")
+    print("|---|---|---|---|---|---|---|")
+    for name, source, rough in cases:
+        smooth = {k: v for k, v in rough.items() if not k.startswith("contact.friction")}
+        n0, e0, w0 = measure(source, smooth, runs)
+        n1, e1, w1 = measure(source, rough, runs)
+        ratio = (w1 / n1) / (w0 / n0)
+        mu = rough["contact.friction"]
+        print(f"| {name} | 0 | {n0} | {e0} | {1e3 * w0:.1f} | {1e6 * w0 / n0:.1f} | |")
+        print(f"| {name} | {mu} | {n1} | {e1} | {1e3 * w1:.1f} | {1e6 * w1 / n1:.1f} | {ratio:.2f} |")
+    machine = platform.processor() or platform.machine()
+    print(f"\n{machine}, {os.cpu_count()} cores, Python {platform.python_version()}, median of {runs} run(s)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,198 @@
+/* Coulomb friction at a contact under its law (CCFM, docs/methods.md "Friction in CCFM").
+ *
+ * Along the contact's tangent t = (-n_y, n_x) the point P slips with velocity v_t = t . (r_P' - the obstacle's
+ * velocity) = Jt z' (fb_pair_tangent).  A slipping pair adds the tangential force F_t = sigma F, sigma = -mu_k
+ * sign(v_t) fixed over the phase, to its law's normal force F: the generalised force (J + sigma Jt)^T F, so the
+ * collocation's force direction b of the pair is Psi^T M0 M^-1 (J + sigma Jt)^T.  The slip ends where v_t reaches
+ * zero (FB_EVENT_STOP, located on the step's dense output).  A sticking pair is held tangentially by a multiplier
+ * lambda_t along Jt (Glocker & Pfeiffer 1992; Pfeiffer & Glocker, Multibody Dynamics with Unilateral Contacts, 1996,
+ * Ch. 5), its normal force still from the law: the collocation keeps v_t on v_t(t0) exp(-kappa (t - t0)) at its
+ * nodes, as CCM keeps a held gap; the stick ends where |lambda_t| reaches mu_s F (FB_EVENT_UNSTICK_PLUS/MINUS by the
+ * sign of lambda_t, located on the nodal interpolants).  Friction dissipates -(sigma F + lambda_t) v_t >= 0.
+ */
+#include <string.h>
+
+#include "integrator.h"
+
+#define EV_STOP 8                 /* event bits of the friction events (flexbeam.integrate.modal._EVENT_BITS) */
+#define EV_UNSTICK (16 | 32)
+#define VT_NOISE 1e-9 /* [m/s] a slip that starts at rest counts as reversed only this far beyond it (a stick holds v_t
+                       * to ~3e-11 m/s, measured on the rough bar of tests/validation/test_friction_ccfm.py) */
+#define STOP_SAMPLES 16           /* slip-velocity samples per step */
+#define STOP_CLEAR 2.0            /* no samples where the known slip velocities clear zero by this times their spread */
+#define UNSTICK_SAMPLES 32        /* samples of the stick margin mu_s F - |lambda_t| per step */
+/* The stick margin's band: the collocated multiplier's own accuracy, which its error control holds to
+ * max(MULTIPLIER_RTOL rtol, MULTIPLIER_NOISE) of its scale (collocation.c) */
+#define UNSTICK_RTOL 100.0
+#define UNSTICK_NOISE 1e-7
+
+/* The gap of pair ``pair`` at a modal state and its slip velocity *vt. */
+fb_gap fb_tangent_at(const fb_phase *ph, int pair, double t, const double *eta, const double *v, double *vt) {
+    const fb_model *m = ph->m;
+    const fb_basis *b = ph->b;
+    int N = b->N, compliant = fb_compliant(m);
+    double z[FB_MAXN], zd[FB_MAXN], J[FB_MAXN], Jt[FB_MAXN];
+    fb_frame fr;
+    const double *q, *qd;
+    fb_to_physical(b, eta, z);
+    fb_to_physical(b, v, zd);
+    fb_joint(m)->split(m, t, z, zd, &fr, &q, &qd);
+    return fb_pair_tangent(m, pair, &fr, q, qd, compliant ? z[N - 1] : 0.0, compliant ? zd[N - 1] : 0.0, 0, J, Jt, vt);
+}
+
+/* A frictional pair k in contact at an evaluated node (its b[k] already the normal force's direction), its tangent
+ * Jacobian Jt and slip velocity vt (fb_pair_tangent): jt = Psi^T Jt^T, bt = Psi^T M0 M^-1 Jt^T (the update up of the
+ * node's mass matrix), and a slipping pair's force direction b[k] += sigma bt. */
+void fb_node_friction(const fb_phase *ph, int k, const double *Jt, double vt, const fb_update *up, fb_node *out) {
+    const fb_model *m = ph->m;
+    const fb_basis *b = ph->b;
+    const fb_obstacle *o = &m->obstacles[m->pairs[k].obstacle];
+    const fb_gap *g = &out->gap[k];
+    int N = b->N, nz = b->nz, ng = m->ngiven;
+    double Jx[FB_MAXN];
+    out->vt[k] = vt;
+    for (int i = 0; i < nz; i++) Jx[i] = Jt[i + ng];
+    if (fb_compliant(m)) Jx[N - 1] = o->ms > 0.0 ? -(-g->ny * o->ux + g->nx * o->uy) : 0.0;
+    fb_project(b, Jx, out->jt[k]);
+    if (up->active) {
+        fb_joint(m)->correct(m, b, up, Jx);
+        fb_project(b, Jx, out->bt[k]);
+    } else {
+        memcpy(out->bt[k], out->jt[k], sizeof(double) * N);
+    }
+    double sigma = fb_slip_coefficient(&ph->c, k, vt);
+    if (sigma != 0.0)
+        for (int i = 0; i < N; i++) out->b[k][i] += sigma * out->bt[k][i];
+}
+
+/* sigma_k of a slipping pair, or Threlfall's regularised coefficient -mu_k (1 - exp(-3 |v_t| / v_0)) sign(v_t)
+ * (Threlfall, Mechanism and Machine Theory 13 (1978) 475-483), 0 at v_t = 0. */
+double fb_slip_coefficient(const fb_contacts *c, int k, double vt) {
+    if (!(c->regv[k] > 0.0)) return c->slip[k];
+    double s = c->regmu[k] * fb_expm1(-3.0 * fabs(vt) / c->regv[k]);
+    return vt > 0.0 ? s : (vt < 0.0 ? -s : 0.0);
+}
+
+/* sign(v_t) of the slip times v_t at the fraction x of the step (> 0 while the pair slips its way). */
+static double slip_x(const fb_dense *d, double x) {
+    double eta[FB_MAXN], v[FB_MAXN], vt;
+    fb_dense_state(d, x, eta, v);
+    fb_tangent_at(d->ph, d->pair, d->t0 + x * d->h, eta, v, &vt);
+    return d->ph->c.slip[d->pair] < 0.0 ? vt : -vt;
+}
+
+/* Root of slip_x + shift on [a, b] (opposite signs) by bisection to 1e-15 of the step. */
+static double bisect(const fb_dense *d, double a, double b, double shift) {
+    for (int it = 0; it < 55 && b - a > 1e-15; it++) {
+        double mid = 0.5 * (a + b);
+        if (slip_x(d, mid) + shift > 0.0)
+            a = mid;
+        else
+            b = mid;
+    }
+    return b;
+}
+
+/* Where the slip of pair d->pair stops -- its slip velocity, positive along its direction, reaches zero -- or, for a
+ * slip that started at rest, where it runs backwards beyond VT_NOISE or the stick's residual v_rest it started from
+ * (the pair's vrest); FB_NO_EVENT if neither. */
+double fb_find_stop(const fb_dense *d) {
+    double start = slip_x(d, 0.0), noise = fmax(VT_NOISE, d->ph->c.vrest[d->pair]);
+    int forward = start > 0.0;
+    if (start < -noise) return 0.0;
+    for (int i = 1; i <= STOP_SAMPLES; i++) {
+        double x = (double)i / STOP_SAMPLES, cur = slip_x(d, x);
+        if (forward && cur <= 0.0) return bisect(d, (i - 1.0) / STOP_SAMPLES, x, 0.0);
+        if (!forward && cur < -noise) return bisect(d, (i - 1.0) / STOP_SAMPLES, x, noise);
+        forward |= cur > 0.0;
+    }
+    return FB_NO_EVENT;
+}
+
+/* mu_s F - |lambda_t| of the nodal interpolants at x plus the band ``noise``, and lambda_t in *lam. */
+static double stick_margin(double mus, const double *F, const double *Ft, double noise, double x, double *lam) {
+    double f = 0.0, l = 0.0;
+    for (int j = 0; j < FB_P; j++) {
+        double w = fb_lagrange(j, x);
+        f += w * F[j];
+        l += w * Ft[j];
+    }
+    *lam = l;
+    return mus * f - fabs(l) + noise;
+}
+
+/* Where the stick of pair k ends -- the interpolant of its multiplier lambda_t reaches mu_s F of its normal force's
+ * (F: the pair's and its followers')
+ * (beyond the multiplier's accuracy, UNSTICK_* of the largest nodal mu_s F or lambda_t of the step and of ``scale``,
+ * the phase's largest multiplier: the interpolants' own error where both vanish, at a contact's onset and end), first seen at one of
+ * UNSTICK_SAMPLES points past the step's start -- and *kind, FB_EVENT_UNSTICK_PLUS or _MINUS by the sign of lambda_t
+ * there (at the step's start: of its largest nodal value); FB_NO_EVENT if it holds. */
+double fb_find_unstick(const fb_phase *ph, int k, const double *F, const double *Ft, double scale, int *kind) {
+    double mus = ph->c.mus[k], lam, big = scale, top = 0.0;
+    for (int j = 0; j < FB_P; j++) {
+        big = fmax(big, fmax(mus * F[j], fabs(Ft[j])));
+        if (fabs(Ft[j]) > fabs(top)) top = Ft[j];
+    }
+    double noise = fmax(UNSTICK_RTOL * ph->rtol, UNSTICK_NOISE) * big, prev = stick_margin(mus, F, Ft, noise, 0.0, &lam);
+    for (int i = 1; i <= UNSTICK_SAMPLES; i++) {
+        double x = (double)i / UNSTICK_SAMPLES, cur = stick_margin(mus, F, Ft, noise, x, &lam);
+        if (cur >= 0.0) {
+            prev = cur;
+            continue;
+        }
+        if (prev < 0.0) { /* already beyond at the previous sample: the step's start */
+            *kind = top > 0.0 ? FB_EVENT_UNSTICK_PLUS : FB_EVENT_UNSTICK_MINUS;
+            return (i - 1.0) / UNSTICK_SAMPLES;
+        }
+        double lo = (i - 1.0) / UNSTICK_SAMPLES, hi = x;
+        for (int it = 0; it < 55 && hi - lo > 1e-15; it++) {
+            double mid = 0.5 * (lo + hi);
+            if (stick_margin(mus, F, Ft, noise, mid, &lam) >= 0.0)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        stick_margin(mus, F, Ft, noise, hi, &lam);
+        *kind = lam > 0.0 ? FB_EVENT_UNSTICK_PLUS : FB_EVENT_UNSTICK_MINUS;
+        return hi;
+    }
+    return FB_NO_EVENT;
+}
+
+/* The earliest friction event of pair d->pair on an accepted step (its kind in *kind), FB_NO_EVENT if none. */
+double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *kind) {
+    const fb_phase *ph = d->ph;
+    int k = d->pair;
+    if (ph->c.slip[k] != 0.0 && (events & EV_STOP)) {
+        *kind = FB_EVENT_STOP;
+        /* the slip velocity at the step's start, nodes and end: clear of zero by twice its spread there, the slip
+         * goes on (no samples); else the samples of fb_find_stop decide */
+        double sg = ph->c.slip[k] < 0.0 ? 1.0 : -1.0, vt, lo, hi;
+        fb_tangent_at(ph, k, d->t0, d->eta0, d->v0, &vt);
+        lo = hi = sg * vt;
+        for (int j = 0; j <= FB_P; j++) {
+            double f = sg * (j < FB_P ? w->node[j].vt[k] : w->end.vt[k]);
+            lo = fmin(lo, f), hi = fmax(hi, f);
+        }
+        if (lo > STOP_CLEAR * (hi - lo)) return FB_NO_EVENT;
+        return fb_find_stop(d);
+    }
+    if (ph->c.stick[k] && (events & EV_UNSTICK))
+    {
+        double F[FB_P]; /* the normal forces of the pair and its followers */
+        for (int j = 0; j < FB_P; j++) F[j] = w->F[k][j];
+        for (int l = 0; l < ph->c.npairs; l++)
+            if (ph->c.follow[l] == k)
+                for (int j = 0; j < FB_P; j++) F[j] += w->F[l][j];
+        return fb_find_unstick(ph, k, F, w->Ft[k], w->lambda_scale, kind);
+    }
+    return FB_NO_EVENT;
+}
+
+/* Friction's dissipation rate -(sigma F + lambda_t) v_t of pair k at an evaluated node (normal force F, tangential
+ * multiplier Ft); 0 for a frictionless pair. */
+double fb_friction_rate(const fb_phase *ph, const fb_node *nd, int k, double F, double Ft) {
+    if (ph->c.slip[k] != 0.0 || ph->c.regv[k] > 0.0) return -fb_slip_coefficient(&ph->c, k, nd->vt[k]) * F * nd->vt[k];
+    if (ph->c.stick[k]) return -Ft * nd->vt[k];
+    return 0.0;
+}
