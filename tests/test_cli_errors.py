@@ -84,6 +84,10 @@ SET_CASES = [
     ("fem.time_step=0", "fem.time_step", "greater than 0"),
     ("drive.spin_up_time=0", "drive.spin_up_time", "greater than 0"),
     ("hub.inertia=-1", "hub.inertia", "greater than or equal to 0"),
+    # the beam's structural damping (issue 27)
+    ("beam.kelvin_voigt=-1e-5", "beam.kelvin_voigt", "greater than or equal to 0"),
+    ("beam.viscous_damping=-0.1", "beam.viscous_damping", "greater than or equal to 0"),
+    ("beam.viscous_damping=inf", "beam.viscous_damping", "finite"),
     ("model.gravity=-9.81", "model.gravity", "greater than or equal to 0"),
     ("beam.poisson_ratio=-1", "beam.poisson_ratio", "greater than -1"),
     ("model.quadrature_points=3", "model.quadrature_points", ">= model.modes + 1"),

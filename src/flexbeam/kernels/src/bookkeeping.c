@@ -27,6 +27,7 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
         double sd = nd->zd[ph->b->N - 1];
         *ed += m->obstacles[0].cs * sd * sd;
     }
+    if (m->Cd) *ed += fb_damping_force(m, nd->zd + (m->nrigid - m->ngiven), NULL, 0); /* structural damping */
     *wd = 0.0;
     if (!m->ngiven) return;
     const fb_joint_ops *jt = fb_joint(m);

@@ -21,7 +21,7 @@
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
     int N = d->ph->b->N;
     fb_weight W[FB_MAXN];
-    for (int k = 0; k < N; k++) fb_weights(d->ph->b->omega[k], d->h, x, &W[k]);
+    for (int k = 0; k < N; k++) fb_mode_weights(d->ph->b, k, d->h, x, &W[k]);
     fb_propagate(d->ph->b, W, 1, d->eta0, d->v0, d->f, eta, v);
 }
 
@@ -249,6 +249,8 @@ double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double
         } else {
             double forced = om > 0.0 ? fmin(2.0 * fm / (om * om), d->h * d->h * fm) : 0.0;
             G2 += fabs(jm[k]) * (om * om * (amp + forced) + fm);
+            if (b->damp && b->damp[k] > 0.0) /* eta'' also holds -d v, |v| <= w amp + h max|f| (energy decays) */
+                G2 += fabs(jm[k]) * b->damp[k] * (om * amp + d->h * fm);
         }
     }
     *fast = B;

@@ -17,6 +17,7 @@ static PyMethodDef methods[] = {
      "t_out, v_out)"},
     {"moments", py_moments, METH_VARARGS, "moments(theta) -> (Cm, Sm)"},
     {"weights", py_weights, METH_VARARGS, "weights(w, h, s) -> (C, SW, WS, RE, RV)"},
+    {"damped_weights", py_damped_weights, METH_VARARGS, "damped_weights(w, d, h, s) -> (EE, EV, VE, VV, RE, RV)"},
     {"nodes", py_nodes, METH_NOARGS, "nodes() -> the collocation's Gauss nodes on (0, 1)"},
     {"sizes", py_sizes, METH_VARARGS,
      "sizes(N, npairs) -> (record size, state buffer size, nodes, output columns, columns per pair)"},
