@@ -71,6 +71,7 @@ class _Sampler:
             self.pair_rows.append(
                 (res.pair_gap.copy(), res.pair_gap_rate.copy(), res.pair_force.copy(), res.pair_position.copy())
             )
+        p_diss += b.damping_power(s.z, s.zd)  # the beam's structural damping (flexbeam.fem.damping)
         p_drive = 0.0 if b.free else res.torque * float(s.zd[0]) + b.base_power(s.t, s.z, s.zd)
         if self._prev is not None:
             t0, pd0, pw0 = self._prev
