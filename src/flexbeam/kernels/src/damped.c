@@ -13,14 +13,15 @@
  * and the forced one
  *   eta(T) += sum_m a_m s^m T^2 B_m,  v(T) += sum_m a_m s^m T V_m,
  * with P_m(z) = int_0^1 e^{z (1 - u)} u^m du = m! phi_(m+1)(z) = A_m + e B_m, the phi-functions of exponential
- * integrators, B_m = int_0^1 e^{-alpha (1 - u)} Sn(1 - u) u^m du and V_m = A_m - alpha B_m = m B_(m-1) (V_0 = e^{-alpha}
- * Sn).  P_m is evaluated (rho_min <= rho_max the roots' moduli) by its power series and the downward recurrence
- * P_(m-1) = (1 + z P_m) / m in the ring when rho_max < 3; by the upward one P_m = (m P_(m-1) - 1) / z from
- * P_0 = (e^z - 1) / z when the roots are within a factor 3 (1 / z = (-alpha - e) / (w T)^2); and when they are
- * farther apart (strongly overdamped: a fast and a slow real root) as the divided difference
- * B_m = (P_m(z1) - P_m(z2)) / (z1 - z2) of the real phi-functions at the two roots, z1 = -(w T)^2 / rho_max computed
- * without cancellation.  Each of these is well conditioned where it is used; none divides by sqrt(S).
- * Checked against scipy's solve_ivp at zeta = 0, 0.01, 0.999, 1, 1.001, 50 (tests/test_damped_propagation.py).
+ * integrators, B_m = int_0^1 e^{-alpha (1 - u)} Sn(1 - u) u^m du and V_m = A_m - alpha B_m = m B_(m-1)
+ * (V_0 = e^{-alpha} Sn).  P_m is evaluated (rho_min <= rho_max the roots' moduli) by its power series and the
+ * downward recurrence P_(m-1) = (1 + z P_m) / m in the ring when rho_max < 3; by the upward one
+ * P_m = (m P_(m-1) - 1) / z from P_0 = (e^z - 1) / z when the roots are within a factor 3 of each other
+ * (1 / z = (-alpha - e) / (w T)^2); and when they are farther apart (strongly overdamped: a fast and a slow real
+ * root) as the divided difference B_m = (P_m(z1) - P_m(z2)) / (z1 - z2) of the real phi-functions at the two roots,
+ * z1 = -(w T)^2 / rho_max computed without cancellation.  Each of these is well conditioned where it is used; none
+ * divides by sqrt(S).  Checked against scipy's solve_ivp at zeta = 0, 0.01, 0.999, 1, 1.001, 50, the augmented
+ * matrix exponential and closed forms (tests/unit/test_damped_propagation.py).
  */
 #include <string.h>
 
