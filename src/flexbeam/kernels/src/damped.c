@@ -224,3 +224,76 @@ void fb_damping_return(const fb_basis *b, const double *v, double *R) {
         for (int i = 0; i < N; i++) R[i] += b->toM[k * N + i] * dv;
     }
 }
+
+/* The exact dissipation d int_0^h v^2 dt of a damped mode over a step whose forcing is the cubic f (monomial
+ * coefficients a in u = t / h), from its energy E = (v^2 + w^2 eta^2) / 2: d int v^2 = E(0) - E(h) + int f v, and
+ * int f v = Y(f) by the exact recursions over f's derivatives D_j (D_4 = 0), with X(p) = int p eta, Y(p) = int p v:
+ *   Y(p) = [p eta] - X(p'),   w^2 X(p) = int p f - [p v] + Y(p') - d Y(p)   (w^2 eta = f - v' - d v).
+ * Exact for any w > 0; used where w h >= 1 (a mode too fast for the Gauss nodes to integrate v^2) and the recursion's
+ * factor d / (w^2 h) stays below 4. */
+static double mode_dissipation(double w, double d, double h, const double *a, double e0, double v0, double e1,
+                               double v1) {
+    double D[FB_P + 1][FB_P], X = 0.0, Y = 0.0, w2 = w * w;
+    memcpy(D[0], a, sizeof(double) * FB_P);
+    for (int j = 0; j < FB_P; j++) {
+        for (int k = 0; k < FB_P - 1; k++) D[j + 1][k] = (k + 1) * D[j][k + 1] / h;
+        D[j + 1][FB_P - 1] = 0.0;
+    }
+    for (int j = FB_P - 1; j >= 0; j--) {
+        double end = 0.0, pf = 0.0;
+        for (int k = 0; k < FB_P; k++) {
+            end += D[j][k];
+            for (int l = 0; l < FB_P; l++) pf += D[j][k] * a[l] / (k + l + 1);
+        }
+        double Yj = end * e1 - D[j][0] * e0 - X;
+        if (j == 0) return 0.5 * (v0 * v0 + w2 * e0 * e0) - 0.5 * (v1 * v1 + w2 * e1 * e1) + Yj;
+        X = (h * pf - (end * v1 - D[j][0] * v0) + Y - d * Yj) / w2;
+        Y = Yj;
+    }
+    return 0.0;
+}
+
+/* The step's nodal dissipation rates red (Gauss quadrature of q'^T C q' at the nodes) corrected so that their
+ * quadrature books each damped mode's dissipation d int v^2 as its energy balance gives it, E(0) - E(h) + int f v:
+ * the Gauss nodes cannot integrate the v^2 of a mode that turns many times in a step (which the exact propagation
+ * allows) nor of an overdamped mode's fast transient (d h > 1).  int f v is exact by the recursion of
+ * mode_dissipation when w h >= 1 and d <= 4 w^2 h, else [f eta] - int f' eta with the smooth eta at the Gauss nodes
+ * (d h > 1; the quadrature is kept when d h <= 1 and w h < 1, where it resolves v).  As the base's work is
+ * integrated by parts (base_motion.c).  The correction is spread as a constant rate over the step. */
+void fb_damping_books(const fb_phase *ph, const fb_work *w, double h, const double *eta, const double *v,
+                      const double *eta1, const double *v1, const double *f, double *red) {
+    const fb_basis *b = ph->b;
+    if (!b->damp) return;
+    const fb_tables *tb = fb_gauss();
+    int N = b->N;
+    double corr = 0.0;
+    for (int k = 0; k < N; k++) {
+        double d = b->damp[k], om = b->omega[k];
+        int exact = om * h >= 1.0 && d <= 4.0 * om * om * h;
+        if (!(d > 0.0) || !(exact || d * h > 1.0)) continue;
+        double a[FB_P], quad = 0.0, parts = 0.0, fe = 0.0;
+        for (int m = 0; m < FB_P; m++) {
+            a[m] = 0.0;
+            for (int j = 0; j < FB_P; j++) a[m] += tb->Vinv[m][j] * f[j * N + k];
+            fe += a[m];
+        }
+        for (int j = 0; j < FB_P; j++) { /* the mode at node j: eta = Psi^-1 z = toM z, v = toM z' */
+            const double *z = w->node[j].z, *zd = w->node[j].zd;
+            double ek = 0.0, vk = 0.0, fd = 0.0, cp = 1.0;
+            for (int i = 0; i < N; i++) {
+                if (b->diagonal && i != k) continue;
+                ek += b->toM[k * N + i] * z[i];
+                vk += b->toM[k * N + i] * zd[i];
+            }
+            for (int m = 1; m < FB_P; m++, cp *= tb->c[j]) fd += m * a[m] * cp / h; /* f'(t_j) */
+            quad += tb->w[j] * d * vk * vk;
+            parts += tb->w[j] * fd * ek;
+        }
+        double E0 = 0.5 * (v[k] * v[k] + om * om * eta[k] * eta[k]);
+        double E1 = 0.5 * (v1[k] * v1[k] + om * om * eta1[k] * eta1[k]);
+        double D = exact ? mode_dissipation(om, d, h, a, eta[k], v[k], eta1[k], v1[k])
+                         : E0 - E1 + fe * eta1[k] - a[0] * eta[k] - h * parts;
+        corr += D - h * quad;
+    }
+    for (int j = 0; j < FB_P; j++) red[j] += corr / h;
+}
