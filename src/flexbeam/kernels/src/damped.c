@@ -231,8 +231,8 @@ void fb_damping_return(const fb_basis *b, const double *v, double *R) {
  *   Y(p) = [p eta] - X(p'),   w^2 X(p) = int p f - [p v] + Y(p') - d Y(p)   (w^2 eta = f - v' - d v).
  * Exact for any w > 0; used where w h >= 1 (a mode too fast for the Gauss nodes to integrate v^2) and the recursion's
  * factor d / (w^2 h) stays below 4. */
-static double mode_dissipation(double w, double d, double h, const double *a, double e0, double v0, double e1,
-                               double v1) {
+double fb_mode_dissipation(double w, double d, double h, const double *a, double e0, double v0, double e1,
+                           double v1) {
     double D[FB_P + 1][FB_P], X = 0.0, Y = 0.0, w2 = w * w;
     memcpy(D[0], a, sizeof(double) * FB_P);
     for (int j = 0; j < FB_P; j++) {
@@ -257,7 +257,7 @@ static double mode_dissipation(double w, double d, double h, const double *a, do
  * quadrature books each damped mode's dissipation d int v^2 as its energy balance gives it, E(0) - E(h) + int f v:
  * the Gauss nodes cannot integrate the v^2 of a mode that turns many times in a step (which the exact propagation
  * allows) nor of an overdamped mode's fast transient (d h > 1).  int f v is exact by the recursion of
- * mode_dissipation when w h >= 1 and d <= 4 w^2 h, else [f eta] - int f' eta with the smooth eta at the Gauss nodes
+ * fb_mode_dissipation when w h >= 1 and d <= 4 w^2 h, else [f eta] - int f' eta with the smooth eta at the nodes
  * (d h > 1; the quadrature is kept when d h <= 1 and w h < 1, where it resolves v).  As the base's work is
  * integrated by parts (base_motion.c).  The correction is spread as a constant rate over the step. */
 void fb_damping_books(const fb_phase *ph, const fb_work *w, double h, const double *eta, const double *v,
@@ -291,7 +291,7 @@ void fb_damping_books(const fb_phase *ph, const fb_work *w, double h, const doub
         }
         double E0 = 0.5 * (v[k] * v[k] + om * om * eta[k] * eta[k]);
         double E1 = 0.5 * (v1[k] * v1[k] + om * om * eta1[k] * eta1[k]);
-        double D = exact ? mode_dissipation(om, d, h, a, eta[k], v[k], eta1[k], v1[k])
+        double D = exact ? fb_mode_dissipation(om, d, h, a, eta[k], v[k], eta1[k], v1[k])
                          : E0 - E1 + fe * eta1[k] - a[0] * eta[k] - h * parts;
         corr += D - h * quad;
     }

@@ -233,6 +233,7 @@ void fb_mode_weights(const fb_basis *b, int k, double h, double s, fb_weight *ou
 void fb_mode_hop(const fb_basis *b, int k, double T, fb_hop *out);
 double fb_damping_force(const fb_model *m, const double *qd, double *Q, int off);
 void fb_damping_return(const fb_basis *b, const double *v, double *R);
+double fb_mode_dissipation(double w, double d, double h, const double *a, double e0, double v0, double e1, double v1);
 void fb_monomial(const double *f, int N, double *A);
 void fb_propagate(const fb_basis *b, const fb_weight *W, int stride, const double *eta0, const double *v0,
                   const double *f, double *eta, double *v);

@@ -138,6 +138,15 @@ PyObject *py_damped_weights(PyObject *self, PyObject *args) {
                          W.RV[1], W.RV[2], W.RV[3]);
 }
 
+/* damped_dissipation(w, d, h, a (4), eta0, v0, eta1, v1) -> d int_0^h v^2 dt of a damped mode whose forcing has
+ * the monomial coefficients a in t / h (damped.c; for the tests) */
+PyObject *py_damped_dissipation(PyObject *self, PyObject *args) {
+    double w, d, h, a[4], e0, v0, e1, v1;
+    if (!PyArg_ParseTuple(args, "ddd(dddd)dddd", &w, &d, &h, &a[0], &a[1], &a[2], &a[3], &e0, &v0, &e1, &v1))
+        return NULL;
+    return PyFloat_FromDouble(fb_mode_dissipation(w, d, h, a, e0, v0, e1, v1));
+}
+
 /* nodes() -> the Gauss nodes of the collocation on (0, 1) */
 PyObject *py_nodes(PyObject *self, PyObject *args) {
     const fb_tables *t = fb_gauss();

@@ -18,6 +18,8 @@ static PyMethodDef methods[] = {
     {"moments", py_moments, METH_VARARGS, "moments(theta) -> (Cm, Sm)"},
     {"weights", py_weights, METH_VARARGS, "weights(w, h, s) -> (C, SW, WS, RE, RV)"},
     {"damped_weights", py_damped_weights, METH_VARARGS, "damped_weights(w, d, h, s) -> (EE, EV, VE, VV, RE, RV)"},
+    {"damped_dissipation", py_damped_dissipation, METH_VARARGS,
+     "damped_dissipation(w, d, h, a, eta0, v0, eta1, v1) -> d int v^2 dt"},
     {"nodes", py_nodes, METH_NOARGS, "nodes() -> the collocation's Gauss nodes on (0, 1)"},
     {"sizes", py_sizes, METH_VARARGS,
      "sizes(N, npairs) -> (record size, state buffer size, nodes, output columns, columns per pair)"},
