@@ -177,7 +177,7 @@ int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, d
     rhs_eval e;
     double tau = assemble(&e, m, c, t, y), torque;
     pair_forces(&e);
-    e.diss += e.damping;
+    if (m->Cd) e.diss += e.damping;
     if (e.ncon && constraint_forces(&e)) goto fail;
     if (e.compliant) {
         dy[nb] = e.sd;
