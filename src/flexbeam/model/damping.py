@@ -3,8 +3,8 @@
 * **Kelvin-Voigt material damping** (``beam.kelvin_voigt`` = c [s]): the stress sigma = E (epsilon + c epsilon'),
   so EI -> EI (1 + c d/dt) in bending (and EA -> EA (1 + c d/dt) in the axial modes); the generalised force on the
   flexible coordinates is -c K q', K = blockdiag(K_ff, K_a), and mode i's damping ratio is zeta_i = c omega_i / 2
-  (stiffness-proportional damping: Clough & Penzien, *Dynamics of Structures*, 2nd ed. 1993, Sec. 12-4; Banks &
-  Inman, J. Appl. Mech. 58 (1991) 1103 on Kelvin-Voigt beams).
+  (the stiffness-proportional part of Rayleigh damping: R. W. Clough, J. Penzien, *Dynamics of Structures*, 2nd ed.,
+  McGraw-Hill 1993).
 * **Viscous damping per unit length** (``beam.viscous_damping`` = eta [N s/m^2]): a force -eta w' per unit length on
   the deformation velocity relative to the beam's frame (Wagg & Bishop, J. Sound Vib. 256 (2002) 803, "viscous
   damping eta per unit length"), acting between the beam and its frame (internal: it dissipates, it does not brake
@@ -13,8 +13,8 @@
 
 Both act on the flexible coordinates only, C = c K + (eta / mu) M, dissipating q'^T C q' >= 0.  In the hub frame
 of a clamped beam (a prescribed hub angle, a moving base) C is diagonal in the modal basis, 2 zeta_i omega_i =
-c omega_i^2 + eta / mu; in the system frame with a hub inertia the viscous part is not, and its off-diagonal part
-is left to the collocated remainder (``kernels/src/damped.c``).
+c omega_i^2 + eta / mu; in the system frame with a hub inertia, or in the hub frame of a free hub angle, the viscous
+part is not, and its off-diagonal part is left to the collocated remainder (``kernels/src/damped.c``).
 """
 
 from __future__ import annotations
