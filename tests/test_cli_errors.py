@@ -84,6 +84,10 @@ SET_CASES = [
     ("fem.time_step=0", "fem.time_step", "greater than 0"),
     ("drive.spin_up_time=0", "drive.spin_up_time", "greater than 0"),
     ("hub.inertia=-1", "hub.inertia", "greater than or equal to 0"),
+    # the beam's structural damping (issue 27)
+    ("beam.kelvin_voigt=-1e-5", "beam.kelvin_voigt", "greater than or equal to 0"),
+    ("beam.viscous_damping=-0.1", "beam.viscous_damping", "greater than or equal to 0"),
+    ("beam.viscous_damping=inf", "beam.viscous_damping", "finite"),
     ("model.gravity=-9.81", "model.gravity", "greater than or equal to 0"),
     ("beam.poisson_ratio=-1", "beam.poisson_ratio", "greater than -1"),
     ("model.quadrature_points=3", "model.quadrature_points", ">= model.modes + 1"),
@@ -347,11 +351,13 @@ FREE_BAR = Path(__file__).resolve().parent / "validation" / "data" / "free-bar-d
              "--set", "initial.modal_displacement=[1e-4]"),
             "initial.modal_displacement", "no modes",
         ),
+        (("--method", "fem", "--set", "beam.viscous_damping=1"), "beam.viscous_damping", "hub's frame"),
     ],
 )  # fmt: skip
 def test_what_a_free_beam_refuses(args, field, fragment):
     """A free beam (joint.kind = "free"): a drive torque, a start inside the floor, the method that does not model it
-    yet (CCM), a modal start for the FE reference (which has no modes) -- one line naming the field, exit 2."""
+    yet (CCM), a modal start for the FE reference (which has no modes), viscous damping relative to a frame the FE
+    reference's free beam has not -- one line naming the field, exit 2."""
     r = flexbeam("run", str(FREE_BAR), "--json", *args)
     assert_one_line_error(r, field, fragment)
 

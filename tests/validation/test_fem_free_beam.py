@@ -62,7 +62,7 @@ def bar(angle: float, rigid_axially: bool = False, **overrides) -> fb.Case:
 def first_episode(case: fb.Case, method: str) -> tuple[np.ndarray, float, float, int]:
     """(G's velocity, the spin after the first episode, its largest contact force, its records)."""
     sol = fb.simulate(case, method)
-    assert sol.status == "success"
+    assert sol.status == "success", sol.message
     ep = sol.episodes()[0]
     peak = max(sol.contacts[i].peak_force for i in ep.records)
     return np.array(ep.velocity_after), ep.spin_after, peak, len(ep.records)

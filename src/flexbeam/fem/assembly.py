@@ -23,6 +23,7 @@ import numpy as np
 
 from .banded import BAND, band_solve, fix_first_dof
 from .contact_law import friction_law, law_force
+from .damping import kelvin_voigt, viscous
 from .element import corotational_element, gather, inertia_element
 from .gap import anywhere_gap, anywhere_tangent, gap_at, node_tangent
 from .jit import fem_jit
@@ -76,14 +77,15 @@ def _dof_map(e, a, T0, free):
 
 @fem_jit
 def assemble(
-    z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw,
+    z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw, damp,
     cM, cC, cK, want_S,
     pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout,
     R, ab,
 ):  # fmt: skip
     """Residual R(z, z', z'') of the equations of motion and the iteration matrix.
 
-    R = f_in + f_int - f_g - sum_k J_k^T F_k (+ J_h theta'' - tau on theta), with
+    R = f_in + f_int + f_d - f_g - sum_k J_k^T F_k (+ J_h theta'' - tau on theta), with f_d the beam's structural
+    damping (``damp`` = [c, eta / mu], :mod:`flexbeam.fem.damping`) and
     S = cM M + cC C + cK K in LAPACK band storage ``ab`` (kl = ku = BAND; row
     offset 2 BAND) if ``want_S``.  ``t_tau`` is the joint torque tau; a ``free`` beam has no hub (no theta, no
     J_h, no torque: every node's DOFs are unknowns).
@@ -122,6 +124,8 @@ def assemble(
         ab[:, :] = 0.0
     R0node = np.zeros(3)
     _add_elements(X, V, A, T0, free, l0, mu, EA, EI, field, gxi, gw, cM, cK, want_S, R, ab, R0node)
+    if damp[0] > 0.0 or damp[1] > 0.0:
+        _add_damping(X, V, free, l0, mu, EA, EI, gxi, gw, damp, cC, want_S, R, ab, T0, R0node)
     # contact of each pair at its node or, anywhere, at its nearest point
     Jp = np.empty(3)
     Jg = np.empty(6)
@@ -175,6 +179,56 @@ def _add_elements(X, V, A, T0, free, l0, mu, EA, EI, field, gxi, gw, cM, cK, wan
                 for b in range(6):
                     i, j = idx[a], idx[b]
                     ab[off + i - j, j] += wts[a] * wts[b] * (cM * Me[a, b] + cK * Ke[a, b])
+
+
+@fem_jit
+def _add_damping(X, V, free, l0, mu, EA, EI, gxi, gw, damp, cC, want_S, R, ab, T0, R0node):
+    """Add the structural damping (:mod:`flexbeam.fem.damping`) to R and cC C_e to ``ab``: the Kelvin-Voigt force
+    through the DOF map as the elastic force; the viscous force on the nodes but the hub's (node 0 moves with the
+    frame), with its reaction -w . f on theta (its velocity tangent: the nodes' block only)."""
+    off = 2 * BAND
+    xe = np.empty(6)
+    ve = np.empty(6)
+    ae = np.zeros(6)
+    fd = np.empty(6)
+    Cd = np.empty((6, 6))
+    fin = np.empty(6)
+    Me = np.empty((6, 6))
+    fg = np.empty(6)
+    G = np.empty((2, 6))
+    idx = np.empty(6, np.int64)
+    wts = np.empty(6)
+    zero = np.zeros(2)
+    thd = 0.0 if free else V[0, 2]
+    for e in range(l0.size):
+        gather(X, V, V, e, xe, ve, ae)
+        for a in range(6):
+            idx[a], wts[a] = _dof_map(e, a, T0, free)
+        if damp[0] > 0.0:
+            kelvin_voigt(xe, ve, l0[e], EA, EI, damp[0], fd, Cd)
+            for a in range(6):
+                R[idx[a]] += wts[a] * fd[a]
+                if e == 0 and a < 3:
+                    R0node[a] += fd[a]
+            if want_S:
+                for a in range(6):
+                    for b in range(6):
+                        ab[off + idx[a] - idx[b], idx[b]] += wts[a] * wts[b] * cC * Cd[a, b]
+        if damp[1] > 0.0:
+            inertia_element(xe, ve, ae, l0[e], mu, zero, gxi, gw, fin, Me, fg, G)
+            viscous(xe, ve, thd, free, damp[1], Me, fd)
+            for a in range(6):
+                if not free and e == 0 and a < 3:
+                    continue  # the hub's node moves with the frame: its share and the reaction's cancel
+                R[idx[a]] += fd[a]
+                if not free:  # the reaction on the frame: -w . f, w = (-Y, X, 1) per node
+                    R[0] -= (-xe[a + 1] if a % 3 == 0 else xe[a - 1] if a % 3 == 1 else 1.0) * fd[a]
+            if want_S:
+                for a in range(6):
+                    for b in range(6):
+                        if not free and e == 0 and (a < 3 or b < 3):
+                            continue
+                        ab[off + idx[a] - idx[b], idx[b]] += cC * damp[1] * Me[a, b]
 
 
 @fem_jit
@@ -300,7 +354,7 @@ def _friction(q, F, dFd, dFdd, vt, J, Jt, idx, wts, lawps, cK, cC, want_S, R, ab
 @fem_jit
 def newton(
     z, zd, zdd, a, cM, cC, ca, scale, tol, max_iter, prescribed,
-    t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw,
+    t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw, damp,
     pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout,
     R, ab,
 ):  # fmt: skip
@@ -311,7 +365,7 @@ def newton(
     """
     for it in range(1, max_iter + 1):
         assemble(
-            z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw, cM, cC, 1.0, True,
+            z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw, damp, cM, cC, 1.0, True,
             pnodes, cPs, okinds, ocentres, oradii, onormals, anyw, active, lawps, pout, R, ab,
         )  # fmt: skip
         if prescribed:

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from dataclasses import field as dataclass_field
 
 import numpy as np
 
@@ -116,6 +117,9 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
     pairs: tuple[FemPair, ...] = ()
     free: bool = False
     friction_velocity: float = 1e-4  #: v_s of the regularised friction (fem.friction_velocity)
+    #: the beam's structural damping [c, eta / mu] (``beam.kelvin_voigt``, ``beam.viscous_damping``:
+    #: :mod:`flexbeam.fem.damping`)
+    damping: np.ndarray = dataclass_field(default_factory=lambda: np.zeros(2))
 
     def __post_init__(self) -> None:
         """The pairs from the pair-0 fields when none are given, and the kernels' arrays of them."""
@@ -147,6 +151,11 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
                 "beam.end_caps: the FE reference finds contact anywhere on the capsule (hemispherical end caps); "
                 "use end_caps = 'hemisphere' or a modal method"
             )
+        if case.joint.kind == "free" and b.viscous_damping > 0.0:
+            raise ModelError(
+                "beam.viscous_damping: the FE reference damps the deformation relative to the hub's frame, which a "
+                "free beam has not; run it with a modal method or with beam.kelvin_voigt"
+            )
         if len(contact.pairs) == 1:
             x_nodes = build_mesh(b.length, case.fem.elements, case.contact.position)
         else:
@@ -176,6 +185,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
             pairs=pairs,
             free=case.joint.kind == "free",
             friction_velocity=case.fem.friction_velocity,
+            damping=np.array([b.kelvin_voigt, b.viscous_damping / b.line_density]),
         )
 
     # -------------------------------------------------------------- sizes
@@ -286,6 +296,7 @@ class FemBeam(PairGeometry, BeamOutputs, StaticsAndVibration, FreeBody):
             zdd,
             self.torque(t),
             *self.model_args(t),
+            self.damping,
             cM,
             cC,
             cK,

@@ -204,6 +204,7 @@ class FemIntegrator:
             beam.prescribed,
             beam.torque(t1),
             *beam.model_args(t1),
+            beam.damping,
             *beam.contact_args(),
             cs.active,
             cs.params,

@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from .assembly import node_states
+from .damping import damping_power
 from .element import GAUSS_W, GAUSS_XI, corotational_element, inertia_element, point_on_element
 from .jit import fem_jit
 
@@ -139,6 +140,15 @@ class BeamOutputs:
             return float(-math.sin(th) * (z[-3] - rigid.position[0]) + math.cos(th) * (z[-2] - rigid.position[1]))
         th = z[0]
         return float(-math.sin(th) * z[-3] + math.cos(th) * z[-2])
+
+    def damping_power(self, z: np.ndarray, zd: np.ndarray) -> float:
+        """The power [W] the beam's structural damping dissipates (:func:`flexbeam.fem.damping.damping_power`)."""
+        if not (self.damping[0] > 0.0 or self.damping[1] > 0.0):
+            return 0.0
+        X, V, _ = self.nodes(z, zd)
+        thd = 0.0 if self.free else float(zd[0])
+        return float(damping_power(X, V, thd, self.free, self.l0, self.EA, self.EI, self.damping, self.mu,
+                                   GAUSS_XI, GAUSS_W))  # fmt: skip
 
     def energies(self, z: np.ndarray, zd: np.ndarray) -> tuple[float, float, float]:
         """(kinetic, elastic, gravitational) energy [J]; V_g = g int mu Y dx."""

@@ -80,6 +80,7 @@ class _Sampler:
             state = np.where(touching, np.where(np.abs(res.pair_slip) <= vs, 2.0, 1.0), 0.0)
             self.friction_rows.append((res.pair_friction, res.pair_slip, state))
             p_diss += float(np.sum(-res.pair_friction * res.pair_slip))
+        p_diss += b.damping_power(s.z, s.zd)  # the beam's structural damping (flexbeam.fem.damping)
         p_drive = 0.0 if b.free else res.torque * float(s.zd[0]) + b.base_power(s.t, s.z, s.zd)
         if self._prev is not None:
             t0, pd0, pw0 = self._prev

@@ -23,6 +23,7 @@ import numpy as np
 
 from .. import numerics as nm
 from ..kernels import core, pack_basis, pack_controls
+from ..model.damping import modal_damping
 from ..model.system import BeamSystem
 from .loop import PhaseRun
 from .phases import EventKind, Phase
@@ -64,6 +65,8 @@ class ModalBasis:
     inv00: float
     nz: int
     diagonal: bool
+    #: each mode's damping coefficient d = 2 zeta omega of the beam's structural damping (None: undamped)
+    damp: np.ndarray | None = None
 
     @classmethod
     def of(cls, system: BeamSystem) -> ModalBasis:
@@ -92,14 +95,17 @@ class ModalBasis:
             omega = np.append(omega, math.sqrt(ks / ms))
             Psi = _border(Psi, 1.0 / math.sqrt(ms))
             toM = _border(toM, math.sqrt(ms))
-        return cls(omega, np.ascontiguousarray(Psi), np.ascontiguousarray(toM), row0, inv00, nz, diagonal)
+        damp = modal_damping(system.damping, Psi, omega, system.joint.nrigid - system.joint.ngiven)
+        return cls(omega, np.ascontiguousarray(Psi), np.ascontiguousarray(toM), row0, inv00, nz, diagonal, damp)
 
     @property
     def N(self) -> int:
         return self.omega.size
 
     def packed(self) -> np.ndarray:
-        return pack_basis(self.omega, self.Psi, self.toM, self.row0, self.inv00, self.nz, self.diagonal)
+        return pack_basis(
+            self.omega, self.Psi, self.toM, self.row0, self.inv00, self.nz, self.diagonal, self.damp
+        )  # fmt: skip
 
     @property
     def omega_rigid(self) -> float:

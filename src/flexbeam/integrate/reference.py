@@ -199,11 +199,15 @@ class ReferenceStepper:
         self.system = system
         self.rtol, self.atol = rtol, atol
         self.max_step = max_step or math.inf
-        self.omega_max = float(np.max(ModalBasis.of(system).omega, initial=0.0))
+        basis = ModalBasis.of(system)
+        # the largest root modulus of the linearised modes: w, or up to the damping coefficient 2 zeta w when overdamped
+        rates = basis.omega if basis.damp is None else np.maximum(basis.omega, basis.damp)
+        self.omega_max = float(np.max(rates, initial=0.0))
 
     def rate(self, phase: Phase) -> float:
-        """The phase's characteristic rate [1/s]: the linearised system's highest frequency (what limits an explicit
-        method's step; ``OMEGA_RIGID_DEFAULT`` for a rigid beam), or the phase's step bound if tighter."""
+        """The phase's characteristic rate [1/s]: the linearised system's highest frequency, or a strongly damped mode's
+        damping coefficient (what limits an explicit method's step; ``OMEGA_RIGID_DEFAULT`` for a rigid beam), or the
+        phase's step bound if tighter."""
         return max(self.omega_max, OMEGA_RIGID_DEFAULT, 1.0 / min(self.max_step, phase.max_step))
 
     def _events(self, phase: Phase) -> list[Event]:

@@ -14,7 +14,8 @@ Model buffer (float64; integers stored exactly)::
      hub radius, nst, surface c, first_order,
      with nst > 0 (contact anywhere): stations x (nst), Psi, Psi', Psi'' (nst x n each), H (nst x n x n),
                    max over the beam of |Psi_k| and |Psi'_k| (n each),
-                   with n_a > 0 also Phi_a, Phi_a' (nst x n_a each), max over the beam of |Phi_a,k| (n_a)]
+                   with n_a > 0 also Phi_a, Phi_a' (nst x n_a each), max over the beam of |Phi_a,k| (n_a),
+     with structural damping: C (n + n_a square, flexbeam.model.damping)]
 
 n counts the bending modes, n_a the axial ones (``model.axial_modes``), whose coordinates p follow q in the
 state: the kernels' flexible coordinates are [q, p].
@@ -31,7 +32,8 @@ buffer]``.
 
 Basis buffer::
 
-    [version, N, nz, diagonal, inv00, omega (N), Psi (N x N), toM (N x N), row0 (nz)]
+    [version, N, nz, diagonal, inv00, omega (N), Psi (N x N), toM (N x N), row0 (nz), with structural damping:
+     each mode's 2 zeta omega (N)]
 """
 
 from __future__ import annotations
@@ -68,11 +70,12 @@ def pack_model(
     pairs: Sequence[tuple[int, int, int]] = ((0, 0, 0),),
     nmeasure: int | None = None,
     stations: StationTable | None = None,
+    damping: np.ndarray | None = None,
 ) -> np.ndarray:
     """The model buffer of a beam, its joint (its kind's code and parameters), points (P, tip, measuring points,
     other contact points), obstacles and contact pairs (point index, obstacle index, anywhere); ``nmeasure``
     measuring points follow P and the tip (default: every point after them); ``stations``: the shape tables of
-    contact anywhere."""
+    contact anywhere; ``damping``: the structural damping C of the flexible coordinates (appended when given)."""
     na = beam.na
     head = [
         LAYOUT_VERSION,
@@ -114,6 +117,8 @@ def pack_model(
                   st.dphi.ravel(), st.ddphi.ravel(), st.H.ravel(), st.maxphi, st.maxdphi]  # fmt: skip
         if na:
             parts += [st.aphi.ravel(), st.daphi.ravel(), st.maxaphi]
+    if damping is not None:
+        parts.append(np.asarray(damping, float).ravel())
     return np.ascontiguousarray(np.concatenate(parts))
 
 
@@ -146,9 +151,14 @@ def pack_controls(
 
 
 def pack_basis(
-    omega: np.ndarray, Psi: np.ndarray, toM: np.ndarray, row0: np.ndarray, inv00: float, nz: int, diagonal: bool
-) -> np.ndarray:
-    """The basis buffer of a modal basis (see :class:`flexbeam.integrate.modal.ModalBasis`)."""
+    omega: np.ndarray, Psi: np.ndarray, toM: np.ndarray, row0: np.ndarray, inv00: float, nz: int, diagonal: bool,
+    damp: np.ndarray | None = None,
+) -> np.ndarray:  # fmt: skip
+    """The basis buffer of a modal basis (see :class:`flexbeam.integrate.modal.ModalBasis`); ``damp``: each mode's
+    damping coefficient 2 zeta omega (appended when given)."""
     N = omega.size
     head = np.array([LAYOUT_VERSION, N, nz, int(diagonal), inv00], float)
-    return np.ascontiguousarray(np.concatenate([head, omega, Psi.ravel(), toM.ravel(), np.asarray(row0, float)]))
+    parts = [head, omega, Psi.ravel(), toM.ravel(), np.asarray(row0, float)]
+    if damp is not None:
+        parts.append(np.asarray(damp, float))
+    return np.ascontiguousarray(np.concatenate(parts))

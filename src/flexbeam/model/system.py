@@ -29,6 +29,7 @@ from ..contact.setup import ContactSetup
 from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS, core, pack_contacts, pack_model
 from ..parameters.case import Case
 from .beam import ModalBeam, PointData, build_modal_beam
+from .damping import damping_matrix
 from .joints import Joint, joint_of
 from .stations import station_table
 
@@ -75,8 +76,14 @@ class BeamSystem:
             stations = station_table(self.beam, self.case.beam.surface_offset)
         return pack_model(
             self.beam, self.joint.code, self.joint.parameters(), self.g, points, list(self.contact.obstacles), pairs,
-            len(self.measuring), stations,
+            len(self.measuring), stations, self.damping,
         )  # fmt: skip
+
+    @cached_property
+    def damping(self) -> np.ndarray | None:
+        """The beam's structural damping C of the flexible coordinates (:mod:`flexbeam.model.damping`), None if
+        undamped."""
+        return damping_matrix(self.case, self.beam)
 
     @property
     def pairs(self) -> int:

@@ -33,6 +33,16 @@ class Beam(Section):
     area: Positive | None = Field(None, description="cross-section area S [m^2]")
     second_moment: Positive | None = Field(None, description="second moment of area I [m^4]")
     half_depth: NonNegative | None = Field(None, description="distance from the centre line to the contact surface [m]")
+    kelvin_voigt: NonNegative = Field(
+        0.0,
+        description="Kelvin-Voigt (stiffness-proportional) material damping c [s]: E -> E (1 + c d/dt), modal ratio "
+        "zeta_i = c omega_i / 2",
+    )
+    viscous_damping: NonNegative = Field(
+        0.0,
+        description="viscous damping eta [N s/m^2] per unit length on the deformation velocity relative to the "
+        "beam's frame, modal ratio zeta_i = eta / (2 mu omega_i)",
+    )
     end_caps: Literal["hemisphere", "flat"] = Field(
         "hemisphere",
         description="the beam's ends for contact anywhere: 'hemisphere' (caps of the surface offset's radius, the "

@@ -30,6 +30,7 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
         double sd = nd->zd[ph->b->N - 1];
         *ed += m->obstacles[0].cs * sd * sd;
     }
+    if (m->Cd) *ed += fb_damping_force(m, nd->zd + (m->nrigid - m->ngiven), NULL, 0); /* structural damping */
     *wd = 0.0;
     if (!m->ngiven) return;
     const fb_joint_ops *jt = fb_joint(m);
@@ -147,9 +148,10 @@ static double base_boundary_at(const fb_phase *ph, double t, const double *eta) 
 /* The bookkeeping over a step [t, t + h] whose nodes and end are in w and st: the nodal rates of E_d and W (red,
  * rwd) and their increments, E_d by Gauss quadrature, W as documented at the top of this file; on a moving base W
  * also holds the base's work, its integrand j_O . A s in the nodal rates and its boundary term -a_O . A s, and the
- * work of the obstacles fixed to the ground, -sum_k F_k n_k . v_O (fb_ground_rate), in the nodal rates. */
+ * work of the obstacles fixed to the ground, -sum_k F_k n_k . v_O (fb_ground_rate), in the nodal rates.  f: the
+ * step's nodal forcing (the damped modes' dissipation, fb_damping_books). */
 void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, const double *eta, const double *v,
-                   const fb_step *st, double *red, double *rwd, double *dEd, double *dW) {
+                   const fb_step *st, const double *f, double *red, double *rwd, double *dEd, double *dW) {
     const fb_tables *tb = fb_gauss();
     const fb_model *m = ph->m;
     int moving = fb_base_moving(m), off = m->nrigid - m->ngiven;
@@ -168,6 +170,11 @@ void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, con
         }
         ed += tb->w[j] * red[j];
         wd += tb->w[j] * rwd[j];
+    }
+    if (ph->b->damp) { /* the fast or strongly damped modes' exact dissipation (damped.c) */
+        fb_damping_books(ph, w, h, eta, v, st->eta1, st->v1, f, red);
+        ed = 0.0;
+        for (int j = 0; j < FB_P; j++) ed += tb->w[j] * red[j];
     }
     *dEd = h * ed;
     double tau = fb_joint(m)->torque(m, t);

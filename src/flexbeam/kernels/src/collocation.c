@@ -63,6 +63,7 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
     out->t = t;
     double Q[FB_MAXN], R[FB_MAXN];
     double ds = jt->forces(m, &out->frame, q, qd, jt->torque(m, t), 0, Q); /* no elastic force */
+    fb_damping_force(m, qd, Q, m->nrigid); /* the beam's structural damping, partly given back below */
     fb_update up;
     jt->remainder(m, b, ph->row0_q, &out->frame, q, Q, ds, &up, R);
     double s = 0.0, sd = 0.0;
@@ -73,6 +74,7 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
         R[N - 1] = -o->cs * sd; /* the support's dashpot (its spring is in the linear part) */
         if (fb_base_moving(m)) R[N - 1] += fb_support_base_force(m, &out->frame); /* a moving base's -m_s a_O . u */
     }
+    fb_damping_return(b, v, R); /* the modes' damping d v is in the propagation's linear part */
     fb_project(b, R, out->smooth);
     if (want == FB_WANT_NONE) return;
     for (int k = 0; k < m->npairs; k++) {
@@ -126,9 +128,8 @@ static void ensure_weights(const fb_phase *ph, fb_work *w, double h) {
     const fb_tables *tb = fb_gauss();
     int N = ph->b->N;
     for (int k = 0; k < N; k++) {
-        double om = ph->b->omega[k];
-        for (int i = 0; i < FB_P; i++) fb_weights(om, h, tb->c[i], &w->W[k][i]);
-        fb_weights(om, h, 1.0, &w->W[k][FB_P]);
+        for (int i = 0; i < FB_P; i++) fb_mode_weights(ph->b, k, h, tb->c[i], &w->W[k][i]);
+        fb_mode_weights(ph->b, k, h, 1.0, &w->W[k][FB_P]);
     }
     w->h = h;
 }

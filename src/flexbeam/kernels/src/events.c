@@ -21,7 +21,7 @@
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
     int N = d->ph->b->N;
     fb_weight W[FB_MAXN];
-    for (int k = 0; k < N; k++) fb_weights(d->ph->b->omega[k], d->h, x, &W[k]);
+    for (int k = 0; k < N; k++) fb_mode_weights(d->ph->b, k, d->h, x, &W[k]);
     fb_propagate(d->ph->b, W, 1, d->eta0, d->v0, d->f, eta, v);
 }
 
@@ -206,7 +206,9 @@ static double max_forcing(const fb_dense *d, int k) {
 }
 
 /* Is the obstacle out of reach within the step?  Each mode's velocity stays below its free amplitude
- * sqrt(v^2 + w^2 eta^2) plus h LEBESGUE max_j |f_jk|, so the gap's rate stays below R = sum_k |j_k| (that bound)
+ * sqrt(v^2 + w^2 eta^2) plus h LEBESGUE max_j |f_jk| (a damped mode's too: its energy (v^2 + w^2 eta^2) / 2
+ * only decreases, and its impulse response's velocity stays below 1), so the gap's rate stays below
+ * R = sum_k |j_k| (that bound)
  * (+ |J_theta| max|theta'| for a prescribed theta: the joint's rate_bound; |J_theta| <= |r_P|; + max|v_O| for an
  * obstacle fixed to the ground on a moving base, which comes at P with the base's speed); far
  * if gap0 > 2 R h (a factor 2 for the variation of J over the step). */
@@ -237,7 +239,9 @@ int fb_gap_far(const fb_dense *d, const double *jb, double gap0) { return far(d,
  * amplitude: free amplitude + 2 max|f| / w^2) and the return value, the deviation of the other modes from the
  * linear interpolant, (dx h)^2 / 8 max|g''| with |g''| <= sum_k |j_k| (w_k^2 A_k + max|f_k|) + 2 max|gamma|
  * (gamma: the gap's velocity-product acceleration, the curvature of P's path relative to the obstacle, at the
- * samples); max|f_k| is the nodal maximum times the Lebesgue constant of the interpolation. */
+ * samples); max|f_k| is the nodal maximum times the Lebesgue constant of the interpolation.  A damped mode (d = 2 zeta
+ * w, damped.c) keeps these bounds -- its free amplitude only decays, each lobe of its forced response is below the
+ * undamped one's -- and adds d (w A_k + h max|f_k|) to |eta''|. */
 double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double dx, double *fast) {
     const fb_basis *b = d->ph->b;
     double B = 0.0, G2 = 2.0 * gamma, T = dx * d->h;
@@ -249,6 +253,8 @@ double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double
         } else {
             double forced = om > 0.0 ? fmin(2.0 * fm / (om * om), d->h * d->h * fm) : 0.0;
             G2 += fabs(jm[k]) * (om * om * (amp + forced) + fm);
+            if (b->damp && b->damp[k] > 0.0) /* eta'' also holds -d v, |v| <= w amp + h max|f| (energy decays) */
+                G2 += fabs(jm[k]) * b->damp[k] * (om * amp + d->h * fm);
         }
     }
     *fast = B;

@@ -79,6 +79,7 @@ typedef struct fb_model_s {
     int first_order; /* the coupling deformation u_x = -1/2 q^T H q is kept */
     const double *st_x, *st_phi, *st_dphi, *st_ddphi, *st_H, *st_maxphi, *st_maxdphi;
     const double *st_aphi, *st_daphi, *st_maxaphi;
+    const double *Cd; /* the structural damping of the flexible coordinates, n x n (NULL: undamped) */
 } fb_model;
 
 /* How the contacts act during a phase, pair by pair: FB_MODE_NONE (free), FB_MODE_FORCE (the law
@@ -207,6 +208,7 @@ typedef struct fb_basis_s {
     int diagonal;     /* Psi is diagonal (system frame, prescribed theta) */
     double inv00;     /* (M0^-1)_00 (free joint) */
     const double *omega, *Psi, *toM, *row0, *K0;  /* N, N x N, N x N, nz, nz x nz */
+    const double *damp; /* N: each mode's damping coefficient d = 2 zeta w (NULL: undamped) */
 } fb_basis;
 
 int fb_basis_unpack(fb_basis *b, const double *buf, size_t nbuf);
@@ -226,7 +228,8 @@ const fb_tables *fb_gauss(void);
 /* Propagation weights of one mode for the fraction s of a step h: free response and the response to
  * each nodal forcing value (see propagation.c). */
 typedef struct {
-    double C, SW, WS;          /* cos(w T), sin(w T) / w, w sin(w T), T = s h */
+    double C, SW, WS;          /* cos(w T), sin(w T) / w, w sin(w T), T = s h (damped.c: eta from eta0, v0; -v from eta0) */
+    double CV;                 /* v from v0: cos(w T) undamped */
     double RE[FB_P], RV[FB_P]; /* position and velocity response to nodal forcing values */
 } fb_weight;
 
@@ -235,10 +238,18 @@ void fb_moments(double th, double *Cm, double *Sm);
 
 /* A hop of length T: free response and the responses to the monomials u^m of u in [0, 1]. */
 typedef struct {
-    double C, SW, WS, pe[FB_P], pv[FB_P];
+    double C, SW, WS, CV, pe[FB_P], pv[FB_P];
 } fb_hop;
 
 void fb_hop_weights(double w, double T, fb_hop *out);
+/* The damped modes (damped.c): d = 2 zeta w, the basis's damp */
+void fb_weights_damped(double w, double d, double h, double s, fb_weight *out);
+void fb_hop_weights_damped(double w, double d, double T, fb_hop *out);
+void fb_mode_weights(const fb_basis *b, int k, double h, double s, fb_weight *out);
+void fb_mode_hop(const fb_basis *b, int k, double T, fb_hop *out);
+double fb_damping_force(const fb_model *m, const double *qd, double *Q, int off);
+void fb_damping_return(const fb_basis *b, const double *v, double *R);
+double fb_mode_dissipation(double w, double d, double h, const double *a, double e0, double v0, double e1, double v1);
 void fb_monomial(const double *f, int N, double *A);
 void fb_propagate(const fb_basis *b, const fb_weight *W, int stride, const double *eta0, const double *v0,
                   const double *f, double *eta, double *v);

@@ -55,6 +55,8 @@ FB_GLUE PyObject *py_dense(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_column_max(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_moments(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_weights(PyObject *self, PyObject *args);
+FB_GLUE PyObject *py_damped_weights(PyObject *self, PyObject *args);
+FB_GLUE PyObject *py_damped_dissipation(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_nodes(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_sizes(PyObject *self, PyObject *args);
 

@@ -127,6 +127,26 @@ PyObject *py_weights(PyObject *self, PyObject *args) {
                          W.RV[2], W.RV[3]);
 }
 
+/* damped_weights(w, d, h, s) -> (EE, EV, VE, VV, RE (4), RV (4)) of a damped mode (damped.c; for the tests):
+ * eta = EE eta0 + EV v0 + RE . f, v = VE eta0 + VV v0 + RV . f for the nodal forcing f */
+PyObject *py_damped_weights(PyObject *self, PyObject *args) {
+    double w, d, h, s;
+    if (!PyArg_ParseTuple(args, "dddd", &w, &d, &h, &s)) return NULL;
+    fb_weight W;
+    fb_weights_damped(w, d, h, s, &W);
+    return Py_BuildValue("dddd(dddd)(dddd)", W.C, W.SW, -W.WS, W.CV, W.RE[0], W.RE[1], W.RE[2], W.RE[3], W.RV[0],
+                         W.RV[1], W.RV[2], W.RV[3]);
+}
+
+/* damped_dissipation(w, d, h, a (4), eta0, v0, eta1, v1) -> d int_0^h v^2 dt of a damped mode whose forcing has
+ * the monomial coefficients a in t / h (damped.c; for the tests) */
+PyObject *py_damped_dissipation(PyObject *self, PyObject *args) {
+    double w, d, h, a[4], e0, v0, e1, v1;
+    if (!PyArg_ParseTuple(args, "ddd(dddd)dddd", &w, &d, &h, &a[0], &a[1], &a[2], &a[3], &e0, &v0, &e1, &v1))
+        return NULL;
+    return PyFloat_FromDouble(fb_mode_dissipation(w, d, h, a, e0, v0, e1, v1));
+}
+
 /* nodes() -> the Gauss nodes of the collocation on (0, 1) */
 PyObject *py_nodes(PyObject *self, PyObject *args) {
     const fb_tables *t = fb_gauss();

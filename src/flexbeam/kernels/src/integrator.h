@@ -7,7 +7,7 @@
 #define FB_MAXN 66 /* modal coordinates: n <= 64 modes, theta, a support coordinate */
 
 typedef struct { /* the hop weights of every mode, mode-innermost */
-    double C[FB_MAXN], SW[FB_MAXN], WS[FB_MAXN], pe[FB_P][FB_MAXN], pv[FB_P][FB_MAXN];
+    double C[FB_MAXN], SW[FB_MAXN], WS[FB_MAXN], CV[FB_MAXN], pe[FB_P][FB_MAXN], pv[FB_P][FB_MAXN];
 } fb_hops;
 
 void fb_hops_fill(const fb_basis *b, double T, fb_hops *H);

@@ -98,7 +98,8 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
     m->first_order = (int)*p++;
     size_t M = (size_t)m->nst;
     size_t axial_st = M ? 2 * M * (size_t)na + (size_t)na : 0; /* Phi_a, Phi_a' (M x na), max |Phi_a| (na) */
-    if (nf != need + M * (1 + 3 * (size_t)nb + (size_t)nb * nb) + (M ? 2 * (size_t)nb : 0) + axial_st) return -2;
+    size_t full = need + M * (1 + 3 * (size_t)nb + (size_t)nb * nb) + (M ? 2 * (size_t)nb : 0) + axial_st;
+    if (nf != full && nf != full + (size_t)n * n) return -2; /* + the damping matrix C (n x n) when damped */
     for (int k = 0; k < m->npairs; k++)
         if (m->pairs[k].anywhere && M < 2) return -3;
     m->st_x = p; p += M;
@@ -113,7 +114,9 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
         m->st_aphi = p; p += M * na;
         m->st_daphi = p; p += M * na;
         m->st_maxaphi = p;
+        p += na;
     }
+    m->Cd = nf == full + (size_t)n * n ? p : NULL;
     return fb_joint(m)->unpack(m) ? -4 : 0;
 }
 

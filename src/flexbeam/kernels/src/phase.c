@@ -325,7 +325,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             continue;
         }
         double E1, scale1, T1, dEd, dW, red[FB_P], rwd[FB_P], h_taken = h; /* h_taken: the step accepted */
-        fb_step_books(&ph, w, t, h, eta, v, &st, red, rwd, &dEd, &dW);
+        fb_step_books(&ph, w, t, h, eta, v, &st, trial, red, rwd, &dEd, &dW);
         E1 = fb_node_energy_parts(&ph, &w->end, &scale1, &T1);
         if (!have_E0) E0 = energy_at(&ph, t, eta, v, &scale0), have_E0 = 1;
         double balance =
@@ -346,7 +346,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             h *= x;
             last = 0;
             collocate_from(&ph, w, t, h, eta, v, f, F, trial, &st, info);
-            fb_step_books(&ph, w, t, h, eta, v, &st, red, rwd, &dEd, &dW);
+            fb_step_books(&ph, w, t, h, eta, v, &st, trial, red, rwd, &dEd, &dW);
             double scale_x;
             E1 = fb_node_energy_parts(&ph, &w->end, &scale_x, &T1);
         } else if (event && x <= 0.0) {

@@ -41,6 +41,8 @@ double fb_node_tip(const fb_phase *ph, const fb_node *nd);
  * step's end, kinetic energy there, the tip deflection at the FB_P nodes] (flexbeam.integrate.modal reads them). */
 #define FB_RECORD_SUMMARY (2 + FB_P)
 void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, const double *eta, const double *v,
-                   const fb_step *st, double *red, double *rwd, double *dEd, double *dW);
+                   const fb_step *st, const double *f, double *red, double *rwd, double *dEd, double *dW);
+void fb_damping_books(const fb_phase *ph, const fb_work *w, double h, const double *eta, const double *v,
+                      const double *eta1, const double *v1, const double *f, double *red); /* damped.c */
 
 #endif

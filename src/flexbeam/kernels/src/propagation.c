@@ -103,7 +103,7 @@ void fb_weights(double w, double h, double s, fb_weight *out) {
     double T = s * h, th = w * T, c, sn, Cm[FB_P], Sm[FB_P];
     fb_sincos(th, &sn, &c);
     osc_moments(th, c, sn, Cm, Sm);
-    out->C = c;
+    out->C = out->CV = c;
     out->SW = w != 0.0 ? sn / w : T;
     out->WS = w * sn;
     double spm = 1.0, pe[FB_P], pv[FB_P];
@@ -127,7 +127,7 @@ void fb_hop_weights(double w, double T, fb_hop *out) {
     double th = w * T, c, sn, Cm[FB_P], Sm[FB_P];
     fb_sincos(th, &sn, &c);
     osc_moments(th, c, sn, Cm, Sm);
-    out->C = c;
+    out->C = out->CV = c;
     out->SW = w != 0.0 ? sn / w : T;
     out->WS = w * sn;
     for (int m = 0; m < FB_P; m++) {
@@ -150,8 +150,9 @@ void fb_monomial(const double *f, int N, double *A) {
 void fb_hops_fill(const fb_basis *b, double T, fb_hops *H) {
     for (int k = 0; k < b->N; k++) {
         fb_hop one;
-        fb_hop_weights(b->omega[k], T, &one);
+        fb_mode_hop(b, k, T, &one);
         H->C[k] = one.C;
+        H->CV[k] = one.CV;
         H->SW[k] = one.SW;
         H->WS[k] = one.WS;
         for (int m = 0; m < FB_P; m++) {
@@ -185,7 +186,7 @@ void fb_hop_advance(const fb_basis *b, const fb_hops *H, const double *A, double
     for (int k = 0; k < N; k++) {
         double e0 = eta[k], v0 = v[k];
         eta[k] = H->C[k] * e0 + H->SW[k] * v0 + fe[k];
-        v[k] = -H->WS[k] * e0 + H->C[k] * v0 + fv[k];
+        v[k] = -H->WS[k] * e0 + H->CV[k] * v0 + fv[k];
     }
 }
 
@@ -195,7 +196,7 @@ void fb_propagate(const fb_basis *b, const fb_weight *W, int stride, const doubl
     int N = b->N;
     for (int k = 0; k < N; k++) {
         const fb_weight *wk = W + (size_t)k * stride;
-        double e = wk->C * eta0[k] + wk->SW * v0[k], u = -wk->WS * eta0[k] + wk->C * v0[k];
+        double e = wk->C * eta0[k] + wk->SW * v0[k], u = -wk->WS * eta0[k] + wk->CV * v0[k];
         for (int j = 0; j < FB_P; j++) {
             e += wk->RE[j] * f[j * N + k];
             u += wk->RV[j] * f[j * N + k];
@@ -225,7 +226,7 @@ double fb_lagrange_integral(int j, double s) {
     return acc;
 }
 
-/* Basis buffer: [version, N, nz, diagonal, inv00, omega (N), Psi (N x N), toM (N x N), row0 (nz)]. */
+/* Basis buffer: [version, N, nz, diagonal, inv00, omega (N), Psi (N x N), toM (N x N), row0 (nz), (damp (N))]. */
 int fb_basis_unpack(fb_basis *b, const double *buf, size_t nbuf) {
     if (nbuf < 5 || (int)buf[0] != FB_LAYOUT_VERSION) return -1;
     b->N = (int)buf[1];
@@ -233,12 +234,14 @@ int fb_basis_unpack(fb_basis *b, const double *buf, size_t nbuf) {
     b->diagonal = (int)buf[3];
     b->inv00 = buf[4];
     size_t N = (size_t)b->N;
-    if (nbuf != 5 + N + 2 * N * N + (size_t)b->nz) return -2;
+    size_t base = 5 + N + 2 * N * N + (size_t)b->nz;
+    if (nbuf != base && nbuf != base + N) return -2; /* + damp (N) with structural damping */
     b->omega = buf + 5;
     b->Psi = b->omega + N;
     b->toM = b->Psi + N * N;
     b->row0 = b->toM + N * N;
     b->K0 = NULL;
+    b->damp = nbuf == base + N ? b->row0 + b->nz : NULL;
     return 0;
 }
 

@@ -27,7 +27,7 @@ typedef struct {
     double ga[FB_MAX_JOINT_PARAMS]; /* the given coordinates' accelerations */
     double M[MAXZ * MAXZ], Q[MAXZ], J[FB_MAX_PAIRS][MAXZ];
     fb_gap gp[FB_MAX_PAIRS];
-    double F[FB_MAX_PAIRS], Fsup, diss;
+    double F[FB_MAX_PAIRS], Fsup, diss, damping;
     int con[FB_MAX_PAIRS], ncon; /* the constrained pairs */
 } rhs_eval;
 
@@ -59,6 +59,7 @@ static double assemble(rhs_eval *e, const fb_model *m, const fb_contacts *c, dou
     double tau = jt->torque(m, t);
     jt->mass(m, e->q, e->M);
     jt->forces(m, &e->fr, e->q, e->qd, tau, 1, e->Q);
+    e->damping = fb_damping_force(m, e->qd, e->Q, m->nrigid); /* the beam's structural damping (damped.c) */
     return tau;
 }
 
@@ -177,6 +178,7 @@ int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, d
     rhs_eval e;
     double tau = assemble(&e, m, c, t, y), torque;
     pair_forces(&e);
+    if (m->Cd) e.diss += e.damping;
     if (e.ncon && constraint_forces(&e)) goto fail;
     if (e.compliant) {
         dy[nb] = e.sd;
