@@ -36,9 +36,12 @@ import flexbeam as fb
 from flexbeam.cli import main
 from flexbeam.parameters.case import Case, ExtraObstacle
 
-#: a run of a fuzzed case must end within this [s] (the slowest of ~5000 random examples: 3.4 s, 43 modes, on a
-#: loaded 2-core machine)
-WALL_LIMIT = 10.0
+#: a run of a fuzzed case must end within this [s].  Raised from 10 s (2026-11-26): the slowest of ~5000 random
+#: examples had been 3.4 s (43 modes, on a loaded 2-core machine), but a case that failed at t = 0 before the reference
+#: integrator's first-step retry (flexbeam.integrate.reference) now runs: seed-experiment-calibrated with a beam of
+#: density 1 kg/m^3 under CCM (its compliant support on the reference path, the modes ~50x faster), 21 000 explicit
+#: steps, 7.1 s on the idle machine and 19.4 s under CI's load.
+WALL_LIMIT = 30.0
 #: simulated time of a fuzzed case that runs [s]
 T_CAP = 2e-3
 PRESETS = tuple(fb.parameters.builtin_cases())
