@@ -343,12 +343,7 @@ class ModalStepper:
         event = EventKind(int(info[0])) if code == _ADV_EVENT else None
         failure = ""
         if code == _ADV_UNDERFLOW:
-            failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)"
-            if phase.friction is not None and np.any(phase.friction[:, 1] == 1.0):
-                failure += (
-                    "; a pair sticks there (its tangential multiplier collocated as CCM's): fewer modes or"
-                    " contact.friction_model = 'threlfall' (a regularised law) may carry the run on"
-                )
+            failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)" + phase.stick_advice
         elif code == _ADV_NONFINITE:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_STALLED:

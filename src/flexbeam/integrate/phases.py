@@ -72,6 +72,16 @@ class Phase:
     friction: np.ndarray | None = None
 
     @property
+    def stick_advice(self) -> str:
+        """What a failure inside this phase adds when a pair sticks (CCFM's Coulomb friction), else ""."""
+        if self.friction is None or not np.any(self.friction[:, 1] == 1.0):
+            return ""
+        return (
+            "; a pair sticks there (its tangential multiplier collocated as CCM's): fewer modes or"
+            " contact.friction_model = 'threlfall' (a regularised law) may carry the run on"
+        )
+
+    @property
     def mode(self) -> ContactMode:
         """The phase's overall mode: CONSTRAINT if some pair is held, else FORCE if some pair is under its law."""
         return max(self.modes, default=ContactMode.NONE)
