@@ -30,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..model.system import BeamSystem
 from .loop import PhaseRun
 from .modal import OMEGA_RIGID_DEFAULT, ModalBasis
@@ -37,6 +38,27 @@ from .phases import ContactMode, EventKind, Phase
 
 CHECK_POINTS = 4
 #: exceptions of a step that end a phase as a numerical failure
+#: the explicit reference integrator refuses a beam whose structural damping makes its fastest root this many times
+#: its fastest undamped frequency: its steps (~ 1 / that root) would multiply as much (a fuzzed Kelvin-Voigt
+#: c = 6.4 s gave 7e5, a run of hours; the damped tests stay below the limit)
+DAMPING_STIFFNESS_LIMIT = 1e3
+
+
+def check_damping_stiffness(system: BeamSystem, omega: float, rate: float) -> None:
+    """A one-line ParameterError naming the beam's damping when it would make the explicit reference integrator
+    (compliant supports, ``solver.integrator = "reference"``) take :data:`DAMPING_STIFFNESS_LIMIT` times the steps
+    of the undamped beam; the exponential integrator propagates any damping exactly."""
+    if rate <= DAMPING_STIFFNESS_LIMIT * max(omega, OMEGA_RIGID_DEFAULT):
+        return
+    beam = system.case.beam
+    field = "beam.kelvin_voigt" if beam.kelvin_voigt > 0.0 else "beam.viscous_damping"
+    raise ParameterError(
+        f"{field}: damping this strong (its fastest mode decays at {rate:.3g} 1/s, {rate / omega:.3g} times the "
+        f"fastest frequency) is beyond the explicit reference integrator (used here); reduce it below "
+        f"{DAMPING_STIFFNESS_LIMIT:g} times"
+    )
+
+
 _FAILURES = (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError, ValueError, OverflowError)
 _HERMITE_DEPTH = 3
 #: Bounded effort: a phase may take EFFORT_BASE + EFFORT_RATE r (t - t0) steps.  An explicit method needs about one
@@ -203,6 +225,7 @@ class ReferenceStepper:
         # the largest root modulus of the linearised modes: w, or up to the damping coefficient 2 zeta w when overdamped
         rates = basis.omega if basis.damp is None else np.maximum(basis.omega, basis.damp)
         self.omega_max = float(np.max(rates, initial=0.0))
+        check_damping_stiffness(system, float(np.max(basis.omega, initial=0.0)), self.omega_max)
 
     def rate(self, phase: Phase) -> float:
         """The phase's characteristic rate [1/s]: the linearised system's highest frequency, or a strongly damped mode's
