@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-from .element import element_chord, inertia_element
+from .element import element_chord, gather, inertia_element
 from .jit import fem_jit
 
 
@@ -95,12 +95,9 @@ def damping_power(X, V, thd, free, l0, EA, EI, damp, mu, gxi, gw):
     G = np.empty((2, 6))
     field = np.zeros(2)
     total = 0.0
+    rest = np.zeros_like(X)  # no accelerations: ae stays 0 (gather's third array)
     for e in range(l0.size):
-        for k in range(3):
-            xe[k] = X[e, k]
-            xe[3 + k] = X[e + 1, k]
-            ve[k] = V[e, k]
-            ve[3 + k] = V[e + 1, k]
+        gather(X, V, rest, e, xe, ve, ae)
         if damp[0] > 0.0:
             total += kelvin_voigt(xe, ve, l0[e], EA, EI, damp[0], fd, Cd)
         if damp[1] > 0.0:

@@ -139,8 +139,7 @@ static void moments(const damped_step *ds, double *B, double *V) {
 }
 
 void fb_weights_damped(double w, double d, double h, double s, fb_weight *out) {
-    const fb_tables *tb = fb_gauss();
-    double T = s * h, B[FB_P], V[FB_P], pe[FB_P], pv[FB_P], spm = 1.0;
+    double T = s * h, B[FB_P], V[FB_P];
     damped_step ds;
     setup(w, d, T, &ds);
     moments(&ds, B, V);
@@ -148,20 +147,7 @@ void fb_weights_damped(double w, double d, double h, double s, fb_weight *out) {
     out->CV = ds.VV;
     out->SW = T * ds.eS;
     out->WS = w * w * T * ds.eS;
-    for (int m = 0; m < FB_P; m++) {
-        pe[m] = T * T * spm * B[m];
-        pv[m] = T * spm * V[m];
-        spm *= s;
-    }
-    for (int j = 0; j < FB_P; j++) {
-        double re = 0.0, rv = 0.0;
-        for (int m = 0; m < FB_P; m++) {
-            re += pe[m] * tb->Vinv[m][j];
-            rv += pv[m] * tb->Vinv[m][j];
-        }
-        out->RE[j] = re;
-        out->RV[j] = rv;
-    }
+    fb_weight_nodes(T, s, B, V, out);
 }
 
 void fb_hop_weights_damped(double w, double d, double T, fb_hop *out) {

@@ -234,6 +234,7 @@ typedef struct {
 } fb_weight;
 
 void fb_weights(double w, double h, double s, fb_weight *out);
+void fb_weight_nodes(double T, double s, const double *Sm, const double *Cm, fb_weight *out);
 void fb_moments(double th, double *Cm, double *Sm);
 
 /* A hop of length T: free response and the responses to the monomials u^m of u in [0, 1]. */

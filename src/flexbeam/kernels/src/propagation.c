@@ -99,13 +99,20 @@ void fb_moments(double th, double *Cm, double *Sm) {
 }
 
 void fb_weights(double w, double h, double s, fb_weight *out) {
-    const fb_tables *tb = fb_gauss();
     double T = s * h, th = w * T, c, sn, Cm[FB_P], Sm[FB_P];
     fb_sincos(th, &sn, &c);
     osc_moments(th, c, sn, Cm, Sm);
     out->C = out->CV = c;
     out->SW = w != 0.0 ? sn / w : T;
     out->WS = w * sn;
+    fb_weight_nodes(T, s, Sm, Cm, out);
+}
+
+/* The forcing weights RE, RV of a step fraction s (T = s h) from the moments Sm (position) and Cm (velocity) of
+ * the step's kernel: the monomial coefficients' weights projected onto the nodal values (Vandermonde inverse).
+ * Shared by the undamped and the damped modes (damped.c). */
+void fb_weight_nodes(double T, double s, const double *Sm, const double *Cm, fb_weight *out) {
+    const fb_tables *tb = fb_gauss();
     double spm = 1.0, pe[FB_P], pv[FB_P];
     for (int m = 0; m < FB_P; m++) {
         pe[m] = T * T * spm * Sm[m];
