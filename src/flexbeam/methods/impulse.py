@@ -15,6 +15,11 @@ of Newton's law at simultaneous impacts).  A pair that the solution leaves with 
 without impulse.  The LCP is solved by enumerating the active sets (at most 8 pairs).  When theta(t) is
 prescribed only the modal velocities jump (M and J restricted to the modal block) and the joint's impulsive torque
 does the rest of the kinetic-energy change.
+
+With Coulomb friction (:func:`frictional_jump`) one pair follows Stronge's process
+(:mod:`flexbeam.methods.friction`); several pairs at once obey Newton's law with the same e on their normal and
+tangential rows (:mod:`flexbeam.methods.frictional_lcp`), whose impulses' work P . xi / (1 + e) -
+(1 - e) P . W P / (2 (1 + e)) is never positive; with different e_i, should it be, the smallest e_i is applied to all.
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ from .. import numerics as nm
 from ..errors import FlexbeamWarning
 from ..model.system import BeamSystem
 from .friction import frictional_impulse
+from .frictional_lcp import impulse_work, solve_frictional_impact
 
 
 @dataclass(frozen=True)
@@ -154,17 +160,12 @@ def _apply(system: BeamSystem, t: float, y: np.ndarray, J: np.ndarray, zd: np.nd
 
 
 def frictional_jump(system: BeamSystem, t: float, y: np.ndarray, e: np.ndarray, pairs: list[int]) -> Jump:
-    """The impulse-momentum map of one pair with Coulomb friction (Stronge's energetic restitution ``e`` along the
-    slip process: :func:`~flexbeam.methods.friction.frictional_impulse`).  Several pairs impacting at once with
-    friction are not modelled: their frictionless impulses are applied, with a warning naming it."""
+    """The impulse-momentum map with Coulomb friction: one pair by Stronge's process (energetic restitution ``e``
+    along the slip: :func:`~flexbeam.methods.friction.frictional_impulse`), several pairs at once by Newton's law with
+    a common normal and tangential restitution (:func:`frictional_impulses`; :mod:`flexbeam.methods.frictional_lcp`).
+    """
     if len(pairs) > 1:
-        warnings.warn(
-            "contact.friction: several pairs impact at once; friction at simultaneous impacts is not modelled, their "
-            "impulses are frictionless",
-            FlexbeamWarning,
-            stacklevel=3,
-        )
-        return _normal_jump(system, t, y, e, pairs)
+        return _simultaneous_frictional_jump(system, t, y, e, pairs)
     pair = system.contact.pairs[pairs[0]]
     _, rate, vt, Jn, Jt = system.tangent(t, y, pairs[0])
     zd = system.velocities(t, y)
@@ -180,3 +181,57 @@ def frictional_jump(system: BeamSystem, t: float, y: np.ndarray, e: np.ndarray, 
 
     y_plus, P, v_plus, T_minus, T_plus = _apply(system, t, y, J, zd, v_minus, drift, stronge)
     return Jump(y_plus, P[1:], v_minus[1:], v_plus[1:], T_minus, T_plus, P[:1])
+
+
+def _simultaneous_frictional_jump(system: BeamSystem, t: float, y: np.ndarray, e: np.ndarray,
+                                  pairs: list[int]) -> Jump:  # fmt: skip
+    """:func:`frictional_jump` of several pairs at once: the rows of J are the pairs' normals, then their tangents."""
+    s = len(pairs)
+    rows = [system.tangent(t, y, k) for k in pairs]  # (delta, rate, v_t, J, J_t), relative to the obstacles
+    J = np.vstack([r[3] for r in rows] + [r[4] for r in rows])
+    zd = system.velocities(t, y)
+    v_minus = np.array([r[1] for r in rows] + [r[2] for r in rows])
+    drift = v_minus - nm.matmul(J, zd)
+    mu_s = np.array([system.contact.pairs[k].friction_static for k in pairs])
+    mu_k = np.array([system.contact.pairs[k].friction for k in pairs])
+    y_plus, P, v_plus, T_minus, T_plus = _apply(system, t, y, J, zd, v_minus, drift,
+                                                lambda W, v: frictional_impulses(W, v, e, mu_s, mu_k))  # fmt: skip
+    return Jump(y_plus, P[:s], v_minus[:s], v_plus[:s], T_minus, T_plus, P[s:])
+
+
+def frictional_impulses(W: np.ndarray, v_minus: np.ndarray, e: np.ndarray, mu_s: np.ndarray,
+                        mu_k: np.ndarray) -> np.ndarray:  # fmt: skip
+    """The impulses (normal rows, then tangential) of several frictional pairs impacting at once, by
+    :func:`~flexbeam.methods.frictional_lcp.solve_frictional_impact`, never gaining energy.
+
+    With different e_i Newton's law may gain energy (Glocker 2013, Part I): should the impulses' work
+    P . v- + P . W P / 2 exceed round-off (1e-9 of its terms), the smallest e_i is applied to every pair (one e: no
+    gain), with a :class:`~flexbeam.errors.FlexbeamWarning`.  Should no mode pattern be consistent (not met for a
+    W = J M^-1 J^T; see the solver), the frictionless impulses are applied, with a warning naming it.
+    """
+    P = solve_frictional_impact(W, v_minus, e, mu_s, mu_k)
+    if np.ptp(e) > 0.0 and (P is None or _gains(W, v_minus, P)):
+        e = np.full(e.size, float(np.min(e)))
+        warnings.warn(
+            "contact.restitution: pairs with different restitution impact at once with friction, where Newton's law "
+            f"would gain energy (or has no solution); their smallest, e = {e[0]:g}, is applied to all of them",
+            FlexbeamWarning,
+            stacklevel=4,
+        )
+        P = solve_frictional_impact(W, v_minus, e, mu_s, mu_k)
+    if P is None:
+        warnings.warn(
+            "contact.friction: no consistent frictional impulses for the pairs impacting at once; their frictionless "
+            "impulses are applied",
+            FlexbeamWarning,
+            stacklevel=4,
+        )
+        s = e.size
+        P = np.concatenate((solve_impact_lcp(W[:s, :s], v_minus[:s], e), np.zeros(s)))
+    return P
+
+
+def _gains(W: np.ndarray, v_minus: np.ndarray, P: np.ndarray) -> bool:
+    """Whether the impulses' work P . v- + P . W P / 2 is positive beyond round-off (1e-9 of its terms)."""
+    PWP = nm.dot(P, nm.matmul(W, P))
+    return impulse_work(W, v_minus, P) > 1e-9 * (abs(nm.dot(P, v_minus)) + 0.5 * PWP)
