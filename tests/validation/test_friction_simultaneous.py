@@ -21,6 +21,8 @@
   mode (slip in one direction throughout, or stick from v_t- = 0) for any e, and for e = 0 also a slip that stops and
   sticks (both end at v+ = 0).  The second pair separating fast, its impulse is 0 and the first's is
   ``frictional_impulse``'s.
+* **A rigid rod on its joint striking two rough stops at once** (W of rank 1): both contacts stick, the rod leaves at
+  -e times its approach rate, and the impulses are the least-norm ones (closed form in the test).
 * **Simulations**: a flexible steel bar dropped flat on two stops with mu = 0.3 (IMM, gravity): no warning, the energy
   balance closes, no jump gains kinetic energy; a very stiff elastic CCFM contact with Coulomb friction on the line
   bar's symmetric flat landing (slip throughout) leaves G's velocity at the closed form IMM gives with e = 1.
@@ -28,7 +30,9 @@
 
 from __future__ import annotations
 
+import sys
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -42,6 +46,9 @@ from flexbeam.methods import imm as imm_module
 from flexbeam.methods.friction import frictional_impulse
 from flexbeam.methods.frictional_lcp import solve_frictional_impact
 from flexbeam.methods.impulse import frictional_impulses
+
+sys.path.insert(0, str(Path(__file__).parent))
+import test_obstacles as ob  # noqa: E402
 
 L, M_BAR, R_STOP = 0.5, 7800.0 * 1e-4 * 0.5, 0.1
 
@@ -234,6 +241,33 @@ def test_spinning_bar_against_an_independent_lcp(mu, vx, omega, e):
     assert np.allclose(after(sol), expected, rtol=0.0, atol=1e-9)
     T = lambda v: 0.5 * (M_BAR * (v[0] ** 2 + v[1] ** 2) + M_BAR * L * L / 12.0 * v[2] ** 2)  # noqa: E731
     assert T(after(sol)) <= T(zd) * (1.0 + 1e-12)
+
+
+@pytest.mark.parametrize("e", [0.0, 0.6, 1.0])
+def test_rigid_rod_on_two_rough_stops_singular_w(e):
+    """test_obstacles.py's rigid rod on its revolute joint striking two stops at x_1 = x_P and x_2 = 0.3 m at once,
+    with mu = 0.3: one coordinate, four rows, W of rank 1.  The contact points lie at the surface offset c below the
+    axis, r_i = (x_i, -c), so omega z x r_i = omega (c, x_i): J_n,i = x_i and J_t,i = -c (t = (-1, 0)).  Every pushing
+    pair leaves at xi_n = 0, i.e. omega+ = -e omega-, and then xi_t = -c (omega+ + e omega-) = 0: both stick.  The
+    impulses with J_O (omega+ - omega-) = sum x_i P_ni - c sum P_ti are not unique; the least-norm ones are
+    k (x_1, x_2, -c, -c), k = J_O (1 + e) omega_0 / (x_1^2 + x_2^2 + 2 c^2) (inside the cone: c <= mu x_i).  Checked
+    to 1e-9 (round-off of a rank-1 problem with entries x_i x_j / J_O, as test_obstacles.py's frictionless case),
+    omega+ = e omega_0 and T+ = e^2 T-, no warning."""
+    over = {"contact.law": "hertz", "contact.restitution": e, "solver.t_end": 0.005, "contact.friction": 0.3}
+    case = ob._rod(over)
+    c, x1, x2 = case.beam.surface_offset, case.contact.position, 0.3
+    second = {"kind": "sphere", "radius": ob.R_S, "centre": [x2, -c - ob.R_S], "contact": {"position": x2}}
+    sol = simulate_quietly(ob._rod(over, [second]))
+    first = {ev.pair: ev for ev in sol.contacts if ev.onset == 0.0}
+    assert sorted(first) == [0, 1]
+    omega0 = ob.V0 / x1
+    k = ob._inertia(case) * (1.0 + e) * omega0 / (x1**2 + x2**2 + 2.0 * c * c)
+    assert c <= 0.3 * min(x1, x2)
+    for pair, x in ((0, x1), (1, x2)):
+        assert first[pair].jump_impulse == pytest.approx(k * x, rel=1e-9)
+        assert abs(first[pair].tangential_impulse) == pytest.approx(k * c, rel=1e-9)
+        assert first[pair].energy_after == pytest.approx(e**2 * first[pair].energy_before, rel=1e-9, abs=1e-15)
+    np.testing.assert_allclose(sol["theta_rate"][-1], e * omega0, rtol=1e-9, atol=1e-15)
 
 
 # ----------------------------------------------------------------------------------------------------- simulations
