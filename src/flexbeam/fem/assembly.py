@@ -76,6 +76,23 @@ def _dof_map(e, a, T0, free):
 
 
 @fem_jit
+def _element_map(e, T0, free, idx, wts):
+    """Fill ``idx``/``wts`` with element ``e``'s six (DOF index, weight) pairs (:func:`_dof_map`)."""
+    for a in range(6):
+        idx[a], wts[a] = _dof_map(e, a, T0, free)
+
+
+@fem_jit
+def _add_block(idx, wts, c, Ke, ab):
+    """Add c w_a w_b K_e[a, b] of an element's 6 x 6 block to the band matrix ``ab`` at its DOFs ``idx``."""
+    off = 2 * BAND
+    for a in range(6):
+        for b in range(6):
+            i, j = idx[a], idx[b]
+            ab[off + i - j, j] += wts[a] * wts[b] * c * Ke[a, b]
+
+
+@fem_jit
 def assemble(
     z, zd, zdd, t_tau, rh, Jh, free, l0, mu, EA, EI, field, gxi, gw, damp,
     cM, cC, cK, want_S,
@@ -150,7 +167,6 @@ def _add_elements(X, V, A, T0, free, l0, mu, EA, EI, field, gxi, gw, cM, cK, wan
     """Add each element's f_in + f_int - f_g to R and cM M_e + cK K_e to the band matrix ``ab`` (if ``want_S``),
     node 0's mapped onto theta with the weights T0; node 0's unmapped forces are summed into ``R0node``
     (:func:`assemble`)."""
-    off = 2 * BAND
     xe = np.empty(6)
     ve = np.empty(6)
     ae = np.empty(6)
@@ -166,26 +182,23 @@ def _add_elements(X, V, A, T0, free, l0, mu, EA, EI, field, gxi, gw, cM, cK, wan
         gather(X, V, A, e, xe, ve, ae)
         corotational_element(xe, l0[e], EA, EI, fe, Ke, want_S)
         inertia_element(xe, ve, ae, l0[e], mu, field, gxi, gw, fin, Me, fg, G)
+        _element_map(e, T0, free, idx, wts)
         for a in range(6):
-            i, w = _dof_map(e, a, T0, free)
-            idx[a] = i
-            wts[a] = w
             fa = fin[a] + fe[a] - fg[a]
-            R[i] += w * fa
+            R[idx[a]] += wts[a] * fa
             if e == 0 and a < 3:
                 R0node[a] += fa
         if want_S:
             for a in range(6):
                 for b in range(6):
-                    i, j = idx[a], idx[b]
-                    ab[off + i - j, j] += wts[a] * wts[b] * (cM * Me[a, b] + cK * Ke[a, b])
+                    Ke[a, b] = cM * Me[a, b] + cK * Ke[a, b]
+            _add_block(idx, wts, 1.0, Ke, ab)
 
 
 @fem_jit
 def _add_damping(X, V, free, l0, mu, EA, EI, gxi, gw, damp, cC, want_S, R, ab, T0, R0node):
-    """Add the structural damping (:mod:`flexbeam.fem.damping`) to R and cC C_e to ``ab``: the Kelvin-Voigt force
-    through the DOF map as the elastic force; the viscous force on the nodes but the hub's (node 0 moves with the
-    frame), with its reaction -w . f on theta (its velocity tangent: the nodes' block only)."""
+    """Add the structural damping (:mod:`flexbeam.fem.damping`) to R and cC C_e to ``ab``: Kelvin-Voigt's through the
+    DOF map as the elastic force; the viscous on the nodes but the hub's, its reaction -w . f on theta."""
     off = 2 * BAND
     xe = np.empty(6)
     ve = np.empty(6)
@@ -202,8 +215,7 @@ def _add_damping(X, V, free, l0, mu, EA, EI, gxi, gw, damp, cC, want_S, R, ab, T
     thd = 0.0 if free else V[0, 2]
     for e in range(l0.size):
         gather(X, V, V, e, xe, ve, ae)
-        for a in range(6):
-            idx[a], wts[a] = _dof_map(e, a, T0, free)
+        _element_map(e, T0, free, idx, wts)
         if damp[0] > 0.0:
             kelvin_voigt(xe, ve, l0[e], EA, EI, damp[0], fd, Cd)
             for a in range(6):
@@ -211,9 +223,7 @@ def _add_damping(X, V, free, l0, mu, EA, EI, gxi, gw, damp, cC, want_S, R, ab, T
                 if e == 0 and a < 3:
                     R0node[a] += fd[a]
             if want_S:
-                for a in range(6):
-                    for b in range(6):
-                        ab[off + idx[a] - idx[b], idx[b]] += wts[a] * wts[b] * cC * Cd[a, b]
+                _add_block(idx, wts, cC, Cd, ab)
         if damp[1] > 0.0:
             inertia_element(xe, ve, ae, l0[e], mu, zero, gxi, gw, fin, Me, fg, G)
             viscous(xe, ve, thd, free, damp[1], Me, fd)
