@@ -147,6 +147,34 @@ PyObject *py_damped_dissipation(PyObject *self, PyObject *args) {
     return PyFloat_FromDouble(fb_mode_dissipation(w, d, h, a, e0, v0, e1, v1));
 }
 
+/* tip_slack(model, basis, records, nrec, t0, t1, y0, y1, a, z, T) -> (linear, rest, rounding): how far the tip's
+ * deflection can exceed the larger of two samples T apart in [a, z] of a phase (extremes.c, tip_bound.c) */
+PyObject *py_tip_slack(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *orec, *oy0, *oy1;
+    int nrec;
+    double t0, t1, a, z, T, parts[3];
+    if (!PyArg_ParseTuple(args, "OOOiddOOddd", &om, &ob, &orec, &nrec, &t0, &t1, &oy0, &oy1, &a, &z, &T)) return NULL;
+    buf_t b[5];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(orec, &b[2], 0, "records") ||
+        get_buf(oy0, &b[3], 0, "y0") || get_buf(oy1, &b[4], 0, "y1") || model_from(&b[0], &m) || basis_from(&b[1], &bs))
+        goto fail;
+    size_t size = (size_t)fb_state_size(&m);
+    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs.N, m.npairs) || LEN(b[3]) != size ||
+        LEN(b[4]) != size || !(a <= z) || !(T > 0.0)) {
+        PyErr_SetString(PyExc_ValueError, "tip_slack: bad array sizes, bracket or spacing");
+        goto fail;
+    }
+    fb_tip_slack_at(&m, &bs, PTR(b[2]), nrec, t0, t1, PTR(b[3]), PTR(b[4]), a, z, T, parts);
+    release(b, 5);
+    return Py_BuildValue("(ddd)", parts[0], parts[1], parts[2]);
+fail:
+    release(b, 5);
+    return NULL;
+}
+
 /* nodes() -> the Gauss nodes of the collocation on (0, 1) */
 PyObject *py_nodes(PyObject *self, PyObject *args) {
     const fb_tables *t = fb_gauss();
