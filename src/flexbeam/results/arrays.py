@@ -18,8 +18,10 @@ from .. import numerics as nm
 from ..integrate.loop import RunResult, Segment
 from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
 from ..model.system import SUPPORT_COLUMNS, BeamSystem
+from .dense_force import compiled_pair_force
 from .friction import friction_columns, has_friction
 from .limits import check_samples
+from .peaks import peak_candidates
 from .records import FRICTION_VARIABLES
 from .samplegrid import sample_count, sample_grid
 from .segment_ends import SegmentEnds
@@ -74,8 +76,9 @@ class RunSource:
         return cols, mv, pc, Y
 
     def pair_force(self, seg: Segment, times: np.ndarray, pair: int) -> np.ndarray:
-        """Contact force of ``pair`` in segment ``seg`` at ``times``."""
-        return self.evaluate_pairs(seg, times)[2][:, pair, 2]
+        """Contact force of ``pair`` in segment ``seg`` at ``times`` (a compiled phase: in the kernels, alone)."""
+        forces = compiled_pair_force(seg, times, pair)
+        return forces if forces is not None else self.evaluate_pairs(seg, times)[2][:, pair, 2]
 
     @cached_property
     def samples(self) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
@@ -255,18 +258,12 @@ class RunSource:
             return math.nan, math.nan
         out = []
         for sign in (-1, 1):
-            top = max(float(np.max(sign * v)) for _, _, v in grids)
+            top, found = peak_candidates([v for _, _, v in grids], sign)
             best = top
-            for seg, t, v in grids:
-                sv = sign * v
-                left, right = np.append(sv[:1], sv[:-1]), np.append(sv[1:], sv[-1:])
-                peak = (sv >= left) & (sv >= right)
-                reach = sv + (sv - np.minimum(left, right))  # bound on the peak between the neighbours
-                idx = np.nonzero(peak & (reach >= top))[0]
-                if idx.size:
-                    idx = idx[np.argsort(-reach[idx], kind="stable")]  # the most promising first
-                    lo, hi = t[np.maximum(idx - 1, 0)], t[np.minimum(idx + 1, t.size - 1)]
-                    best = max(best, self._zoom_all(seg, column, sign, lo, hi, floor=best, reach=reach[idx]))
+            for k, idx, reach in found:
+                seg, t, _ = grids[k]
+                lo, hi = t[np.maximum(idx - 1, 0)], t[np.minimum(idx + 1, t.size - 1)]
+                best = max(best, self._zoom_all(seg, column, sign, lo, hi, floor=best, reach=reach))
             out.append(sign * best)
         return out[0], out[1]
 

@@ -33,7 +33,9 @@ class SegmentEnds:
             times = np.array([segments[i].t0 for i in idx] + [segments[i].t1 for i in idx], float)
             states = np.vstack([segments[i].y0 for i in idx] + [segments[i].y1 for i in idx])
             cols, _, _ = system.outputs(times, states, segments[idx[0]].phase.buffer)
-            table = np.column_stack([cols[name] for name in OUTPUT_COLUMNS])
+            table = np.empty((times.size, ncol))
+            for j, name in enumerate(OUTPUT_COLUMNS):
+                table[:, j] = cols[name]
             self.start[idx], self.end[idx] = table[: len(idx)], table[len(idx) :]
 
     def start_columns(self, i: int) -> dict[str, np.ndarray]:

@@ -26,6 +26,7 @@ typedef struct {
     double sign;
     const fb_phase *ph; /* a phase without contacts, for the tip's dense states (fb_dense_layout) */
     const fb_tip_model *tip; /* the tip's linear part and bound (tip_bound.c; the tip column only) */
+    int via_outputs;         /* a contact force through fb_outputs even when its law gives it (fb_pair_force_many) */
 } probe_t;
 
 /* The first step that ends at or after t (the dense output's own choice), by bisection on the step ends. */
@@ -42,6 +43,15 @@ static int step_of(const probe_t *p, double t) {
     return lo;
 }
 
+/* A phase without contacts for the dense states (fb_dense_layout), into ph. */
+static const fb_phase *free_phase(const fb_model *m, const fb_basis *b, fb_phase *ph) {
+    fb_contacts none;
+    memset(&none, 0, sizeof none);
+    none.npairs = m->npairs;
+    fb_phase_init(ph, m, b, &none, 0.0, 0.0, 0.0);
+    return ph;
+}
+
 /* sign * output at t; the phase's ends give its exact start and end states (as the Python segments do).  The tip,
  * and a contact force given by its law, are computed alone, from the positions and rates (fb_dense_layout), with
  * fb_outputs' arithmetic for them; any other output through fb_dense_eval and fb_outputs. */
@@ -49,7 +59,7 @@ static double probe_value(const probe_t *p, double t) {
     double y[2 * FB_MAXN + 4], cols[FB_NCOLS], mv[FB_MAX_POINTS], pc[FB_MAX_PAIRS * FB_PAIR_COLS];
     const fb_model *m = p->m;
     int size = fb_state_size(m), pair = -1 - p->column;
-    int alone = p->column == FB_COL_TIP || (pair >= 0 && p->c->mode[pair] == FB_MODE_FORCE);
+    int alone = p->column == FB_COL_TIP || (pair >= 0 && p->c->mode[pair] == FB_MODE_FORCE && !p->via_outputs);
     if (t <= p->t0)
         memcpy(y, p->y0, sizeof(double) * size);
     else if (t >= p->t1)
@@ -258,12 +268,8 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
                    const double *lo, const double *hi, const double *reach, double floor, int count, double xtol,
                    double *t_out, double *v_out) {
     probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, column, sign, NULL, NULL};
-    fb_phase ph; /* for the dense states */
-    fb_contacts none;
-    memset(&none, 0, sizeof none);
-    none.npairs = m->npairs;
-    fb_phase_init(&ph, m, b, &none, 0.0, 0.0, 0.0);
-    p.ph = &ph;
+    fb_phase ph;
+    p.ph = free_phase(m, b, &ph);
     tip_search *ts = column == FB_COL_TIP ? malloc(sizeof *ts) : NULL; /* the tip: a pruned search */
     open_set *o = ts ? &ts->open : NULL;
     if (ts) fb_tip_model_init(m, b, &ts->tip), p.tip = &ts->tip;
@@ -303,4 +309,21 @@ void fb_tip_slack_at(const fb_model *m, const fb_basis *b, const double *records
     tip_bracket(&p, a, z, &br);
     fb_tip_slack_parts(p.tip, &br, T, parts);
     free(ts);
+}
+
+/* The contact force (or multiplier) of ``pair`` at ``count`` times of a phase [t0, t1] (exact states y0, y1 at its
+ * ends), as fb_outputs gives it on the dense output's states (flexbeam.results.arrays.RunSource.pair_force): a
+ * force given by its law -- unless a coordinate is given by time or a pair is held, where fb_outputs takes the
+ * forces from fb_rhs -- from the positions and rates alone (probe_value), any other through fb_outputs. */
+void fb_pair_force_many(const fb_model *m, const fb_basis *b, const double *records, int nrec, const fb_contacts *c,
+                        double t0, double t1, const double *y0, const double *y1, int pair, const double *times,
+                        int count, double *out) {
+    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, -1 - pair, 1.0, NULL,
+                 NULL};
+    fb_phase ph;
+    p.ph = free_phase(m, b, &ph);
+    int held = 0;
+    for (int k = 0; k < m->npairs; k++) held |= c->mode[k] == FB_MODE_CONSTRAINT;
+    p.via_outputs = m->ngiven || held;
+    for (int i = 0; i < count; i++) out[i] = probe_value(&p, times[i]);
 }
