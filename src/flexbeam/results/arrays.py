@@ -245,11 +245,12 @@ class RunSource:
         """
         grids = []
         for i, seg in enumerate(self.segments):
+            if column == "tip_deflection" and hasattr(seg.dense, "tip_nodes"):
+                if seg.t1 > seg.t0:  # (its breaks hold two points or more)
+                    grids.append((seg, *self._tip_grid(i)))
+                continue
             b = seg.breaks()
             if b.size < 2:
-                continue
-            if column == "tip_deflection" and hasattr(seg.dense, "tip_nodes"):
-                grids.append((seg, *self._tip_grid(i)))
                 continue
             frac = np.linspace(0.0, 1.0, points_per_step + 1)[:-1]
             t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
