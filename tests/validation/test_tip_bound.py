@@ -75,7 +75,7 @@ def _check_brackets(sol, rng: np.random.Generator, brackets: int = 3, fine: int 
     return checked
 
 
-@settings(max_examples=24, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=16, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     preset=st.sampled_from(PRESETS),
     speed=st.floats(0.05, 3.0),
@@ -91,7 +91,7 @@ def test_the_bound_holds_against_dense_sampling(preset, speed, damping, seed):
     assert _check_brackets(sol, np.random.default_rng(seed)) >= 1
 
 
-@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     q=st.lists(st.floats(-0.04, 0.04), min_size=3, max_size=3),
     qd=st.lists(st.floats(-2.0, 2.0), min_size=3, max_size=3),
@@ -100,7 +100,7 @@ def test_the_bound_holds_against_dense_sampling(preset, speed, damping, seed):
     seed=st.integers(0, 2**31 - 1),
 )
 def test_the_bound_holds_for_large_vibrations(q, qd, rate, frame, seed):
-    """Vibrating from the start (tip deflections up to ~6 % of the length, where the third-order rest is largest),
+    """Vibrating from the start (tip deflections up to ~10 % of the length, where the third-order rest is largest),
     clear of the stop: free flight of the seed beam in either frame."""
     over = {
         "initial.kind": "state", "initial.angle": 0.6, "initial.rate": rate, "initial.modal_displacement": q,

@@ -147,6 +147,22 @@ PyObject *py_damped_dissipation(PyObject *self, PyObject *args) {
     return PyFloat_FromDouble(fb_mode_dissipation(w, d, h, a, e0, v0, e1, v1));
 }
 
+/* The buffers of a query on one phase's dense output -- model, basis, records (nrec), its end states y0, y1 -- into
+ * b[0 .. 4], m and bs unpacked, the sizes checked; nonzero with a Python error set otherwise. */
+static int phase_buffers(PyObject *om, PyObject *ob, PyObject *orec, int nrec, PyObject *oy0, PyObject *oy1,
+                         buf_t *b, fb_model *m, fb_basis *bs, const char *name) {
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(orec, &b[2], 0, "records") ||
+        get_buf(oy0, &b[3], 0, "y0") || get_buf(oy1, &b[4], 0, "y1") || model_from(&b[0], m) || basis_from(&b[1], bs))
+        return -1;
+    size_t size = (size_t)fb_state_size(m);
+    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs->N, m->npairs) || LEN(b[3]) != size ||
+        LEN(b[4]) != size) {
+        PyErr_Format(PyExc_ValueError, "%s: array sizes do not match the model", name);
+        return -1;
+    }
+    return 0;
+}
+
 /* pair_force(model, basis, records, nrec, contacts, t0, t1, y0, y1, pair, times, out): the contact force of
  * ``pair`` at ``times`` of a phase, as outputs gives it on the dense output's states (extremes.c) */
 PyObject *py_pair_force(PyObject *self, PyObject *args) {
@@ -160,19 +176,15 @@ PyObject *py_pair_force(PyObject *self, PyObject *args) {
     fb_model m;
     fb_basis bs;
     fb_contacts c;
-    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(orec, &b[2], 0, "records") ||
-        get_buf(oc, &b[3], 0, "contacts") || get_buf(oy0, &b[4], 0, "y0") || get_buf(oy1, &b[5], 0, "y1") ||
-        get_buf(ot, &b[6], 0, "times") || get_buf(oo, &b[7], 1, "out") || model_from(&b[0], &m) ||
-        basis_from(&b[1], &bs) || contacts_from(&b[3], &m, &c))
+    if (phase_buffers(om, ob, orec, nrec, oy0, oy1, b, &m, &bs, "pair_force") || get_buf(oc, &b[5], 0, "contacts") ||
+        get_buf(ot, &b[6], 0, "times") || get_buf(oo, &b[7], 1, "out") || contacts_from(&b[5], &m, &c))
         goto fail;
-    size_t size = (size_t)fb_state_size(&m);
-    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs.N, m.npairs) || LEN(b[4]) != size ||
-        LEN(b[5]) != size || LEN(b[7]) != LEN(b[6]) || pair < 0 || pair >= m.npairs) {
-        PyErr_SetString(PyExc_ValueError, "pair_force: bad pair or array sizes");
+    if (LEN(b[7]) != LEN(b[6]) || pair < 0 || pair >= m.npairs) {
+        PyErr_SetString(PyExc_ValueError, "pair_force: bad pair, or out not the size of times");
         goto fail;
     }
     Py_BEGIN_ALLOW_THREADS
-    fb_pair_force_many(&m, &bs, PTR(b[2]), nrec, &c, t0, t1, PTR(b[4]), PTR(b[5]), pair, PTR(b[6]), (int)LEN(b[6]),
+    fb_pair_force_many(&m, &bs, PTR(b[2]), nrec, &c, t0, t1, PTR(b[3]), PTR(b[4]), pair, PTR(b[6]), (int)LEN(b[6]),
                        PTR(b[7]));
     Py_END_ALLOW_THREADS
     release(b, 8);
@@ -193,13 +205,9 @@ PyObject *py_tip_slack(PyObject *self, PyObject *args) {
     memset(b, 0, sizeof b);
     fb_model m;
     fb_basis bs;
-    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(orec, &b[2], 0, "records") ||
-        get_buf(oy0, &b[3], 0, "y0") || get_buf(oy1, &b[4], 0, "y1") || model_from(&b[0], &m) || basis_from(&b[1], &bs))
-        goto fail;
-    size_t size = (size_t)fb_state_size(&m);
-    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs.N, m.npairs) || LEN(b[3]) != size ||
-        LEN(b[4]) != size || !(a <= z) || !(T > 0.0)) {
-        PyErr_SetString(PyExc_ValueError, "tip_slack: bad array sizes, bracket or spacing");
+    if (phase_buffers(om, ob, orec, nrec, oy0, oy1, b, &m, &bs, "tip_slack")) goto fail;
+    if (!(a <= z) || !(T > 0.0)) {
+        PyErr_SetString(PyExc_ValueError, "tip_slack: a <= z and T > 0 needed");
         goto fail;
     }
     fb_tip_slack_at(&m, &bs, PTR(b[2]), nrec, t0, t1, PTR(b[3]), PTR(b[4]), a, z, T, parts);
