@@ -15,7 +15,9 @@ long runs are allowed), every run is timed in the same process, in this order, o
 * ``metrics``: the first ``Solution.metrics()`` after that (energy balance, tip extremes, force peaks,
   counts).
 
-The medians are reported with their ratios to the median integration of the same row, with the
+Each is also timed in the thread's CPU time (``time.thread_time``; the integration's by wrapping
+``run_phases``), which other jobs on a shared machine disturb least.  The medians are reported with their ratios to
+the median integration of the same row, with the
 machine and its load average (issue 25's targets: simulate + metrics <= 1.2x the integration at
 0.1 s; contacts of 10 s <= 50 ms; metrics of 10 s <= 0.1 s).
 """
