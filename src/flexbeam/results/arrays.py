@@ -18,13 +18,17 @@ from .. import numerics as nm
 from ..integrate.loop import RunResult, Segment
 from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
 from ..model.system import SUPPORT_COLUMNS, BeamSystem
+from .dense_force import compiled_pair_force
 from .friction import friction_columns, has_friction
 from .limits import check_samples
+from .peaks import peak_candidates
 from .records import FRICTION_VARIABLES
 from .samplegrid import sample_count, sample_grid
+from .segment_ends import SegmentEnds
 
 #: force evaluations per step when searching a contact's force for local maxima
 PEAK_POINTS_PER_STEP = 16
+TIP = OUTPUT_COLUMNS.index("tip_deflection")
 
 
 class RunSource:
@@ -36,6 +40,11 @@ class RunSource:
     @property
     def segments(self) -> list[Segment]:
         return self.run.segments
+
+    @cached_property
+    def segment_ends(self) -> SegmentEnds:
+        """The output columns at every segment's two ends, evaluated together."""
+        return SegmentEnds(self.segments, self.system)
 
     @cached_property
     def _starts(self) -> np.ndarray:
@@ -67,8 +76,9 @@ class RunSource:
         return cols, mv, pc, Y
 
     def pair_force(self, seg: Segment, times: np.ndarray, pair: int) -> np.ndarray:
-        """Contact force of ``pair`` in segment ``seg`` at ``times``."""
-        return self.evaluate_pairs(seg, times)[2][:, pair, 2]
+        """Contact force of ``pair`` in segment ``seg`` at ``times`` (a compiled phase: in the kernels, alone)."""
+        forces = compiled_pair_force(seg, times, pair)
+        return forces if forces is not None else self.evaluate_pairs(seg, times)[2][:, pair, 2]
 
     @cached_property
     def samples(self) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
@@ -214,11 +224,15 @@ class RunSource:
     def mechanical_energy(self, t: float, after: bool = False) -> float:
         """T + V_e + V_g at time t (no contact potential, no bookkeeping): in the last segment containing t
         (``after``: after a jump there) or the first."""
-        segs = [s for s in (self.segments[i] for i in self._around(t, t)) if s.t0 <= t <= s.t1]
-        if not segs:
+        idx = [i for i in self._around(t, t) if self.segments[i].t0 <= t <= self.segments[i].t1]
+        if not idx:
             return math.nan
-        seg = segs[-1] if after else segs[0]
-        cols = self.evaluate(seg, np.array([t]))[0]
+        i = idx[-1] if after else idx[0]
+        names = ("kinetic_energy", "elastic_energy", "gravitational_energy")
+        ends = [self.segment_ends.column(i, name, t) for name in names]  # at a phase's end: evaluated already
+        if ends[0] is not None:
+            return float(ends[0] + ends[1] + ends[2])
+        cols = self.evaluate(self.segments[i], np.array([t]))[0]
         return float(cols["kinetic_energy"][0] + cols["elastic_energy"][0] + cols["gravitational_energy"][0])
 
     def extremes(self, column: str, points_per_step: int = 4) -> tuple[float, float]:
@@ -230,12 +244,13 @@ class RunSource:
         neighbours, so that of several nearly equal peaks the largest is found.
         """
         grids = []
-        for seg in self.segments:
+        for i, seg in enumerate(self.segments):
+            if column == "tip_deflection" and hasattr(seg.dense, "tip_nodes"):
+                if seg.t1 > seg.t0:  # (its breaks hold two points or more)
+                    grids.append((seg, *self._tip_grid(i)))
+                continue
             b = seg.breaks()
             if b.size < 2:
-                continue
-            if column == "tip_deflection" and hasattr(seg.dense, "tip_nodes"):
-                grids.append((seg, *self._tip_grid(seg)))
                 continue
             frac = np.linspace(0.0, 1.0, points_per_step + 1)[:-1]
             t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
@@ -244,29 +259,22 @@ class RunSource:
             return math.nan, math.nan
         out = []
         for sign in (-1, 1):
-            top = max(float(np.max(sign * v)) for _, _, v in grids)
+            top, found = peak_candidates([v for _, _, v in grids], sign)
             best = top
-            for seg, t, v in grids:
-                sv = sign * v
-                left, right = np.append(sv[:1], sv[:-1]), np.append(sv[1:], sv[-1:])
-                peak = (sv >= left) & (sv >= right)
-                reach = sv + (sv - np.minimum(left, right))  # bound on the peak between the neighbours
-                idx = np.nonzero(peak & (reach >= top))[0]
-                if idx.size:
-                    idx = idx[np.argsort(-reach[idx], kind="stable")]  # the most promising first
-                    lo, hi = t[np.maximum(idx - 1, 0)], t[np.minimum(idx + 1, t.size - 1)]
-                    best = max(best, self._zoom_all(seg, column, sign, lo, hi, floor=best, reach=reach[idx]))
+            for k, idx, reach in found:
+                seg, t, _ = grids[k]
+                lo, hi = t[np.maximum(idx - 1, 0)], t[np.minimum(idx + 1, t.size - 1)]
+                best = max(best, self._zoom_all(seg, column, sign, lo, hi, floor=best, reach=reach))
             out.append(sign * best)
         return out[0], out[1]
 
-    def _tip_grid(self, seg: Segment) -> tuple[np.ndarray, np.ndarray]:
-        """(times, tip deflection) of a compiled phase at its ends and at every step's collocation nodes, where the
-        integrator evaluated it while it ran: only the two ends are evaluated here."""
+    def _tip_grid(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """(times, tip deflection) of compiled phase ``i`` at its ends and at every step's collocation nodes, where
+        the integrator evaluated it while it ran (the ends with every phase's, :attr:`segment_ends`)."""
+        seg, ends = self.segments[i], self.segment_ends
         t_nodes, v_nodes = seg.dense.tip_nodes()
-        ends = np.array([seg.t0, seg.t1])
-        v_ends = self.evaluate(seg, ends)[0]["tip_deflection"]
         t = np.concatenate(([seg.t0], t_nodes, [seg.t1]))
-        v = np.concatenate(([v_ends[0]], v_nodes, [v_ends[1]]))
+        v = np.concatenate((ends.start[i, TIP : TIP + 1], v_nodes, ends.end[i, TIP : TIP + 1]))
         return t, v
 
     def _zoom_all(
@@ -358,10 +366,10 @@ class RunSource:
     def checkpoints(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(times, total energy, kinetic energy) at every step boundary of the run."""
         ts, Es, Ts = [], [], []
-        for seg in self.segments:
+        for i, seg in enumerate(self.segments):
             if hasattr(seg.dense, "step_energies"):  # the compiled integrator books them at every step's end
                 t_end, E_end, T_end = seg.dense.step_energies()
-                cols = self.evaluate(seg, np.array([seg.t0]))[0]
+                cols = self.segment_ends.start_columns(i)
                 ts.append(np.concatenate(([seg.t0], t_end)))
                 Es.append(np.concatenate((total_energy(cols), E_end)))
                 Ts.append(np.concatenate((cols["kinetic_energy"], T_end)))

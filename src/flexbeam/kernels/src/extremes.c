@@ -12,6 +12,7 @@
 #include "detmath.h"
 #include "joint.h"
 #include "phase.h"
+#include "tip_bound.h"
 
 typedef struct {
     const fb_model *m;
@@ -24,41 +25,9 @@ typedef struct {
     int column; /* >= 0: an output column (FB_NCOLS); < 0: the contact force of pair -1 - column */
     double sign;
     const fb_phase *ph; /* a phase without contacts, for the tip's dense states (fb_dense_layout) */
-    double g[FB_MAXN]; /* the tip's deflection per unit of each modal coordinate (tip_gains; the tip column only) */
+    const fb_tip_model *tip; /* the tip's linear part and bound (tip_bound.c; the tip column only) */
+    int via_outputs;         /* a contact force through fb_outputs even when its law gives it (fb_pair_force_many) */
 } probe_t;
-
-/* The tip's deflection per unit eta_k at the phase's start state y0, into p->g: central differences over a
- * displacement of the modal coordinate whose largest physical component is 1e-6 (m or rad), velocities zero.  The
- * deflection from the hub's radial line is sum_j phi_j(tip) q_j less the hub angle's d q times the tip's distance
- * from the frame's origin, to first order: nearly linear in the modes (its Jacobian varies with the hub angle and
- * the foreshortening, relatively O(1e-3) for a beam within the model's small deformations). */
-static void tip_gains(probe_t *p) {
-    const fb_basis *b = p->b;
-    const fb_model *m = p->m;
-    int N = b->N, nz = b->nz, size = fb_state_size(m);
-    double y[2 * FB_MAXN + 4];
-    for (int k = 0; k < N; k++) {
-        double big = 0.0, d[2];
-        for (int i = 0; i < nz; i++) big = fmax(big, fabs(b->Psi[i * N + k]));
-        if (big == 0.0) {
-            p->g[k] = 0.0;
-            continue;
-        }
-        double eps = 1e-6 / big;
-        for (int s = 0; s < 2; s++) {
-            memcpy(y, p->y0, sizeof(double) * size);
-            for (int i = 0; i < nz; i++) {
-                y[i] += (s ? -eps : eps) * b->Psi[i * N + k];
-                y[nz + i] = 0.0;
-            }
-            fb_frame fr;
-            const double *q, *qd;
-            fb_state_split(m, p->t0, y, &fr, &q, &qd);
-            d[s] = fb_tip_deflection(m, &fr, q, qd);
-        }
-        p->g[k] = (d[0] - d[1]) / (2.0 * eps);
-    }
-}
 
 /* The first step that ends at or after t (the dense output's own choice), by bisection on the step ends. */
 static int step_of(const probe_t *p, double t) {
@@ -74,6 +43,15 @@ static int step_of(const probe_t *p, double t) {
     return lo;
 }
 
+/* A phase without contacts for the dense states (fb_dense_layout), into ph. */
+static const fb_phase *free_phase(const fb_model *m, const fb_basis *b, fb_phase *ph) {
+    fb_contacts none;
+    memset(&none, 0, sizeof none);
+    none.npairs = m->npairs;
+    fb_phase_init(ph, m, b, &none, 0.0, 0.0, 0.0);
+    return ph;
+}
+
 /* sign * output at t; the phase's ends give its exact start and end states (as the Python segments do).  The tip,
  * and a contact force given by its law, are computed alone, from the positions and rates (fb_dense_layout), with
  * fb_outputs' arithmetic for them; any other output through fb_dense_eval and fb_outputs. */
@@ -81,7 +59,7 @@ static double probe_value(const probe_t *p, double t) {
     double y[2 * FB_MAXN + 4], cols[FB_NCOLS], mv[FB_MAX_POINTS], pc[FB_MAX_PAIRS * FB_PAIR_COLS];
     const fb_model *m = p->m;
     int size = fb_state_size(m), pair = -1 - p->column;
-    int alone = p->column == FB_COL_TIP || (pair >= 0 && p->c->mode[pair] == FB_MODE_FORCE);
+    int alone = p->column == FB_COL_TIP || (pair >= 0 && p->c->mode[pair] == FB_MODE_FORCE && !p->via_outputs);
     if (t <= p->t0)
         memcpy(y, p->y0, sizeof(double) * size);
     else if (t >= p->t1)
@@ -173,7 +151,7 @@ static double fastest_rate(const probe_t *p, int r) {
     double amp[FB_MAXN], total = 0.0;
     for (int k = 0; k < N; k++) {
         double w = b->omega[k], a = w > 0.0 ? sqrt(eta[k] * eta[k] + (v[k] / w) * (v[k] / w)) : 0.0;
-        amp[k] = fabs(p->g[k]) * a;
+        amp[k] = fabs(p->tip->g[k]) * a;
         total += amp[k];
     }
     int used[FB_MAXN] = {0};
@@ -198,21 +176,19 @@ static int grid_points(const probe_t *p, double a, double z) {
     return need < 33.0 ? 33 : need > 4097.0 ? 4097 : (int)need;
 }
 
-/* The bound on how far the tip's sign * deflection exceeds the larger of two samples spaced by dt anywhere in [a, z]:
- * for a deflection linear in the modes (gains p->g), 2 B + C, B bounding the modes too fast for the spacing (their
- * part of each sample and of the maximum), C the deviation of the others from the linear interpolant, both by the
- * rules of the event search (fb_dense_bounds) over every step the bracket touches; twice that is returned, for the
- * deflection's nonlinearity (tip_gains). */
-static double tip_slack(const probe_t *p, const fb_phase *ph, double a, double z, double dt) {
-    int r0 = step_of(p, a), r1 = step_of(p, z), N = p->b->N;
-    double slack = 0.0;
-    for (int r = r0; r <= r1; r++) {
-        const double *rec = p->records + (size_t)r * p->R, *eta0 = rec + 4, *v0 = eta0 + N, *f = v0 + N;
-        fb_dense d = {ph, rec[0], rec[1], eta0, v0, f, 0};
-        double B, C = fb_dense_bounds(&d, p->g, 0.0, dt / rec[1], &B);
-        slack = fmax(slack, 2.0 * (2.0 * B + C));
+/* The tip's bounds over the steps [a, z] touches (tip_bound.c): the frame's angle and origin at the phase's ends
+ * give the rounding's scale. */
+static void tip_bracket(const probe_t *p, double a, double z, fb_tip_bracket *br) {
+    const fb_model *m = p->m;
+    double th = 0.0, R = 0.0;
+    for (int s = 0; s < 2; s++) {
+        fb_frame fr;
+        const double *q, *qd;
+        fb_state_split(m, s ? p->t1 : p->t0, s ? p->y1 : p->y0, &fr, &q, &qd);
+        th = fmax(th, fabs(fr.th));
+        R = fmax(R, fabs(fr.R[0]) + fabs(fr.R[1]));
     }
-    return slack;
+    fb_tip_reach(p->tip, p->b, p->records, p->R, step_of(p, a), step_of(p, z), th, R, br);
 }
 
 #define OPEN_MAX 8192 /* sub-intervals a pruned search may keep open at one level */
@@ -222,14 +198,21 @@ typedef struct { /* the open sub-intervals of a pruned search: left end, sign * 
     int count;
 } open_set;
 
+typedef struct { /* what the tip's pruned search keeps: the open sub-intervals, the deflection's linear part */
+    open_set open;
+    fb_tip_model tip;
+} tip_search;
+
 /* The tip's largest sample in [a, z] by branch and bound: 5 samples, then each sub-interval that may hold a value of
- * at least ``top`` or the best sample yet (its larger end plus tip_slack) split in four, until the spacing is that of
+ * at least ``top`` or the best sample yet (its larger end plus fb_tip_slack) split in four, until the spacing is that of
  * the grid of G points.  Returns 1 with the best sample (*t_best, *v_best) and the final spacing (*dt) when some
  * sub-interval is still open, 0 when none is (the bracket cannot reach ``top``; *v_best a value the deflection
  * takes), -1 when too many are open (then search the plain grid). */
-static int pruned_grid_max(const probe_t *p, const fb_phase *ph, open_set *o, double a, double z, int G, double top,
-                           double *t_best, double *v_best, double *dt) {
+static int pruned_grid_max(const probe_t *p, open_set *o, double a, double z, int G, double top, double *t_best,
+                           double *v_best, double *dt) {
     double h = (z - a) / 4.0, v_prev = probe_value(p, a);
+    fb_tip_bracket br;
+    tip_bracket(p, a, z, &br);
     *t_best = a, *v_best = v_prev;
     for (int i = 0; i < 4; i++) {
         double t = i == 3 ? z : a + (i + 1) * h, v = probe_value(p, t);
@@ -239,7 +222,7 @@ static int pruned_grid_max(const probe_t *p, const fb_phase *ph, open_set *o, do
     }
     o->count = 4;
     for (;;) {
-        double slack = tip_slack(p, ph, a, z, h), ref = fmax(top, *v_best);
+        double slack = fb_tip_slack(p->tip, &br, h), ref = fmax(top, *v_best);
         int kept = 0;
         for (int i = 0; i < o->count; i++)
             if (fmax(o->vl[i], o->vr[i]) + slack >= ref) {
@@ -284,15 +267,12 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
                    double t0, double t1, const double *y0, const double *y1, int column, double sign,
                    const double *lo, const double *hi, const double *reach, double floor, int count, double xtol,
                    double *t_out, double *v_out) {
-    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, column, sign, NULL, {0}};
-    if (column == FB_COL_TIP) tip_gains(&p);
-    fb_phase ph; /* for the bounds of the tip's pruned search (fb_dense_bounds) */
-    fb_contacts none;
-    memset(&none, 0, sizeof none);
-    none.npairs = m->npairs;
-    fb_phase_init(&ph, m, b, &none, 0.0, 0.0, 0.0);
-    p.ph = &ph; /* for the dense states and the tip's bounds */
-    open_set *o = column == FB_COL_TIP ? malloc(sizeof *o) : NULL; /* the tip: a pruned search */
+    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, column, sign, NULL, NULL};
+    fb_phase ph;
+    p.ph = free_phase(m, b, &ph);
+    tip_search *ts = column == FB_COL_TIP ? malloc(sizeof *ts) : NULL; /* the tip: a pruned search */
+    open_set *o = ts ? &ts->open : NULL;
+    if (ts) fb_tip_model_init(m, b, &ts->tip), p.tip = &ts->tip;
     double top = floor;
     for (int k = 0; k < count; k++) {
         if (reach[k] < top) {
@@ -303,7 +283,7 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
         double a = fmax(lo[k], t0), z = fmin(hi[k], t1);
         int G = grid_points(&p, a, z), open = -1;
         double dt, t_best, v_best;
-        if (o) open = pruned_grid_max(&p, &ph, o, a, z, G, top, &t_best, &v_best, &dt);
+        if (o) open = pruned_grid_max(&p, o, a, z, G, top, &t_best, &v_best, &dt);
         if (open < 0) v_best = grid_max(&p, a, z, G, &t_best, &dt);
         if (open != 0 && z - a > xtol) {
             double best, t = brent_max(&p, fmax(a, t_best - dt), fmin(z, t_best + dt), xtol, &best);
@@ -313,5 +293,37 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
         v_out[k] = v_best;
         if (v_best > top) top = v_best;
     }
-    free(o);
+    free(ts);
+}
+
+/* The tip's pruned search's bound for samples T apart in [a, z] of a phase (fb_tip_slack_parts: the linear part's,
+ * the rest's and the rounding's shares), for the tests that check it against brute force. */
+void fb_tip_slack_at(const fb_model *m, const fb_basis *b, const double *records, int nrec, double t0, double t1,
+                     const double *y0, const double *y1, double a, double z, double T, double parts[3]) {
+    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), NULL, t0, t1, y0, y1, FB_COL_TIP, 1.0, NULL,
+                 NULL};
+    tip_search *ts = malloc(sizeof *ts);
+    fb_tip_model_init(m, b, &ts->tip);
+    p.tip = &ts->tip;
+    fb_tip_bracket br;
+    tip_bracket(&p, a, z, &br);
+    fb_tip_slack_parts(p.tip, &br, T, parts);
+    free(ts);
+}
+
+/* The contact force (or multiplier) of ``pair`` at ``count`` times of a phase [t0, t1] (exact states y0, y1 at its
+ * ends), as fb_outputs gives it on the dense output's states (flexbeam.results.arrays.RunSource.pair_force): a
+ * force given by its law -- unless a coordinate is given by time or a pair is held, where fb_outputs takes the
+ * forces from fb_rhs -- from the positions and rates alone (probe_value), any other through fb_outputs. */
+void fb_pair_force_many(const fb_model *m, const fb_basis *b, const double *records, int nrec, const fb_contacts *c,
+                        double t0, double t1, const double *y0, const double *y1, int pair, const double *times,
+                        int count, double *out) {
+    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), c, t0, t1, y0, y1, -1 - pair, 1.0, NULL,
+                 NULL};
+    fb_phase ph;
+    p.ph = free_phase(m, b, &ph);
+    int held = 0;
+    for (int k = 0; k < m->npairs; k++) held |= c->mode[k] == FB_MODE_CONSTRAINT;
+    p.via_outputs = m->ngiven || held;
+    for (int i = 0; i < count; i++) out[i] = probe_value(&p, times[i]);
 }

@@ -147,6 +147,77 @@ PyObject *py_damped_dissipation(PyObject *self, PyObject *args) {
     return PyFloat_FromDouble(fb_mode_dissipation(w, d, h, a, e0, v0, e1, v1));
 }
 
+/* The buffers of a query on one phase's dense output -- model, basis, records (nrec), its end states y0, y1 -- into
+ * b[0 .. 4], m and bs unpacked, the sizes checked; nonzero with a Python error set otherwise. */
+static int phase_buffers(PyObject *om, PyObject *ob, PyObject *orec, int nrec, PyObject *oy0, PyObject *oy1,
+                         buf_t *b, fb_model *m, fb_basis *bs, const char *name) {
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(orec, &b[2], 0, "records") ||
+        get_buf(oy0, &b[3], 0, "y0") || get_buf(oy1, &b[4], 0, "y1") || model_from(&b[0], m) || basis_from(&b[1], bs))
+        return -1;
+    size_t size = (size_t)fb_state_size(m);
+    if (nrec < 1 || LEN(b[2]) < (size_t)nrec * fb_record_size(bs->N, m->npairs) || LEN(b[3]) != size ||
+        LEN(b[4]) != size) {
+        PyErr_Format(PyExc_ValueError, "%s: array sizes do not match the model", name);
+        return -1;
+    }
+    return 0;
+}
+
+/* pair_force(model, basis, records, nrec, contacts, t0, t1, y0, y1, pair, times, out): the contact force of
+ * ``pair`` at ``times`` of a phase, as outputs gives it on the dense output's states (extremes.c) */
+PyObject *py_pair_force(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *orec, *oc, *oy0, *oy1, *ot, *oo;
+    int nrec, pair;
+    double t0, t1;
+    if (!PyArg_ParseTuple(args, "OOOiOddOOiOO", &om, &ob, &orec, &nrec, &oc, &t0, &t1, &oy0, &oy1, &pair, &ot, &oo))
+        return NULL;
+    buf_t b[8];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    fb_contacts c;
+    if (phase_buffers(om, ob, orec, nrec, oy0, oy1, b, &m, &bs, "pair_force") || get_buf(oc, &b[5], 0, "contacts") ||
+        get_buf(ot, &b[6], 0, "times") || get_buf(oo, &b[7], 1, "out") || contacts_from(&b[5], &m, &c))
+        goto fail;
+    if (LEN(b[7]) != LEN(b[6]) || pair < 0 || pair >= m.npairs) {
+        PyErr_SetString(PyExc_ValueError, "pair_force: bad pair, or out not the size of times");
+        goto fail;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    fb_pair_force_many(&m, &bs, PTR(b[2]), nrec, &c, t0, t1, PTR(b[3]), PTR(b[4]), pair, PTR(b[6]), (int)LEN(b[6]),
+                       PTR(b[7]));
+    Py_END_ALLOW_THREADS
+    release(b, 8);
+    Py_RETURN_NONE;
+fail:
+    release(b, 8);
+    return NULL;
+}
+
+/* tip_slack(model, basis, records, nrec, t0, t1, y0, y1, a, z, T) -> (linear, rest, rounding): how far the tip's
+ * deflection can exceed the larger of two samples T apart in [a, z] of a phase (extremes.c, tip_bound.c) */
+PyObject *py_tip_slack(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *orec, *oy0, *oy1;
+    int nrec;
+    double t0, t1, a, z, T, parts[3];
+    if (!PyArg_ParseTuple(args, "OOOiddOOddd", &om, &ob, &orec, &nrec, &t0, &t1, &oy0, &oy1, &a, &z, &T)) return NULL;
+    buf_t b[5];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    if (phase_buffers(om, ob, orec, nrec, oy0, oy1, b, &m, &bs, "tip_slack")) goto fail;
+    if (!(a <= z) || !(T > 0.0)) {
+        PyErr_SetString(PyExc_ValueError, "tip_slack: a <= z and T > 0 needed");
+        goto fail;
+    }
+    fb_tip_slack_at(&m, &bs, PTR(b[2]), nrec, t0, t1, PTR(b[3]), PTR(b[4]), a, z, T, parts);
+    release(b, 5);
+    return Py_BuildValue("(ddd)", parts[0], parts[1], parts[2]);
+fail:
+    release(b, 5);
+    return NULL;
+}
+
 /* nodes() -> the Gauss nodes of the collocation on (0, 1) */
 PyObject *py_nodes(PyObject *self, PyObject *args) {
     const fb_tables *t = fb_gauss();

@@ -15,6 +15,10 @@ static PyMethodDef methods[] = {
     {"column_max", py_column_max, METH_VARARGS,
      "column_max(model, basis, records, nrec, contacts, t0, t1, y0, y1, column, sign, lo, hi, reach, floor, xtol, "
      "t_out, v_out)"},
+    {"pair_force", py_pair_force, METH_VARARGS,
+     "pair_force(model, basis, records, nrec, contacts, t0, t1, y0, y1, pair, times, out): a pair's contact force"},
+    {"tip_slack", py_tip_slack, METH_VARARGS,
+     "tip_slack(model, basis, records, nrec, t0, t1, y0, y1, a, z, T) -> (linear, rest, rounding): the tip's bound"},
     {"moments", py_moments, METH_VARARGS, "moments(theta) -> (Cm, Sm)"},
     {"weights", py_weights, METH_VARARGS, "weights(w, h, s) -> (C, SW, WS, RE, RV)"},
     {"damped_weights", py_damped_weights, METH_VARARGS, "damped_weights(w, d, h, s) -> (EE, EV, VE, VV, RE, RV)"},

@@ -28,6 +28,11 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
                    double t0, double t1, const double *y0, const double *y1, int column, double sign,
                    const double *lo, const double *hi, const double *reach, double floor, int count, double xtol,
                    double *t_out, double *v_out);
+void fb_tip_slack_at(const fb_model *m, const fb_basis *b, const double *records, int nrec, double t0, double t1,
+                     const double *y0, const double *y1, double a, double z, double T, double parts[3]);
+void fb_pair_force_many(const fb_model *m, const fb_basis *b, const double *records, int nrec, const fb_contacts *c,
+                        double t0, double t1, const double *y0, const double *y1, int pair, const double *times,
+                        int count, double *out);
 
 void fb_start_guess(const fb_phase *ph, double t, const double *eta, const double *v, double *f, double F[][FB_P]);
 void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P], const double Fk[][FB_P],
