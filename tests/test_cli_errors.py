@@ -279,6 +279,17 @@ OBSTACLE_CASES = [
         "obstacles[0].contact.postion",
         "did you mean position?",
     ),
+    # a pair's own friction law (issue 28)
+    (
+        {"kind": "sphere", "radius": 0.01, "centre": [0.3, -0.03], "contact": {"friction_model": "viscous"}},
+        "obstacles[0].contact.friction_model",
+        "coulomb",
+    ),
+    (
+        {"kind": "sphere", "radius": 0.01, "centre": [0.3, -0.03], "contact": {"friction_velocity": 0.0}},
+        "obstacles[0].contact.friction_velocity",
+        "0",
+    ),
 ]
 
 
