@@ -279,6 +279,28 @@ OBSTACLE_CASES = [
         "obstacles[0].contact.postion",
         "did you mean position?",
     ),
+    # friction on a pair with no normal law (issue 28): the half-plane's law is required first
+    (
+        {
+            "kind": "half-plane",
+            "centre": [0.3, -0.05],
+            "normal": [0.0, 1.0],
+            "contact": {"position": 0.3, "friction": 0.3},
+        },
+        "obstacles[0].contact.stiffness",
+        "required",
+    ),
+    # a pair's own friction law (issue 28)
+    (
+        {"kind": "sphere", "radius": 0.01, "centre": [0.3, -0.03], "contact": {"friction_model": "viscous"}},
+        "obstacles[0].contact.friction_model",
+        "coulomb",
+    ),
+    (
+        {"kind": "sphere", "radius": 0.01, "centre": [0.3, -0.03], "contact": {"friction_velocity": 0.0}},
+        "obstacles[0].contact.friction_velocity",
+        "0",
+    ),
 ]
 
 

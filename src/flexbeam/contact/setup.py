@@ -112,7 +112,8 @@ class ContactSetup:
         pairs = [
             ContactPair(
                 float(case.contact.position), float(offset), 0, contact_law(case), case.contact.restitution,
-                "obstacle", case.contact.anywhere, float(mu_s), float(mu_k),
+                "obstacle", case.contact.anywhere, float(mu_s), float(mu_k), case.contact.friction_model,
+                float(case.contact.friction_velocity),
             )
         ]  # fmt: skip
         for i, ob in enumerate(case.obstacles):
@@ -131,10 +132,10 @@ class ContactSetup:
                 check_friction(f"obstacles[{i}].contact", kinetic, static)
             except ValueError as exc:
                 raise ParameterError(str(exc)) from None
+            model = case.contact.friction_model if pc.friction_model is None else pc.friction_model
+            v0 = case.contact.friction_velocity if pc.friction_velocity is None else pc.friction_velocity
             pairs.append(ContactPair(float(x), float(SIDES[side] * c), i + 1, law, e, f"obstacles[{i}]", anywhere,
-                                     float(static), float(kinetic)))  # fmt: skip
-        law = {"friction_model": case.contact.friction_model, "friction_velocity": case.contact.friction_velocity}
-        pairs = [replace(p, **law) for p in pairs]
+                                     float(static), float(kinetic), model, float(v0)))  # fmt: skip
         r_O = case.base.motion(0.0)[0]
         check_overlaps([o.seen_from(r_O) for o in obstacles])
         return cls(tuple(pairs), tuple(obstacles))

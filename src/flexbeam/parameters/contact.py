@@ -169,6 +169,10 @@ class PairContact(Section):
     )
     friction: Bounded(0.0, 10.0) | None = Field(None, description="kinetic coefficient of friction mu_k [-]")
     friction_static: Bounded(0.0, 10.0) | None = Field(None, description="static coefficient mu_s [-]")
+    friction_model: Literal["coulomb", "threlfall"] | None = Field(
+        None, description="this pair's friction law under CCFM: 'coulomb' or 'threlfall' (see contact)"
+    )
+    friction_velocity: Positive | None = Field(None, description="this pair's regularised law's v_0 [m/s]")
 
 
 class ExtraObstacle(Obstacle):
