@@ -4,7 +4,8 @@
  * A step is declared free of a gap event only on a guarantee: either the obstacle is out of reach (the gap
  * at the step start exceeds twice the largest distance P can travel, bounded mode by mode), or the gap,
  * sampled at m points of the exact dense output, stays clear of zero by twice the bound B on the modes
- * too fast for m samples, B = sum_k |j_k| (free amplitude_k + 2 max|f_k| / w_k^2) over w_k h / m > pi/4.
+ * too fast for m samples, B = sum_k |j_k| (free amplitude_k + (max|f_k| + |f_k(0)| + V(f_k)) / w_k^2) over
+ * w_k h / m > pi/4 (the forced response's bound by parts, forcing_bound.c).
  * Otherwise the sampling is refined (m x 4, twice); when every mode that can reach the obstacle is resolved,
  * sign changes, excursions from zero and dips predicted by the cubic Hermite interpolant through (gap, rate)
  * are located by Brent's method; and when they are not, the step is too long to decide and is shortened.
@@ -14,7 +15,6 @@
 #include "integrator.h"
 
 #define SAMPLES 16      /* gap samples per step when the nodes do not decide (refined x4 up to twice) */
-#define LEBESGUE 3.0    /* > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.0 for p = 4) */
 #define SURFACE_NOISE 1e-9 /* [m] a start on the surface counts as crossing only this far beyond it */
 #define HERMITE_PTS 16  /* sub-intervals on which a Hermite-predicted dip is checked and searched */
 
@@ -198,15 +198,15 @@ static double scan(const fb_dense *d, const double *x, const double *g, const do
     return FB_NO_EVENT;
 }
 
+/* max |f_k| over the step, of the forcing polynomial itself (forcing_bound.c) */
 static double max_forcing(const fb_dense *d, int k) {
-    int N = d->ph->b->N;
-    double fm = 0.0;
-    for (int j = 0; j < FB_P; j++) fm = fmax(fm, fabs(d->f[j * N + k]));
-    return fm;
+    fb_forcing fc;
+    fb_forcing_bound(d->f, d->ph->b->N, k, &fc);
+    return fc.max;
 }
 
 /* Is the obstacle out of reach within the step?  Each mode's velocity stays below its free amplitude
- * sqrt(v^2 + w^2 eta^2) plus h LEBESGUE max_j |f_jk| (a damped mode's too: its energy (v^2 + w^2 eta^2) / 2
+ * sqrt(v^2 + w^2 eta^2) plus h max|f_k| (a damped mode's too: its energy (v^2 + w^2 eta^2) / 2
  * only decreases, and its impulse response's velocity stays below 1), so the gap's rate stays below
  * R = sum_k |j_k| (that bound)
  * (+ |J_theta| max|theta'| for a prescribed theta: the joint's rate_bound; |J_theta| <= |r_P|; + max|v_O| for an
@@ -219,7 +219,7 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
     for (int k = 0; k < b->N; k++) {
         double om = b->omega[k];
         R += fabs(jm[k]) *
-             (sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]) + d->h * LEBESGUE * max_forcing(d, k));
+             (sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]) + d->h * max_forcing(d, k));
     }
     const fb_model *m = d->ph->m;
     double given = fb_joint(m)->rate_bound(m, d->t0, d->t0 + d->h);
@@ -236,22 +236,26 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
 int fb_gap_far(const fb_dense *d, const double *jb, double gap0) { return far(d, jb, gap0); }
 
 /* Bounds on the gap between samples spaced by the fraction dx: *fast (modes with w dx h > pi/4, by their
- * amplitude: free amplitude + 2 max|f| / w^2) and the return value, the deviation of the other modes from the
- * linear interpolant, (dx h)^2 / 8 max|g''| with |g''| <= sum_k |j_k| (w_k^2 A_k + max|f_k|) + 2 max|gamma|
+ * amplitude: free amplitude + the forced response's (max|f| + |f(0)| + V(f)) / w^2, V the forcing's total
+ * variation over the step; by parts, forcing_bound.c) and the return value, the deviation of the other modes from
+ * the linear interpolant, (dx h)^2 / 8 max|g''| with |g''| <= sum_k |j_k| (w_k^2 A_k + max|f_k|) + 2 max|gamma|
  * (gamma: the gap's velocity-product acceleration, the curvature of P's path relative to the obstacle, at the
- * samples); max|f_k| is the nodal maximum times the Lebesgue constant of the interpolation.  A damped mode (d = 2 zeta
- * w, damped.c) keeps these bounds -- its free amplitude only decays, each lobe of its forced response is below the
- * undamped one's -- and adds d (w A_k + h max|f_k|) to |eta''|. */
+ * samples), A_k = free amplitude + min(that forced bound, h^2 max|f_k|) (|eta_forced| <= t^2 / 2 max|f|); max|f_k|
+ * and V are the forcing polynomial's own.  A damped mode (d = 2 zeta w, damped.c) keeps these bounds -- its free
+ * amplitude only decays, its step response's free part stays within 1 (its energy decays: forcing_bound.c) -- and
+ * adds d (w A_k + h max|f_k|) to |eta''|. */
 double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double dx, double *fast) {
     const fb_basis *b = d->ph->b;
     double B = 0.0, G2 = 2.0 * gamma, T = dx * d->h;
     for (int k = 0; k < b->N; k++) {
-        double om = b->omega[k], fm = LEBESGUE * max_forcing(d, k);
+        fb_forcing fc;
+        fb_forcing_bound(d->f, b->N, k, &fc);
+        double om = b->omega[k], fm = fc.max;
         double amp = om > 0.0 ? sqrt(d->eta0[k] * d->eta0[k] + (d->v0[k] / om) * (d->v0[k] / om)) : 0.0;
         if (om * T > 0.25 * FB_PI) {
-            B += fabs(jm[k]) * (amp + 2.0 * fm / (om * om));
+            B += fabs(jm[k]) * (amp + fb_forced_amplitude(&fc, om));
         } else {
-            double forced = om > 0.0 ? fmin(2.0 * fm / (om * om), d->h * d->h * fm) : 0.0;
+            double forced = om > 0.0 ? fmin(fb_forced_amplitude(&fc, om), d->h * d->h * fm) : 0.0;
             G2 += fabs(jm[k]) * (om * om * (amp + forced) + fm);
             if (b->damp && b->damp[k] > 0.0) /* eta'' also holds -d v, |v| <= w amp + h max|f| (energy decays) */
                 G2 += fabs(jm[k]) * b->damp[k] * (om * amp + d->h * fm);

@@ -218,6 +218,39 @@ fail:
     return NULL;
 }
 
+/* dense_bounds(omega, damp, h, eta0, v0, f, jm, gamma, dx) -> (curve, fast): fb_dense_bounds (events.c) for modes
+ * of frequencies omega and damping coefficients damp over a step of length h from (eta0, v0) with the nodal forcing
+ * f (FB_P x N, node-major) */
+PyObject *py_dense_bounds(PyObject *self, PyObject *args) {
+    PyObject *o[6];
+    double h, gamma, dx, fast;
+    if (!PyArg_ParseTuple(args, "OOdOOOOdd", &o[0], &o[1], &h, &o[2], &o[3], &o[4], &o[5], &gamma, &dx)) return NULL;
+    static const char *names[6] = {"omega", "damp", "eta0", "v0", "f", "jm"};
+    buf_t b[6];
+    memset(b, 0, sizeof b);
+    for (int i = 0; i < 6; i++)
+        if (get_buf(o[i], &b[i], 0, names[i])) goto fail;
+    size_t N = LEN(b[0]);
+    if (N < 1 || N > FB_MAXN || LEN(b[1]) != N || LEN(b[2]) != N || LEN(b[3]) != N || LEN(b[4]) != FB_P * N ||
+        LEN(b[5]) != N || !(h > 0.0) || !(dx > 0.0)) {
+        PyErr_SetString(PyExc_ValueError, "dense_bounds: N = len(omega) in [1, 66], f of FB_P x N, h > 0, dx > 0");
+        goto fail;
+    }
+    fb_basis bs;
+    memset(&bs, 0, sizeof bs);
+    bs.N = (int)N, bs.omega = PTR(b[0]), bs.damp = PTR(b[1]);
+    fb_phase ph;
+    memset(&ph, 0, sizeof ph);
+    ph.b = &bs;
+    fb_dense d = {&ph, 0.0, h, PTR(b[2]), PTR(b[3]), PTR(b[4]), 0};
+    double curve = fb_dense_bounds(&d, PTR(b[5]), gamma, dx, &fast);
+    release(b, 6);
+    return Py_BuildValue("(dd)", curve, fast);
+fail:
+    release(b, 6);
+    return NULL;
+}
+
 /* nodes() -> the Gauss nodes of the collocation on (0, 1) */
 PyObject *py_nodes(PyObject *self, PyObject *args) {
     const fb_tables *t = fb_gauss();

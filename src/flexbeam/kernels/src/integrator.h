@@ -113,6 +113,16 @@ typedef struct { /* a step's dense output, for the event search of one pair */
     int pair;
 } fb_dense;
 
+/* A step's forcing polynomial of one mode and the bound on the forced response (forcing_bound.c) */
+typedef struct {
+    double max, start, variation; /* max|f| over the step, |f(0)|, int |f'|: each rounded up */
+} fb_forcing;
+/* a = the monomial coefficients of mode k's forcing (Vinv f_nodes); returns sum |a_m|; *mag (if not NULL):
+ * sum_m sum_j |Vinv_mj f_jk| */
+double fb_forcing_coefficients(const double *f, int N, int k, double *a, double *mag);
+void fb_forcing_bound(const double *f, int N, int k, fb_forcing *out);
+/* (max|f| + |f(0)| + V) / w^2: bounds the forced response from rest over the step, damped or not */
+double fb_forced_amplitude(const fb_forcing *fc, double w);
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v);
 int fb_gap_far(const fb_dense *d, const double *jb, double gap0);
 /* Bounds on sum_k jm_k eta_k (+ a part of curvature <= gamma) between samples spaced by the fraction dx of the step:

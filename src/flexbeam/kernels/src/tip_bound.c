@@ -74,15 +74,10 @@ void fb_tip_model_init(const fb_model *m, const fb_basis *b, fb_tip_model *tm) {
 
 /* Mode k's bounds over the step of record rec (see above): |eta| <= *A, |eta'| <= *V, |eta''| <= *E. */
 static void mode_bounds(const fb_basis *b, const double *rec, int k, double *A, double *V, double *E) {
-    const fb_tables *tb = fb_gauss();
     int N = b->N;
     const double *eta0 = rec + 4, *v0 = eta0 + N, *f = v0 + N;
-    double h = rec[1], F = 0.0, w = b->omega[k], c = b->damp ? b->damp[k] : 0.0;
-    for (int m = 0; m < FB_P; m++) {
-        double a = 0.0;
-        for (int j = 0; j < FB_P; j++) a += tb->Vinv[m][j] * f[j * N + k];
-        F += fabs(a);
-    }
+    double a[FB_P], F = fb_forcing_coefficients(f, N, k, a, NULL);
+    double h = rec[1], w = b->omega[k], c = b->damp ? b->damp[k] : 0.0;
     *V = sqrt(v0[k] * v0[k] + w * w * eta0[k] * eta0[k]) + h * F;
     *A = fabs(eta0[k]) + h * *V;
     if (w > 0.0) {
