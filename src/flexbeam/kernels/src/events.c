@@ -15,6 +15,7 @@
 #include "integrator.h"
 
 #define SAMPLES 16      /* gap samples per step when the nodes do not decide (refined x4 up to twice) */
+#define LEBESGUE 3.0    /* > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.856 for p = 4) */
 #define SURFACE_NOISE 1e-9 /* [m] a start on the surface counts as crossing only this far beyond it */
 #define HERMITE_PTS 16  /* sub-intervals on which a Hermite-predicted dip is checked and searched */
 
@@ -198,15 +199,15 @@ static double scan(const fb_dense *d, const double *x, const double *g, const do
     return FB_NO_EVENT;
 }
 
-/* max |f_k| over the step, of the forcing polynomial itself (forcing_bound.c) */
 static double max_forcing(const fb_dense *d, int k) {
-    fb_forcing fc;
-    fb_forcing_bound(d->f, d->ph->b->N, k, &fc);
-    return fc.max;
+    int N = d->ph->b->N;
+    double fm = 0.0;
+    for (int j = 0; j < FB_P; j++) fm = fmax(fm, fabs(d->f[j * N + k]));
+    return fm;
 }
 
 /* Is the obstacle out of reach within the step?  Each mode's velocity stays below its free amplitude
- * sqrt(v^2 + w^2 eta^2) plus h max|f_k| (a damped mode's too: its energy (v^2 + w^2 eta^2) / 2
+ * sqrt(v^2 + w^2 eta^2) plus h LEBESGUE max_j |f_jk| (a damped mode's too: its energy (v^2 + w^2 eta^2) / 2
  * only decreases, and its impulse response's velocity stays below 1), so the gap's rate stays below
  * R = sum_k |j_k| (that bound)
  * (+ |J_theta| max|theta'| for a prescribed theta: the joint's rate_bound; |J_theta| <= |r_P|; + max|v_O| for an
@@ -219,7 +220,7 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
     for (int k = 0; k < b->N; k++) {
         double om = b->omega[k];
         R += fabs(jm[k]) *
-             (sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]) + d->h * max_forcing(d, k));
+             (sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]) + d->h * LEBESGUE * max_forcing(d, k));
     }
     const fb_model *m = d->ph->m;
     double given = fb_joint(m)->rate_bound(m, d->t0, d->t0 + d->h);
@@ -248,6 +249,7 @@ double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double
     const fb_basis *b = d->ph->b;
     double B = 0.0, G2 = 2.0 * gamma, T = dx * d->h;
     for (int k = 0; k < b->N; k++) {
+        if (jm[k] == 0.0) continue; /* adds nothing */
         fb_forcing fc;
         fb_forcing_bound(d->f, b->N, k, &fc);
         double om = b->omega[k], fm = fc.max;

@@ -9,6 +9,8 @@
  *     |eta_forced(t)| <= (max|f| + |f(0)| + V) / w^2,     V = int_0^1 |f'(u)| du, the total variation of f
  * (undamped, damped and overdamped alike).  The familiar 2 max|f| / w^2 holds only for a forcing of one sign
  * varying slowly: f = T_3(2u - 1), max|f| = 1, reaches 3.35 / w^2 at w h = 8.26 (tests/unit/test_event_bound.py).
+ * (events.c's former 2 x 3 max_j |f_j| / w^2 held at FB_P = 4 only through the slack of its Lebesgue factor 3:
+ * over nodal values |f_j| <= 1 the forced response reaches 2 x 2.855 / w^2, as w h grows.)
  *
  * max|f| and V are computed from the polynomial: f' = a_1 + 2 a_2 u + 3 a_3 u^2 has at most two real roots in
  * (0, 1) (by the quadratic formula without cancellation); with the partition 0 = u_0 < roots < u_n = 1,
