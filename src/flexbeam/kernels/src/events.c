@@ -17,6 +17,8 @@
 #define LEBESGUE 3.0    /* > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.0 for p = 4) */
 #define SURFACE_NOISE 1e-9 /* [m] a start on the surface counts as crossing only this far beyond it */
 #define HERMITE_PTS 16  /* sub-intervals on which a Hermite-predicted dip is checked and searched */
+#define GAP_ROUNDOFF 1e-15 /* [m] an evaluated gap's round-off: 300x the most two evaluation paths differ (seed) */
+#define QUIET_PIECES 16 /* pieces the proof that a start on the surface stays there may split an interval into */
 
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
     int N = d->ph->b->N;
@@ -25,10 +27,14 @@ void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
     fb_propagate(d->ph->b, W, 1, d->eta0, d->v0, d->f, eta, v);
 }
 
-static double gap_x(const fb_dense *d, double x, double *rate) {
+static fb_gap gap_full(const fb_dense *d, double x) {
     double eta[FB_MAXN], v[FB_MAXN];
     fb_dense_state(d, x, eta, v);
-    fb_gap g = fb_gap_at(d->ph, d->pair, d->t0 + x * d->h, eta, v);
+    return fb_gap_at(d->ph, d->pair, d->t0 + x * d->h, eta, v);
+}
+
+static double gap_x(const fb_dense *d, double x, double *rate) {
+    fb_gap g = gap_full(d, x);
     if (rate) *rate = g.rate;
     return g.delta;
 }
@@ -148,6 +154,33 @@ static double leaves_surface(const fb_dense *d, double a, double b, double ga, d
     return FB_NO_EVENT;
 }
 
+/* Is the gap between the samples a (at x0) and b (at x0 + dx) provably on the far side of the surface and no more
+ * than ``depth`` beyond it?  Then the hump search (golden_min) finds no return and leaves_surface no sinking in, and
+ * neither needs its ~110 dense-output evaluations.  On a piece between samples spaced by dx / n the gap stays within
+ * the curvature bound of their chord when every mode is resolved at that spacing (fb_dense_bounds, its fast modes'
+ * bound B = 0; 2 max|gamma| over the samples for the velocity-product part, as in fb_find_gap_event):
+ * -sign g <= max_j (-sign g_j) + curve and sign g <= max_j (sign g_j) + curve.  n is chosen so that curve is at most
+ * half the room the ends leave (at most QUIET_PIECES pieces, else no verdict); GAP_ROUNDOFF covers the round-off of
+ * the samples and of the searches' own evaluations. */
+static int on_surface_quiet(const fb_dense *d, const double *jb, double gam, double x0, double dx, double a, double b,
+                            double sign, double depth) {
+    double B, curve = fb_dense_bounds(d, jb, gam, dx, &B);
+    double above = fmax(-sign * a, -sign * b), below = fmax(sign * a, sign * b);
+    double room = fmin(-above, depth - below) - GAP_ROUNDOFF;
+    if (B != 0.0 || !(room > 0.0)) return 0;
+    double pieces = ceil(sqrt(2.0 * curve / room));
+    if (!(pieces <= QUIET_PIECES)) return 0;
+    int n = pieces < 1.0 ? 1 : (int)pieces;
+    for (int j = 1; j < n; j++) {
+        fb_gap g = gap_full(d, x0 + dx * j / n);
+        above = fmax(above, -sign * g.delta);
+        below = fmax(below, sign * g.delta);
+        gam = fmax(gam, fabs(g.gamma));
+    }
+    curve = fb_dense_bounds(d, jb, gam, dx / n, &B);
+    return B == 0.0 && above + curve + GAP_ROUNDOFF < 0.0 && below + curve + GAP_ROUNDOFF <= depth;
+}
+
 static int crosses(double a, double b, double sign) {
     return sign < 0.0 ? (a > 0.0 && b <= 0.0) : (a < 0.0 && b >= 0.0);
 }
@@ -157,7 +190,8 @@ static int crosses(double a, double b, double sign) {
  * a little beyond) either lifts off -- a hump, whose return is the event -- or sinks in: the event is where it
  * is first SURFACE_NOISE further beyond than it started (a jump at e = 0 on a flexible beam can leave P pushed
  * off by one mode and pulled back in by the others a few ns later, a hump far below round-off). */
-static double scan(const fb_dense *d, const double *x, const double *g, const double *rate, int m, double sign) {
+static double scan(const fb_dense *d, const double *jb, double gam, const double *x, const double *g,
+                   const double *rate, int m, double sign) {
     int resting = 0;                                  /* within SURFACE_NOISE of the depth it started at */
     double depth = fmax(sign * g[0], 0.0) + SURFACE_NOISE;
     for (int i = 0; i < m; i++) {
@@ -165,6 +199,10 @@ static double scan(const fb_dense *d, const double *x, const double *g, const do
         if (crosses(a, b, sign)) return b == 0.0 ? x[i + 1] : brent(d, x[i], x[i + 1], a, b);
         if (-sign * a <= 0.0 && -sign * b < 0.0) { /* starts on (or just behind) zero, ends beyond it */
             int start = i == 0 || resting;
+            if (on_surface_quiet(d, jb, gam, x[i], hh, a, b, sign, start ? fmax(depth, 1e-6 * fabs(b)) : INFINITY)) {
+                resting |= start;                     /* what the hump and the sinking searches would find */
+                continue;
+            }
             if (start || -sign * ra > 0.0) {          /* a hump: it left, then returns */
                 double xm = golden_min(d, x[i], x[i + 1], sign), gm = gap_x(d, xm, NULL);
                 if (-sign * gm > 0.0) return brent(d, xm, x[i + 1], gm, b);
@@ -368,7 +406,7 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
             double B, curve = fb_dense_bounds(d, jb, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
             if (dx <= safe) {
                 if (leaving && worst - B - curve > 0.0) return FB_NO_EVENT;
-                if (B == 0.0) return scan(d, x, gv, r, m, sign);
+                if (B == 0.0) return scan(d, jb, gam, x, gv, r, m, sign);
             }
             while (level < 3 && 1.0 / levels[level] > fmin(dx, safe) * (1.0 - 1e-12) && levels[level] <= m) level++;
         }
