@@ -77,9 +77,7 @@ def compare(args) -> dict[str, dict[str, dict[str, float]]]:
             out = subprocess.run([builds[b], *worker], capture_output=True, text=True, check=True, cwd=os.getcwd())
             runs[b].append(json.loads(out.stdout))
     return {
-        b: {
-            m: {k: statistics.median(run[m][k] for run in v) for k in ("simulate", "kernel")} for m in args.methods
-        }
+        b: {m: {k: statistics.median(run[m][k] for run in v) for k in ("simulate", "kernel")} for m in args.methods}
         for b, v in runs.items()
     }
 
