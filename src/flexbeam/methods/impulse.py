@@ -116,7 +116,8 @@ def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs
     (J z' + n . v_O, the gap's rate), and the work -P n . v_O its motion does goes to the work integral.
     """
     pairs = list(pairs)
-    e = np.broadcast_to(np.asarray(restitution, float), (len(pairs),)).copy()
+    e = np.empty(len(pairs))
+    e[:] = restitution  # one number for all, or one per pair
     if any(system.contact.pairs[k].frictional for k in pairs):
         return frictional_jump(system, t, y, e, pairs)
     return _normal_jump(system, t, y, e, pairs)
