@@ -9,18 +9,15 @@
  * sign changes, excursions from zero and dips predicted by the cubic Hermite interpolant through (gap, rate)
  * are located by Brent's method; and when they are not, the step is too long to decide and is shortened.
  */
-#include <float.h>
 #include <string.h>
 
 #include "integrator.h"
+#include "surface.h"
 
 #define SAMPLES 16      /* gap samples per step when the nodes do not decide (refined x4 up to twice) */
 #define LEBESGUE 3.0    /* > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.0 for p = 4) */
 #define SURFACE_NOISE 1e-9 /* [m] a start on the surface counts as crossing only this far beyond it */
 #define HERMITE_PTS 16  /* sub-intervals on which a Hermite-predicted dip is checked and searched */
-#define GAP_ULPS 16.0 /* an evaluated gap's round-off over eps (|r_P| + |C| + R): 4e-15 m on the seed case, 1000x the
-                       * most the gap of one state differs between two evaluation paths there (3.5e-18 m) */
-#define QUIET_PIECES 16 /* pieces the proof that a start on the surface stays there may split an interval into */
 
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
     int N = d->ph->b->N;
@@ -29,14 +26,8 @@ void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
     fb_propagate(d->ph->b, W, 1, d->eta0, d->v0, d->f, eta, v);
 }
 
-static fb_gap gap_full(const fb_dense *d, double x) {
-    double eta[FB_MAXN], v[FB_MAXN];
-    fb_dense_state(d, x, eta, v);
-    return fb_gap_at(d->ph, d->pair, d->t0 + x * d->h, eta, v);
-}
-
 static double gap_x(const fb_dense *d, double x, double *rate) {
-    fb_gap g = gap_full(d, x);
+    fb_gap g = fb_dense_gap(d, x);
     if (rate) *rate = g.rate;
     return g.delta;
 }
@@ -44,13 +35,6 @@ static double gap_x(const fb_dense *d, double x, double *rate) {
 typedef double (*fb_scalar)(const fb_dense *d, double x);
 
 static double gap_value(const fb_dense *d, double x) { return gap_x(d, x, NULL); }
-
-/* |r_P|: the pair's point's distance from O at most (the tip's for a point anywhere on the beam). */
-static double pair_reach(const fb_dense *d) {
-    const fb_model *m = d->ph->m;
-    const fb_point *P = &m->points[m->pairs[d->pair].point];
-    return m->pairs[d->pair].anywhere ? m->points[1].base + m->surface : P->base + fabs(P->offset);
-}
 
 /* Root of fn on [a, b] (fa fb <= 0) by Brent's method (Brent 1973, ch. 4), to 1e-15 of the step. */
 static double brent_fn(const fb_dense *d, double a, double b, double fa, double fb, fb_scalar fn) {
@@ -163,35 +147,6 @@ static double leaves_surface(const fb_dense *d, double a, double b, double ga, d
     return FB_NO_EVENT;
 }
 
-/* Is the gap between the samples a (at x0) and b (at x0 + dx) provably on the far side of the surface and no more
- * than ``depth`` beyond it?  Then the hump search (golden_min) finds no return and leaves_surface no sinking in, and
- * neither needs its ~110 dense-output evaluations.  On a piece between samples spaced by dx / n the gap stays within
- * the curvature bound of their chord when every mode is resolved at that spacing (fb_dense_bounds, its fast modes'
- * bound B = 0; 2 max|gamma| over the samples for the velocity-product part, as in fb_find_gap_event):
- * -sign g <= max_j (-sign g_j) + curve and sign g <= max_j (sign g_j) + curve.  n is chosen so that curve is at most
- * half the room the ends leave (at most QUIET_PIECES pieces, else no verdict); the margin GAP_ULPS covers the
- * round-off of the samples and of the searches' own evaluations. */
-static int on_surface_quiet(const fb_dense *d, const double *jb, double gam, double x0, double dx, double a, double b,
-                            double sign, double depth) {
-    double B, curve = fb_dense_bounds(d, jb, gam, dx, &B);
-    double above = fmax(-sign * a, -sign * b), below = fmax(sign * a, sign * b);
-    const fb_obstacle *o = &d->ph->m->obstacles[d->ph->m->pairs[d->pair].obstacle];
-    double roundoff = GAP_ULPS * DBL_EPSILON * (pair_reach(d) + hypot(o->cx, o->cy) + o->radius);
-    double room = fmin(-above, depth - below) - roundoff;
-    if (B != 0.0 || !(room > 0.0)) return 0;
-    double pieces = ceil(sqrt(2.0 * curve / room));
-    if (!(pieces <= QUIET_PIECES)) return 0;
-    int n = pieces < 1.0 ? 1 : (int)pieces;
-    for (int j = 1; j < n; j++) {
-        fb_gap g = gap_full(d, x0 + dx * j / n);
-        above = fmax(above, -sign * g.delta);
-        below = fmax(below, sign * g.delta);
-        gam = fmax(gam, fabs(g.gamma));
-    }
-    curve = fb_dense_bounds(d, jb, gam, dx / n, &B);
-    return B == 0.0 && above + curve + roundoff < 0.0 && below + curve + roundoff <= depth;
-}
-
 static int crosses(double a, double b, double sign) {
     return sign < 0.0 ? (a > 0.0 && b <= 0.0) : (a < 0.0 && b >= 0.0);
 }
@@ -210,7 +165,7 @@ static double scan(const fb_dense *d, const double *jb, double gam, const double
         if (crosses(a, b, sign)) return b == 0.0 ? x[i + 1] : brent(d, x[i], x[i + 1], a, b);
         if (-sign * a <= 0.0 && -sign * b < 0.0) { /* starts on (or just behind) zero, ends beyond it */
             int start = i == 0 || resting;
-            if (on_surface_quiet(d, jb, gam, x[i], hh, a, b, sign, start ? fmax(depth, 1e-6 * fabs(b)) : INFINITY)) {
+            if (fb_on_surface_quiet(d, jb, gam, x[i], hh, a, b, sign, start ? fmax(depth, 1e-6 * fabs(b)) : INFINITY)) {
                 resting |= start;                     /* what the hump and the sinking searches would find */
                 continue;
             }
@@ -272,7 +227,7 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
     }
     const fb_model *m = d->ph->m;
     double given = fb_joint(m)->rate_bound(m, d->t0, d->t0 + d->h);
-    if (given != 0.0) R += pair_reach(d) * given;
+    if (given != 0.0) R += fb_pair_reach(d) * given;
     if (m->obstacles[m->pairs[d->pair].obstacle].ground) R += fb_base_speed_bound(m, d->t0, d->t0 + d->h);
     return gap0 > 2.0 * R * d->h;
 }
