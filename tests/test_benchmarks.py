@@ -128,3 +128,22 @@ def test_free_beam_benchmark_quick_prints_a_row_per_case_and_method():
     for row in rows:
         assert row["status"] == "success" and row["steps"] > 0 and row["us/step"] > 0.0 and row["n"] == 4
     assert all(row["x seed"] == 1.0 for row in rows if row["case"] == "seed-experiment")
+
+
+def test_method_cost_benchmark_compares_two_builds():
+    """A smoke run of benchmarks/method_cost.py with this interpreter as its own baseline: a row per build and
+    method, CCFM's ratio 1."""
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "method_cost.py"), "--modes", "2", "--t-end", "0.002",
+         "--warmup", "0", "--repeats", "1", "--rounds", "1", "--baseline", sys.executable, "--json"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        cwd=ROOT,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    results = json.loads(r.stdout)["results"]
+    assert sorted(results) == ["after", "before"]
+    for build in results.values():
+        assert sorted(build) == ["ccfm", "ccm", "imm"]
+        assert all(row["simulate"] >= row["kernel"] > 0.0 for row in build.values())

@@ -116,7 +116,8 @@ def impulse_jump(system: BeamSystem, t: float, y: np.ndarray, restitution, pairs
     (J z' + n . v_O, the gap's rate), and the work -P n . v_O its motion does goes to the work integral.
     """
     pairs = list(pairs)
-    e = np.broadcast_to(np.asarray(restitution, float), (len(pairs),)).copy()
+    e = np.empty(len(pairs))
+    e[:] = restitution  # one number for all, or one per pair
     if any(system.contact.pairs[k].frictional for k in pairs):
         return frictional_jump(system, t, y, e, pairs)
     return _normal_jump(system, t, y, e, pairs)
@@ -140,10 +141,9 @@ def _apply(system: BeamSystem, t: float, y: np.ndarray, J: np.ndarray, zd: np.nd
     """The jump of impulses P = solve(W, v-) along the rows of J (velocities v = J z' + drift, relative to the
     obstacles), W = J M^-1 J^T over the state's coordinates: (y+, P, v+, T-, T+), with the impulses' work on the
     dissipated energy and the change of T it does not explain (the joint's or a moving obstacle's) on the work."""
-    M = system.mass_matrix(t, y)
+    M, T_minus = system.mass_and_kinetic(t, y)
     free = slice(system.ngiven, None)
     Mr, Jr = M[free, free], J[:, free]
-    T_minus = system.energies(t, y)["kinetic"]
     if Jr.shape[1] == 0:
         return y.copy(), np.zeros(J.shape[0]), v_minus, T_minus, T_minus
     MinvJ = nm.solve(Mr, np.ascontiguousarray(Jr.T))

@@ -107,7 +107,7 @@ class BeamSystem:
         parameters = np.zeros((S, 4)) if parameters is None else parameters
         return pack_contacts(modes, parameters, alpha, beta)
 
-    @property
+    @cached_property
     def n(self) -> int:
         """The flexible coordinates [q, p]: the bending modes, then the axial ones (``model.axial_modes``)."""
         return self.beam.nq
@@ -121,28 +121,28 @@ class BeamSystem:
         """Does the joint give a coordinate as a function of time (theta(t) prescribed)?"""
         return self.joint.prescribed
 
-    @property
+    @cached_property
     def nfull(self) -> int:
         """Number of full coordinates [rigid, q] (the equations' rows)."""
         return self.joint.nrigid + self.n
 
-    @property
+    @cached_property
     def ngiven(self) -> int:
         """Number of the joint's coordinates given as functions of time (leading the full coordinates)."""
         return self.joint.ngiven
 
-    @property
+    @cached_property
     def compliant(self) -> bool:
         """Is the obstacle on a compliant support (two more states s, s')?"""
         return self.contact.obstacle.compliant
 
-    @property
+    @cached_property
     def nz(self) -> int:
         """Number of the state's generalised coordinates of the beam: the full ones without the given ones (n + 1,
         [theta, q], or n with theta prescribed)."""
         return self.nfull - self.ngiven
 
-    @property
+    @cached_property
     def size(self) -> int:
         """Length of the state vector."""
         return 2 * self.nz + (2 if self.compliant else 0) + 2
@@ -227,7 +227,14 @@ class BeamSystem:
 
     def mass_matrix(self, t: float, y: np.ndarray) -> np.ndarray:
         """Generalised mass matrix M(q) over the full coordinates, bordered by m_s for a compliant support."""
-        M = self._equations(t, y)[0]
+        return self._bordered(self._equations(t, y)[0])
+
+    def mass_and_kinetic(self, t: float, y: np.ndarray) -> tuple[np.ndarray, float]:
+        """(:meth:`mass_matrix`, the kinetic energy of :meth:`energies`) from one evaluation of the equations."""
+        M, _, E = self._equations(t, y)
+        return self._bordered(M), self._kinetic(E[0], y)
+
+    def _bordered(self, M: np.ndarray) -> np.ndarray:
         if self.compliant:
             N = M.shape[0]
             Mb = np.zeros((N + 1, N + 1))
@@ -304,12 +311,17 @@ class BeamSystem:
         s, sd = self.support_state(y)
         sup = self.contact.obstacle.support
         return {
-            "kinetic": float(T + 0.5 * sup[0] * sd * sd),
+            "kinetic": self._kinetic(T, y),
             "elastic": float(Ve + 0.5 * sup[1] * s * s),
             "gravitational": float(Vg),
             "dissipated": float(y[-2]),
             "drive_work": float(y[-1]),
         }
+
+    def _kinetic(self, T: float, y: np.ndarray) -> float:
+        """The beam's kinetic energy T plus the support's 1/2 m_s s'^2."""
+        sd = self.support_state(y)[1]
+        return float(T + 0.5 * self.contact.obstacle.support[0] * sd * sd)
 
     def outputs(
         self, times: np.ndarray, states: np.ndarray, contacts: np.ndarray | None = None

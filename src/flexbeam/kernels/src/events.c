@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "integrator.h"
+#include "surface.h"
 
 #define SAMPLES 16      /* gap samples per step when the nodes do not decide (refined x4 up to twice) */
 #define LEBESGUE 3.0    /* > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.856 for p = 4) */
@@ -27,9 +28,7 @@ void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
 }
 
 static double gap_x(const fb_dense *d, double x, double *rate) {
-    double eta[FB_MAXN], v[FB_MAXN];
-    fb_dense_state(d, x, eta, v);
-    fb_gap g = fb_gap_at(d->ph, d->pair, d->t0 + x * d->h, eta, v);
+    fb_gap g = fb_dense_gap(d, x);
     if (rate) *rate = g.rate;
     return g.delta;
 }
@@ -158,7 +157,8 @@ static int crosses(double a, double b, double sign) {
  * a little beyond) either lifts off -- a hump, whose return is the event -- or sinks in: the event is where it
  * is first SURFACE_NOISE further beyond than it started (a jump at e = 0 on a flexible beam can leave P pushed
  * off by one mode and pulled back in by the others a few ns later, a hump far below round-off). */
-static double scan(const fb_dense *d, const double *x, const double *g, const double *rate, int m, double sign) {
+static double scan(const fb_dense *d, const double *jb, double gam, const double *x, const double *g,
+                   const double *rate, int m, double sign) {
     int resting = 0;                                  /* within SURFACE_NOISE of the depth it started at */
     double depth = fmax(sign * g[0], 0.0) + SURFACE_NOISE;
     for (int i = 0; i < m; i++) {
@@ -166,6 +166,10 @@ static double scan(const fb_dense *d, const double *x, const double *g, const do
         if (crosses(a, b, sign)) return b == 0.0 ? x[i + 1] : brent(d, x[i], x[i + 1], a, b);
         if (-sign * a <= 0.0 && -sign * b < 0.0) { /* starts on (or just behind) zero, ends beyond it */
             int start = i == 0 || resting;
+            if (fb_on_surface_quiet(d, jb, gam, x[i], hh, a, b, sign, start ? fmax(depth, 1e-6 * fabs(b)) : INFINITY)) {
+                resting |= start;                     /* what the hump and the sinking searches would find */
+                continue;
+            }
             if (start || -sign * ra > 0.0) {          /* a hump: it left, then returns */
                 double xm = golden_min(d, x[i], x[i + 1], sign), gm = gap_x(d, xm, NULL);
                 if (-sign * gm > 0.0) return brent(d, xm, x[i + 1], gm, b);
@@ -224,11 +228,7 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
     }
     const fb_model *m = d->ph->m;
     double given = fb_joint(m)->rate_bound(m, d->t0, d->t0 + d->h);
-    if (given != 0.0) {
-        const fb_point *P = &m->points[m->pairs[d->pair].point];
-        double rP = m->pairs[d->pair].anywhere ? m->points[1].base + m->surface : P->base + fabs(P->offset);
-        R += rP * given;
-    }
+    if (given != 0.0) R += fb_pair_reach(d) * given;
     if (m->obstacles[m->pairs[d->pair].obstacle].ground) R += fb_base_speed_bound(m, d->t0, d->t0 + d->h);
     return gap0 > 2.0 * R * d->h;
 }
@@ -374,7 +374,7 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
             double B, curve = fb_dense_bounds(d, jb, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
             if (dx <= safe) {
                 if (leaving && worst - B - curve > 0.0) return FB_NO_EVENT;
-                if (B == 0.0) return scan(d, x, gv, r, m, sign);
+                if (B == 0.0) return scan(d, jb, gam, x, gv, r, m, sign);
             }
             while (level < 3 && 1.0 / levels[level] > fmin(dx, safe) * (1.0 - 1e-12) && levels[level] <= m) level++;
         }
