@@ -116,7 +116,7 @@ def friction_power(sol, system: BeamSystem, rtol: float = 1e-6) -> list[tuple[fl
         inner = (t > seg.t0) & (t < seg.t1)
         y = seg.dense(t[inner])
         for k in range(S):
-            if seg.phase.modes[k] != ContactMode.FORCE or not (fr[k, 0] or fr[k, 1] == 1.0):
+            if seg.phase.modes[k] == ContactMode.NONE or not (fr[k, 0] or fr[k, 1] == 1.0):  # CCFM's or CCM's
                 continue
             F = recs[:, 4 + 6 * N + 4 * k : 4 + 6 * N + 4 * k + 4].ravel()[inner]
             lam = recs[:, 4 + 6 * N + 4 * S + 8 + 4 * k : 4 + 6 * N + 4 * S + 8 + 4 * k + 4].ravel()[inner]
@@ -345,11 +345,6 @@ def test_a_streamed_run_writes_the_friction_variables(tmp_path):
         assert np.array_equal(ds["pair_friction_state"].values, mem["pair_friction_state"])
         for name in ("pair_tangential_force", "pair_slip_velocity"):
             np.testing.assert_allclose(ds[name].values, mem[name], rtol=2.0**-24, atol=0.0)
-
-
-def test_ccm_still_refuses_friction():
-    with pytest.raises(ModelError, match=r"^contact\.friction: method 'ccm'"):
-        fb.simulate(fb.load_case("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 1e-3}), "ccm")
 
 
 def test_ccfm_friction_needs_the_exponential_integrator():
