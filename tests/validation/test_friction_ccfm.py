@@ -340,14 +340,15 @@ def test_the_friction_figure(tmp_path):
         plain.plot("friction", tmp_path / "none.png")
 
 
-def test_a_streamed_run_writes_the_friction_variables(tmp_path):
-    """A streamed frictional CCFM run (``stream=``) writes the friction variables as the in-memory run holds them:
-    the state exactly, the force and slip velocity to the file's rounding (2^-24 of each value, nsb = 23)."""
+@pytest.mark.parametrize("method", ["ccfm", "ccm"])
+def test_a_streamed_run_writes_the_friction_variables(tmp_path, method):
+    """A streamed frictional CCFM or CCM run (``stream=``) writes the friction variables as the in-memory run holds
+    them: the state exactly, the force and slip velocity to the file's rounding (2^-24 of each value, nsb = 23)."""
     import xarray as xr
 
     case = fb.load_case("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 0.02})
-    fb.simulate(case, "ccfm", stream=tmp_path / "run.nc")
-    mem = fb.simulate(case, "ccfm")
+    fb.simulate(case, method, stream=tmp_path / "run.nc")
+    mem = fb.simulate(case, method)
     with xr.open_dataset(tmp_path / "run.nc") as ds:
         assert np.array_equal(ds["pair_friction_state"].values, mem["pair_friction_state"])
         for name in ("pair_tangential_force", "pair_slip_velocity"):

@@ -258,3 +258,17 @@ def test_ccm_friction_on_the_reference_integrator_is_refused_in_one_line():
     with pytest.raises(ModelError, match=r"^contact\.friction: CCM's friction runs on the exponential") as err:
         fb.simulate(case, "ccm")
     assert "\n" not in str(err.value)
+
+
+def test_the_cli_refuses_ccm_friction_on_the_reference_integrator_in_one_line():
+    """Through the real CLI: exit 2, one stderr line starting with the field, no traceback."""
+    import subprocess
+
+    r = subprocess.run(
+        [sys.executable, "-m", "flexbeam.cli", "run", "seed-experiment", "--method", "ccm", "--json", "--set",
+         "contact.friction=0.3", "--set", "solver.integrator=reference", "--set", "solver.t_end=1e-4"],
+        capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: contact.friction: CCM's friction runs"), r.stderr
