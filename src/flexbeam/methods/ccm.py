@@ -9,8 +9,9 @@ whose multipliers are all compressive (:meth:`ImpactMethod.held_set`); a pair's 
 crosses zero towards tension (a located event); it is then free until its gap closes again, and every later
 contact is treated the same way.
 
-**Coulomb friction** (``contact.friction``, on the exponential integrator).  The onset's e = 0 impulse is Stronge's
-frictional process (:func:`~flexbeam.methods.impulse.impulse_jump`, one pair), after which the held pair slips or
+**Coulomb friction** (``contact.friction``, on the exponential integrator).  The onset's e = 0 impulse is frictional
+(:func:`~flexbeam.methods.impulse.impulse_jump`: Stronge's process for one pair, the frictional impact LCP for
+several), after which the held pair slips or
 sticks as under CCFM (:mod:`flexbeam.methods.coulomb`, the same rows, events and switches), its normal force being
 the multiplier:
 
@@ -29,11 +30,8 @@ whose effective inverse mass a = W_nn + sigma W_nt is <= 0 -- at a slip phase's 
 
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
 
-from ..errors import FlexbeamWarning
 from ..integrate.phases import ContactMode, EventKind, Phase
 from . import coulomb, painleve
 from .base import ImpactMethod
@@ -51,11 +49,7 @@ class CCM(ImpactMethod):
         return any(p.frictional for p in self.system.contact.pairs)
 
     def on_impact(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int]) -> tuple[Phase, np.ndarray]:
-        with warnings.catch_warnings():
-            if self.rough and len(pairs) > 1 and all(self.gap_event(t, y, k)[1] >= -self.grazing_speed for k in pairs):
-                # pairs settling together at rest: no impulse to speak of, frictionless or not
-                warnings.simplefilter("ignore", FlexbeamWarning)
-            jump = impulse_jump(self.system, t, y, 0.0, pairs)
+        jump = impulse_jump(self.system, t, y, 0.0, pairs)
         events = dict(zip(pairs, self.log_jump(t, jump, pairs)))
         held_before = [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT]
         held = self.held_set(t, jump.y, [*held_before, *pairs], phase)
