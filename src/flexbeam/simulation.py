@@ -150,10 +150,11 @@ def simulate(
         y0, info = _continued(system, state), {}
     impact = cls(system, case)
     stepper = make_stepper(case, method, system)
-    if method == "ccfm" and any(p.frictional for p in system.contact.pairs) and not isinstance(stepper, ModalStepper):
+    rough = any(p.frictional for p in system.contact.pairs)
+    if method in ("ccfm", "ccm") and rough and not isinstance(stepper, ModalStepper):
         raise ModelError(
-            "contact.friction: CCFM's friction runs on the exponential integrator, which a compliant support with "
-            "theta(t) prescribed does not take; omit obstacle.support or friction"
+            f"contact.friction: {method.upper()}'s friction runs on the exponential integrator, which a compliant "
+            "support with theta(t) prescribed does not take; omit obstacle.support or friction"
         )
     if stream is not None:
         return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
@@ -173,7 +174,7 @@ def _continued(system: BeamSystem, state: np.ndarray) -> np.ndarray:
 
 def check_friction_method(case: Case, method: str) -> None:
     """A one-line ModelError naming ``contact.friction`` when a pair has friction and ``method`` does not model it:
-    IMM's frictional impacts (:mod:`flexbeam.methods.friction`), CCFM's Coulomb friction
+    IMM's frictional impacts (:mod:`flexbeam.methods.friction`), CCFM's and CCM's Coulomb friction
     (:mod:`flexbeam.methods.coulomb`, on the exponential integrator) and the FE reference's regularised law
     (:func:`flexbeam.fem.contact_law.friction_law`)."""
     frictional = (
@@ -181,16 +182,16 @@ def check_friction_method(case: Case, method: str) -> None:
         or (case.contact.friction_static or 0.0) > 0.0
         or any((ob.contact.friction or 0.0) > 0.0 or (ob.contact.friction_static or 0.0) > 0.0 for ob in case.obstacles)
     )
-    if frictional and method not in ("imm", "ccfm", "fem"):
+    if frictional and method not in ("imm", "ccfm", "ccm", "fem"):
         raise ModelError(
-            f"contact.friction: method '{method}' does not model friction yet; use --method ccfm (Coulomb's law with "
-            "stick and slip), --method imm (Stronge's frictional impact), --method fem (the FE reference) or "
-            "friction = 0"
+            f"contact.friction: method '{method}' does not model friction yet; use --method ccfm or ccm (Coulomb's "
+            "law with stick and slip), --method imm (Stronge's frictional impact), --method fem (the FE reference) "
+            "or friction = 0"
         )
-    if frictional and method == "ccfm" and case.solver.integrator != "exponential":
+    if frictional and method in ("ccfm", "ccm") and case.solver.integrator != "exponential":
         raise ModelError(
-            "contact.friction: CCFM's friction runs on the exponential integrator only; set solver.integrator = "
-            f"'exponential' (got '{case.solver.integrator}') or friction = 0"
+            f"contact.friction: {method.upper()}'s friction runs on the exponential integrator only; set "
+            f"solver.integrator = 'exponential' (got '{case.solver.integrator}') or friction = 0"
         )
 
 

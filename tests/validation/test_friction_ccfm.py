@@ -97,6 +97,19 @@ def states(sol, times: np.ndarray) -> np.ndarray:
     return out
 
 
+def creep(sol, system: BeamSystem, t0: float, t1: float) -> list[float]:
+    """Each pair's creep over [t0, t1] [m]: its slip velocity integrated by Simpson's rule on 20001 samples of the
+    dense output."""
+    from scipy.integrate import simpson
+
+    t = np.linspace(t0, t1, 20001)
+    y = states(sol, t)
+    return [
+        float(simpson(np.array([system.tangent(ti, yi, k)[2] for ti, yi in zip(t, y)]), x=t))
+        for k in range(system.pairs)
+    ]
+
+
 def friction_power(sol, system: BeamSystem, rtol: float = 1e-6) -> list[tuple[float, float, float]]:
     """(F_t v_t, its allowance, t) of every frictional pair at every step's Gauss nodes: F_t = sigma F (slip;
     sigma(v_t) under the regularised law) or lambda_t (stick).  The allowance abs(F_t) (VT_NOISE + 25 rtol V) admits
@@ -116,7 +129,7 @@ def friction_power(sol, system: BeamSystem, rtol: float = 1e-6) -> list[tuple[fl
         inner = (t > seg.t0) & (t < seg.t1)
         y = seg.dense(t[inner])
         for k in range(S):
-            if seg.phase.modes[k] != ContactMode.FORCE or not (fr[k, 0] or fr[k, 1] == 1.0):
+            if seg.phase.modes[k] == ContactMode.NONE or not (fr[k, 0] or fr[k, 1] == 1.0):  # CCFM's or CCM's
                 continue
             F = recs[:, 4 + 6 * N + 4 * k : 4 + 6 * N + 4 * k + 4].ravel()[inner]
             lam = recs[:, 4 + 6 * N + 4 * S + 8 + 4 * k : 4 + 6 * N + 4 * S + 8 + 4 * k + 4].ravel()[inner]
@@ -158,17 +171,11 @@ def test_a_bar_sliding_on_two_stops_stops_at_the_closed_form(mu):
 def test_a_bar_on_an_incline_below_the_friction_angle_sticks():
     """tan(alpha) = 0.1 < mu_s = 0.3: after it settles (t > 0.2 s) the contact points creep less than 1e-9 m over
     1 s (the slip velocity integrated by Simpson's rule on 20001 samples of the dense output)."""
-    from scipy.integrate import simpson
-
     case = bar_on_stops(0.2, 0.0, 1.2, alpha=math.atan(0.1), mu_s=0.3)
     sol = fb.simulate(case, "ccfm")
     assert sol.status == "success", sol.message
     system = BeamSystem.from_case(case)
-    t = np.linspace(0.2, 1.2, 20001)
-    y = states(sol, t)
-    for k in range(2):
-        vt = np.array([system.tangent(ti, yi, k)[2] for ti, yi in zip(t, y)])
-        assert abs(simpson(vt, x=t)) < 1e-9
+    assert max(abs(c) for c in creep(sol, system, 0.2, 1.2)) < 1e-9
     assert max(p - a for p, a, _ in friction_power(sol, system)) <= 0.0
 
 
@@ -333,23 +340,19 @@ def test_the_friction_figure(tmp_path):
         plain.plot("friction", tmp_path / "none.png")
 
 
-def test_a_streamed_run_writes_the_friction_variables(tmp_path):
-    """A streamed frictional CCFM run (``stream=``) writes the friction variables as the in-memory run holds them:
-    the state exactly, the force and slip velocity to the file's rounding (2^-24 of each value, nsb = 23)."""
+@pytest.mark.parametrize("method", ["ccfm", "ccm"])
+def test_a_streamed_run_writes_the_friction_variables(tmp_path, method):
+    """A streamed frictional CCFM or CCM run (``stream=``) writes the friction variables as the in-memory run holds
+    them: the state exactly, the force and slip velocity to the file's rounding (2^-24 of each value, nsb = 23)."""
     import xarray as xr
 
     case = fb.load_case("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 0.02})
-    fb.simulate(case, "ccfm", stream=tmp_path / "run.nc")
-    mem = fb.simulate(case, "ccfm")
+    fb.simulate(case, method, stream=tmp_path / "run.nc")
+    mem = fb.simulate(case, method)
     with xr.open_dataset(tmp_path / "run.nc") as ds:
         assert np.array_equal(ds["pair_friction_state"].values, mem["pair_friction_state"])
         for name in ("pair_tangential_force", "pair_slip_velocity"):
             np.testing.assert_allclose(ds[name].values, mem[name], rtol=2.0**-24, atol=0.0)
-
-
-def test_ccm_still_refuses_friction():
-    with pytest.raises(ModelError, match=r"^contact\.friction: method 'ccm'"):
-        fb.simulate(fb.load_case("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 1e-3}), "ccm")
 
 
 def test_ccfm_friction_needs_the_exponential_integrator():

@@ -27,7 +27,7 @@ import numpy as np
 import pytest
 
 import flexbeam as fb
-from flexbeam.errors import FlexbeamWarning, ModelError
+from flexbeam.errors import FlexbeamWarning
 
 L, M_BAR = 0.5, 7800.0 * 1e-4 * 0.5
 
@@ -196,12 +196,6 @@ def test_slip_driving_the_end_deeper_still_ends():
 def test_bad_friction_names_the_field(overrides, fragment):
     with pytest.raises(ValueError, match=fragment.replace(".", r"\.")):
         fb.load_case("seed-experiment", overrides)
-
-
-@pytest.mark.parametrize("method", ["ccm"])
-def test_methods_without_friction_refuse_it(method):
-    with pytest.raises(ModelError, match=r"^contact\.friction: method"):
-        fb.simulate(fb.load_case("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 1e-3}), method)
 
 
 def test_frictionless_takes_newtons_map():

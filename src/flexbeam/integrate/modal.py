@@ -37,7 +37,7 @@ _INFO_T0, _INFO_REJECT = 5, 6
 _REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
 _INFO_SIZE = _INFO_REJECT + len(_REJECT_CAUSES)
 _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4, EventKind.STOP: 8,
-               EventKind.UNSTICK_PLUS: 16, EventKind.UNSTICK_MINUS: 32}  # fmt: skip
+               EventKind.UNSTICK_PLUS: 16, EventKind.UNSTICK_MINUS: 32, EventKind.PAINLEVE: 64}  # fmt: skip
 #: floats at the end of a step record that summarise the step (FB_RECORD_SUMMARY in kernels/src/phase.h): the total
 #: and kinetic energy at its end, the tip deflection at its FB_P Gauss nodes
 SUMMARY = 6

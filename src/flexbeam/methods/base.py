@@ -14,10 +14,11 @@ import numpy as np
 from .. import numerics as nm
 from ..contact.hertz import rigid_hertz_impact
 from ..integrate.loop import Stop
-from ..integrate.phases import FRICTION_EVENTS, ContactMode, EventKind, Phase
+from ..integrate.phases import FRICTION_EVENTS, PAINLEVE_EVENTS, ContactMode, EventKind, Phase
 from ..model.system import BeamSystem
 from ..parameters.case import Case
 from ..results.records import ContactEvent
+from . import coulomb
 from .impulse import Jump
 
 #: steps per (estimated) contact duration at least: a contact phase's step is bounded by t_c / CONTACT_STEPS
@@ -94,6 +95,8 @@ class ImpactMethod:
         until = max((r.onset + RESTING_DURATIONS * r.time_scale for r in young), default=math.inf)
         rough = friction is not None and bool(np.any(friction))
         events = ALL_EVENTS + FRICTION_EVENTS if rough else ALL_EVENTS
+        if rough and any(m == ContactMode.CONSTRAINT and f[0] != 0.0 for m, f in zip(modes, friction)):
+            events += PAINLEVE_EVENTS  # a held pair slips (CCM): its a = W_nn + sigma W_nt is watched
         return Phase(name, modes, events, sample, np.asarray(parameters, float), tuple(records), self.baumgarte,
                      min(steps, default=math.inf), until, np.array(friction, float) if rough else None)  # fmt: skip
 
@@ -253,6 +256,23 @@ class ImpactMethod:
 
     def transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
                    ) -> tuple[Phase, np.ndarray]:  # fmt: skip
+        """A friction event of a pair (a stop, the end of a stick: :mod:`flexbeam.methods.coulomb`) switches its
+        friction row; the others as :meth:`contact_transition`; with friction the sticking pairs are then sorted
+        into holders and followers again."""
+        if event == EventKind.STOP:
+            friction = coulomb.stop(self.system, phase, t, y, pair)
+        elif event in FRICTION_EVENTS:
+            friction = coulomb.unstick(self.system, phase, event, pair, t, y)
+        else:
+            phase, y = self.contact_transition(phase, event, t, y, pair)
+            if phase.friction is None:
+                return phase, y
+            friction = phase.friction
+        friction = coulomb.grouped(self.system, t, y, friction)
+        return self.phase(phase.modes, phase.parameters, phase.records, friction), y
+
+    def contact_transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
+                           ) -> tuple[Phase, np.ndarray]:  # fmt: skip
         """IMPACT of a pair: the method's contact starts there and at every other free pair closing at this
         instant (a grazing touch keeps the phase); SEPARATION and RELEASE: that pair's contact ends."""
         if event == EventKind.IMPACT:

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..integrate.phases import FRICTION_EVENTS, ContactMode, EventKind, Phase
+from ..integrate.phases import ContactMode, Phase
 from . import coulomb
 from .base import ImpactMethod
 
@@ -44,19 +44,3 @@ class CCFM(ImpactMethod):
             modes[k], records[k] = ContactMode.FORCE, ev
             friction[k] = coulomb.onset_row(self.system, t, y, k)
         return self.phase(modes, params, records, coulomb.grouped(self.system, t, y, friction)), y
-
-    def transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
-                   ) -> tuple[Phase, np.ndarray]:  # fmt: skip
-        """A friction event of a pair (a stop, the end of a stick) switches its friction row; the others as for
-        every method, the sticking pairs then sorted into holders and followers again."""
-        if event == EventKind.STOP:
-            friction = coulomb.stop(self.system, phase, t, y, pair)
-        elif event in FRICTION_EVENTS:
-            friction = coulomb.unstick(self.system, phase, event, pair, t, y)
-        else:
-            phase, y = super().transition(phase, event, t, y, pair)
-            if phase.friction is None:
-                return phase, y
-            friction = phase.friction
-        friction = coulomb.grouped(self.system, t, y, friction)
-        return self.phase(phase.modes, phase.parameters, phase.records, friction), y

@@ -124,15 +124,16 @@ class Contact(Section):
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = Field(1.5, description="force exponent n (1.5 = Hertz)")
     restitution: Annotated[float, Field(ge=0.0, le=1.0)] = Field(0.8, description="coefficient of restitution e [-]")
     friction: Bounded(0.0, 10.0) = Field(
-        0.0, description="Coulomb friction: the kinetic coefficient mu_k [-] (0 = frictionless; at most 10; IMM, CCFM)"
+        0.0,
+        description="Coulomb friction: the kinetic coefficient mu_k [-] (0 = frictionless; at most 10; IMM, CCFM, CCM)",
     )
     friction_static: Bounded(0.0, 10.0) | None = Field(
         None, description="the static coefficient mu_s >= mu_k [-] (omitted = friction)"
     )
     friction_model: Literal["coulomb", "threlfall"] = Field(
         "coulomb",
-        description="CCFM's friction law: 'coulomb' (exact stick and slip, their switches located as events) or "
-        "'threlfall' (Threlfall 1978's regularised law mu_k F (1 - exp(-3 v_t / v_0)), no stick)",
+        description="CCFM's and CCM's friction law: 'coulomb' (exact stick and slip, their switches located as events) "
+        "or 'threlfall' (Threlfall 1978's regularised law mu_k F (1 - exp(-3 v_t / v_0)), no stick)",
     )
     friction_velocity: Positive = Field(
         1e-3, description="the regularised law's slip velocity v_0 [m/s] (its force is 95 % of mu_k F at v_0)"

@@ -152,10 +152,13 @@ class Solution:
             ev.energy_after += potential
         if end > ev.onset:
             ev.impulse = (ev.jump_impulse if jumped else 0.0) + src.impulse(ev.onset, end, ev.pair)
-            if math.isnan(ev.tangential_impulse):  # CCFM's friction: int F_t dt over the contact
-                ev.tangential_impulse = tangential_impulse(
-                    getattr(src, "segments", []), ev.onset, end, ev.pair, getattr(src, "system", None)
-                )
+            # friction under CCFM and CCM: int F_t dt over the contact, after CCM's onset jump (and Painlevé's)
+            segments, system = getattr(src, "segments", []), getattr(src, "system", None)
+            held = tangential_impulse(segments, ev.onset, end, ev.pair, system)
+            if math.isnan(ev.tangential_impulse):
+                ev.tangential_impulse = held
+            elif not math.isnan(held):
+                ev.tangential_impulse += held
             if not jumped:
                 ev.energy_before = src.mechanical_energy(ev.onset, after=True)
             ev.energy_after = src.mechanical_energy(end)

@@ -25,6 +25,8 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
         if (ph->c.mode[k] == FB_MODE_FORCE) {
             *ed += (F[k][j] - Fk[k][j]) * (-nd->gap[k].rate);
             if (ph->c.friction) *ed += fb_friction_rate(ph, nd, k, F[k][j], Ft[k][j]);
+        } else if (ph->c.mode[k] == FB_MODE_CONSTRAINT && ph->c.friction) { /* CCM: the held gap does no work */
+            *ed += fb_friction_rate(ph, nd, k, F[k][j], Ft[k][j]);
         }
     if (fb_compliant(m)) {
         double sd = nd->zd[ph->b->N - 1];

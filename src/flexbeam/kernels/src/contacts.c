@@ -25,7 +25,7 @@ int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, siz
         c->regv[k] = held == -1 ? r[7] : 0.0;
         if (held == -1) c->slip[k] = 0.0;
         if (held < -1 || c->follow[k] >= c->npairs || (held == -1 && !(c->regv[k] > 0.0))) return -1;
-        if (c->mode[k] != FB_MODE_FORCE && (c->slip[k] != 0.0 || held)) return -1;
+        if (c->mode[k] == FB_MODE_NONE && (c->slip[k] != 0.0 || held)) return -1; /* FORCE (CCFM) or CONSTRAINT (CCM) */
         c->friction |= c->slip[k] != 0.0 || c->stick[k] || c->regmu[k] != 0.0;
     }
     return 0;

@@ -130,6 +130,7 @@ typedef struct fb_kin_s {
 
 typedef struct {
     double delta, rate, gamma, nx, ny, Js;
+    double tgamma; /* the slip velocity's rate at z'' = 0 (fb_pair_tangent with want_acc; else 0) */
     double speed; /* |r' - s' u|: P's speed relative to the obstacle */
     double x;     /* the contact point's material coordinate (fb_pair_gap) */
 } fb_gap;

@@ -16,6 +16,11 @@
 
 #define EV_STOP 8                 /* event bits of the friction events (flexbeam.integrate.modal._EVENT_BITS) */
 #define EV_UNSTICK (16 | 32)
+#define EV_PAINLEVE 64
+/* Painlevé's event fires where a = W_nn + sigma W_nt falls to this share of W_nn (methods/painleve.py SHARE): at
+ * a -> 0 the collocation's multiplier system turns singular (the step size underflows at a ~ 1e-5 W_nn on the
+ * sliding rod of tests/validation/test_friction_ccm.py) */
+#define PAINLEVE_SHARE 1e-3
 #define VT_NOISE 1e-9 /* [m/s] a slip that starts at rest counts as reversed only this far beyond it (a stick holds v_t
                        * to ~3e-11 m/s, measured on the rough bar of tests/validation/test_friction_ccfm.py) */
 #define STOP_SAMPLES 16           /* slip-velocity samples per step */
@@ -159,23 +164,84 @@ double fb_find_unstick(const fb_phase *ph, int k, const double *F, const double 
     return FB_NO_EVENT;
 }
 
+/* Where the slip of pair d->pair stops (*kind FB_EVENT_STOP), FB_NO_EVENT if it goes on: the slip velocity at the
+ * step's start, nodes and end clear of zero by twice its spread there, the slip goes on (no samples); else the
+ * samples of fb_find_stop decide. */
+static double slip_stop(const fb_dense *d, const fb_work *w, int *kind) {
+    const fb_phase *ph = d->ph;
+    int k = d->pair;
+    *kind = FB_EVENT_STOP;
+    double sg = ph->c.slip[k] < 0.0 ? 1.0 : -1.0, vt, lo, hi;
+    fb_tangent_at(ph, k, d->t0, d->eta0, d->v0, &vt);
+    lo = hi = sg * vt;
+    for (int j = 0; j <= FB_P; j++) {
+        double f = sg * (j < FB_P ? w->node[j].vt[k] : w->end.vt[k]);
+        lo = fmin(lo, f), hi = fmax(hi, f);
+    }
+    if (lo > STOP_CLEAR * (hi - lo)) return FB_NO_EVENT;
+    return fb_find_stop(d);
+}
+
+/* a - PAINLEVE_SHARE W_nn, a = W_nn + sigma W_nt, of a held slipping pair at an evaluated node: a = jm . b (b holds
+ * the slip's force direction; the modal basis spans the state, Psi Psi^T = M0^-1, so jm . b = J M^-1 (J + sigma
+ * Jt)^T) and W_nn = a - sigma jm . bt. */
+static double slip_mass(const fb_phase *ph, const fb_node *nd, int k) {
+    double a = 0.0, nt = 0.0;
+    for (int i = 0; i < ph->b->N; i++) a += nd->jm[k][i] * nd->b[k][i], nt += nd->jm[k][i] * nd->bt[k][i];
+    return a - PAINLEVE_SHARE * (a - ph->c.slip[k] * nt);
+}
+
+/* a at the fraction x of the step (the node evaluated there). */
+static double slip_mass_x(const fb_dense *d, double x) {
+    double eta[FB_MAXN], v[FB_MAXN];
+    fb_node nd;
+    fb_dense_state(d, x, eta, v);
+    fb_eval_node(d->ph, d->t0 + x * d->h, eta, v, FB_WANT_ACTIVE, &nd);
+    return slip_mass(d->ph, &nd, d->pair);
+}
+
+/* Where a held (CCM) slipping pair's a = W_nn + sigma W_nt reaches PAINLEVE_SHARE W_nn (Painlevé, methods/painleve.py): the first
+ * of the step's nodes and end below it, bisected against the sample before it (the step's start: above, its phase
+ * began so); FB_NO_EVENT if a stays above it. */
+static double find_painleve(const fb_dense *d, const fb_work *w) {
+    const fb_tables *tb = fb_gauss();
+    int k = d->pair;
+    double lo = 0.0;
+    for (int j = 0; j <= FB_P; j++) {
+        double x = j < FB_P ? tb->c[j] : 1.0;
+        if (slip_mass(d->ph, j < FB_P ? &w->node[j] : &w->end, k) > 0.0) {
+            lo = x;
+            continue;
+        }
+        double hi = x;
+        for (int it = 0; it < 55 && hi - lo > 1e-15; it++) {
+            double mid = 0.5 * (lo + hi);
+            if (slip_mass_x(d, mid) > 0.0)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        return hi;
+    }
+    return FB_NO_EVENT;
+}
+
 /* The earliest friction event of pair d->pair on an accepted step (its kind in *kind), FB_NO_EVENT if none. */
 double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *kind) {
     const fb_phase *ph = d->ph;
     int k = d->pair;
-    if (ph->c.slip[k] != 0.0 && (events & EV_STOP)) {
-        *kind = FB_EVENT_STOP;
-        /* the slip velocity at the step's start, nodes and end: clear of zero by twice its spread there, the slip
-         * goes on (no samples); else the samples of fb_find_stop decide */
-        double sg = ph->c.slip[k] < 0.0 ? 1.0 : -1.0, vt, lo, hi;
-        fb_tangent_at(ph, k, d->t0, d->eta0, d->v0, &vt);
-        lo = hi = sg * vt;
-        for (int j = 0; j <= FB_P; j++) {
-            double f = sg * (j < FB_P ? w->node[j].vt[k] : w->end.vt[k]);
-            lo = fmin(lo, f), hi = fmax(hi, f);
+    double xp = FB_NO_EVENT;
+    if (ph->c.slip[k] != 0.0 && ph->c.mode[k] == FB_MODE_CONSTRAINT && (events & EV_PAINLEVE)) {
+        xp = find_painleve(d, w);
+        if (xp <= 0.0) {
+            *kind = FB_EVENT_PAINLEVE;
+            return xp;
         }
-        if (lo > STOP_CLEAR * (hi - lo)) return FB_NO_EVENT;
-        return fb_find_stop(d);
+    }
+    if (ph->c.slip[k] != 0.0 && (events & EV_STOP)) {
+        double xs = slip_stop(d, w, kind);
+        if (xp < xs) *kind = FB_EVENT_PAINLEVE;
+        return fmin(xs, xp);
     }
     if (ph->c.stick[k] && (events & EV_UNSTICK))
     {

@@ -105,6 +105,8 @@ enum { FB_EVENT_IMPACT = 1, FB_EVENT_SEPARATION = 2, FB_EVENT_RELEASE = 3 };
 /* Coulomb friction's events (friction.c): the slip velocity reaches zero; a stick ends with lambda_t = +mu_s F
  * (PLUS) or -mu_s F (MINUS) */
 enum { FB_EVENT_STOP = 4, FB_EVENT_UNSTICK_PLUS = 5, FB_EVENT_UNSTICK_MINUS = 6 };
+/* a held (CCM) slipping pair's a = W_nn + sigma W_nt reaches zero: Painlevé (friction.c) */
+enum { FB_EVENT_PAINLEVE = 7 };
 
 typedef struct { /* a step's dense output, for the event search of one pair */
     const fb_phase *ph;

@@ -259,6 +259,7 @@ fb_gap fb_gap_state(const fb_obstacle *o, const fb_frame *f, const fb_kin *k, co
         out.gamma = o->nx * ax + o->ny * ay;
     }
     out.Js = o->ms > 0.0 ? -(out.nx * o->ux + out.ny * o->uy) : 0.0;
+    out.tgamma = 0.0;
     out.speed = sqrt(vx * vx + vy * vy);
     if (J && dr)
         for (int i = 0; i < nz; i++) J[i] = out.nx * dr[i] + out.ny * dr[nz + i];
@@ -313,6 +314,16 @@ fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const dou
     if (o->ground) vx += f->vO[0], vy += f->vO[1]; /* relative to an obstacle fixed to the ground (fb_gap_state) */
     for (int i = 0; i < N; i++) Jt[i] = tx * dr[i] + ty * dr[N + i];
     *vt = tx * vx + ty * vy;
+    if (want_acc) { /* v_t' at z'' = 0: t . a0 (+ a_O), and on a sphere t' . v, t' = (-n_y', n_x'),
+                     * n' = (v - v_n n) / |r - c| */
+        double ax = k.a0[0], ay = k.a0[1];
+        if (o->ground) ax += f->aO[0], ay += f->aO[1];
+        g.tgamma = tx * ax + ty * ay;
+        if (o->kind == FB_SPHERE) {
+            double dist = g.delta + o->radius, nxd = (vx - g.rate * g.nx) / dist, nyd = (vy - g.rate * g.ny) / dist;
+            g.tgamma += -nyd * vx + nxd * vy;
+        }
+    }
     return g;
 }
 

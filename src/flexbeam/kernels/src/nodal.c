@@ -71,6 +71,14 @@ static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u,
         double M[MAXU * MAXU], rhs[MAXU];
         for (int a = 0; a < U; a++) {
             int k = u->pair[a], i = u->node[a];
+            if (u->row[a]) { /* a sticking pair's slip velocity (CCM with friction) */
+                rhs[a] = g0t[k] * fb_exp(-fmax(kappa, STICK_DECAY / h) * tb->c[i] * h) - r0[a];
+                for (int c = 0; c < U; c++) {
+                    M[a * U + c] = B[a * U + c];
+                    rhs[a] += M[a * U + c] * F0[c];
+                }
+                continue;
+            }
             rhs[a] = g0[k] * fb_exp(-kappa * tb->c[i] * h) - (r0[a] + kappa * d0[a]);
             for (int c = 0; c < U; c++) {
                 M[a * U + c] = B[a * U + c] + kappa * A[a * U + c];
@@ -79,7 +87,12 @@ static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u,
             w->Fk[k][i] = 0.0;
         }
         if (fb_solve(M, rhs, U) == 0)
-            for (int a = 0; a < U; a++) w->F[u->pair[a]][u->node[a]] = rhs[a];
+            for (int a = 0; a < U; a++) {
+                if (u->row[a])
+                    w->Ft[u->pair[a]][u->node[a]] = rhs[a];
+                else
+                    w->F[u->pair[a]][u->node[a]] = rhs[a];
+            }
         return;
     }
     for (int it = 0; it < NEWTON_MAX; it++) {

@@ -105,7 +105,7 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
             if (xk <= 1.0 && xk < x) x = xk, *kind = FB_EVENT_RELEASE, *pair = k;
         }
         int fk = 0; /* Coulomb friction's events (friction.c) */
-        double xf = mode == FB_MODE_FORCE && ph->c.friction ? fb_friction_event(&dd, w, events, &fk) : FB_NO_EVENT;
+        double xf = mode != FB_MODE_NONE && ph->c.friction ? fb_friction_event(&dd, w, events, &fk) : FB_NO_EVENT;
         if (xf <= 1.0 && xf < x && xk != FB_UNDECIDED) x = xf, *kind = fk, *pair = k;
         if (xk == FB_UNDECIDED) {
             undecided = 1;

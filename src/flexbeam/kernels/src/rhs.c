@@ -29,7 +29,18 @@ typedef struct {
     fb_gap gp[FB_MAX_PAIRS];
     double F[FB_MAX_PAIRS], Fsup, diss, damping;
     int con[FB_MAX_PAIRS], ncon; /* the constrained pairs */
+    /* a constrained pair with Coulomb friction (CCM): its tangent Jacobian, slip velocity, force direction
+     * J + sigma Jt (slip) and tangential multiplier (stick) */
+    double Jt[FB_MAX_PAIRS][MAXZ], vt[FB_MAX_PAIRS], D[FB_MAX_PAIRS][MAXZ], Ft[FB_MAX_PAIRS];
 } rhs_eval;
+
+/* One row of the constrained pairs' system: the pair, normal (0) or tangential (1), the constraint's row and the
+ * force's column over the full coordinates, their support entries, and the row's target acceleration. */
+typedef struct {
+    int pair, tangential;
+    const double *row, *col;
+    double row_s, col_s, target;
+} fb_row;
 
 /* A (nn x nn, nn = N - off) = the rows and columns of M from off on: the block of the coordinates solved for. */
 static void free_block(const double *M, int N, int off, double *A) {
@@ -63,6 +74,11 @@ static double assemble(rhs_eval *e, const fb_model *m, const fb_contacts *c, dou
     return tau;
 }
 
+/* Does constrained pair k carry Coulomb friction (it slips, sticks, or is under the regularised law)? */
+static int rough(const fb_contacts *c, int k) {
+    return c->friction && (c->slip[k] != 0.0 || c->stick[k] || c->regv[k] > 0.0);
+}
+
 /* The pairs in contact: their gaps and Jacobians; the law force of each FB_MODE_FORCE pair acts as J_k^T F_k (and
  * Js_k F_k on the support), its damping dissipates; the FB_MODE_CONSTRAINT pairs are listed for the solve. */
 static void pair_forces(rhs_eval *e) {
@@ -73,7 +89,10 @@ static void pair_forces(rhs_eval *e) {
     for (int k = 0; k < e->m->npairs; k++) {
         e->F[k] = 0.0;
         if (c->mode[k] == FB_MODE_NONE) continue;
-        e->gp[k] = fb_pair_gap(e->m, k, &e->fr, e->q, e->qd, e->s, e->sd, 1, e->J[k]);
+        if (c->mode[k] == FB_MODE_CONSTRAINT && rough(c, k))
+            e->gp[k] = fb_pair_tangent(e->m, k, &e->fr, e->q, e->qd, e->s, e->sd, 1, e->J[k], e->Jt[k], &e->vt[k]);
+        else
+            e->gp[k] = fb_pair_gap(e->m, k, &e->fr, e->q, e->qd, e->s, e->sd, 1, e->J[k]);
         if (c->mode[k] == FB_MODE_CONSTRAINT) {
             e->con[e->ncon++] = k;
             continue;
@@ -87,45 +106,89 @@ static void pair_forces(rhs_eval *e) {
     }
 }
 
-/* The constrained pairs' multipliers: [M J_c^T; J_c 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
- * on the free rows (the given coordinates' accelerations known), by W = J_c A^-1 J_c^T over the free block A of M
- * (plus Js Js / m_s with a compliant support); the forces join Q and the support's force.  -1 if a system is
- * singular. */
+/* The rows of the constrained pairs with friction (CCM, friction.c): a slipping pair's force column J + sigma Jt
+ * (sigma = fb_slip_coefficient), a sticking pair's tangential row Jt z'' = -gamma_t - 2 alpha v_t (its multiplier
+ * along Jt; the Baumgarte term damps the slip velocity's drift).  Returns the number of rows. */
+static int rough_rows(rhs_eval *e, fb_row *rows) {
+    const fb_contacts *c = e->c;
+    int n = e->ncon, N = e->N;
+    for (int ia = 0; ia < e->ncon; ia++) {
+        int k = e->con[ia];
+        e->Ft[k] = 0.0;
+        if (!rough(c, k)) continue;
+        const fb_gap *g = &e->gp[k];
+        double sigma = fb_slip_coefficient(c, k, e->vt[k]);
+        const fb_obstacle *o = &e->m->obstacles[e->m->pairs[k].obstacle];
+        double Jts = o->ms > 0.0 ? -(-g->ny * o->ux + g->nx * o->uy) : 0.0; /* d v_t / d s' (fb_node_friction) */
+        if (sigma != 0.0) {
+            for (int i = 0; i < N; i++) e->D[k][i] = e->J[k][i] + sigma * e->Jt[k][i];
+            rows[ia].col = e->D[k];
+            rows[ia].col_s = g->Js + sigma * Jts;
+        }
+        if (c->stick[k])
+            rows[n++] = (fb_row){k, 1, e->Jt[k], e->Jt[k], Jts, Jts, -g->tgamma - 2.0 * c->alpha * e->vt[k]};
+    }
+    return n;
+}
+
+/* Friction's dissipation -(sigma F + lambda_t) v_t of the constrained pairs (CCM), added to the dissipated power. */
+static void rough_dissipation(rhs_eval *e) {
+    for (int ia = 0; ia < e->ncon; ia++) {
+        int k = e->con[ia];
+        if (rough(e->c, k)) e->diss -= (fb_slip_coefficient(e->c, k, e->vt[k]) * e->F[k] + e->Ft[k]) * e->vt[k];
+    }
+}
+
+/* The constrained pairs' multipliers: [M D^T; J_c 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
+ * on the free rows (the given coordinates' accelerations known), by W = J_c A^-1 D^T over the free block A of M
+ * (plus Js Js / m_s with a compliant support); the forces join Q and the support's force.  D = J_c without friction;
+ * with Coulomb friction (CCM, friction.c) a slipping pair's force acts along J + sigma Jt (a non-symmetric W) and a
+ * sticking pair adds the row Jt z'' = -gamma_t - 2 alpha v_t of its tangential multiplier (rough_rows).  -1 if a
+ * system is singular. */
 static int constraint_forces(rhs_eval *e) {
     const fb_contacts *c = e->c;
-    const fb_gap *gp = e->gp;
     const double *M = e->M, *ga = e->ga;
-    int N = e->N, ng = e->ng, ncon = e->ncon, off = ng, nn = N - off;
-    double a[MAXZ], B[FB_MAX_PAIRS][MAXZ], W[FB_MAX_PAIRS * FB_MAX_PAIRS], r[FB_MAX_PAIRS];
+    int N = e->N, ng = e->ng, off = ng, nn = N - off, nr = e->ncon;
+    double a[MAXZ], B[2 * FB_MAX_PAIRS][MAXZ], W[4 * FB_MAX_PAIRS * FB_MAX_PAIRS], r[2 * FB_MAX_PAIRS];
     double A[MAXZ * MAXZ];
+    fb_row rows[2 * FB_MAX_PAIRS];
+    for (int ia = 0; ia < e->ncon; ia++) {
+        int k = e->con[ia];
+        const fb_gap *g = &e->gp[k];
+        rows[ia] = (fb_row){k, 0, e->J[k], e->J[k], g->Js, g->Js,
+                            -g->gamma - 2.0 * c->alpha * g->rate - c->beta * c->beta * g->delta};
+    }
+    if (c->friction) nr = rough_rows(e, rows);
     for (int i = 0; i < nn; i++) a[i] = e->Q[i + off] - given_force(M, N, ng, i + off, ga);
     free_block(M, N, off, A);
     if (nn > 0 && fb_solve(A, a, nn)) return -1;
-    for (int ia = 0; ia < ncon; ia++) {
-        for (int i = 0; i < nn; i++) B[ia][i] = e->J[e->con[ia]][i + off];
+    for (int ia = 0; ia < nr; ia++) {
+        for (int i = 0; i < nn; i++) B[ia][i] = rows[ia].col[i + off];
         free_block(M, N, off, A);
         if (nn > 0 && fb_solve(A, B[ia], nn)) return -1;
     }
-    for (int ia = 0; ia < ncon; ia++) {
-        int k = e->con[ia];
-        const double *Jk = e->J[k];
-        r[ia] = -gp[k].gamma - 2.0 * c->alpha * gp[k].rate - c->beta * c->beta * gp[k].delta -
-                fb_dot(Jk + off, a, nn);
+    for (int ia = 0; ia < nr; ia++) {
+        const double *Jk = rows[ia].row;
+        r[ia] = rows[ia].target - fb_dot(Jk + off, a, nn);
         for (int g = 0; g < ng; g++) r[ia] -= Jk[g] * ga[g];
-        if (e->compliant) r[ia] -= gp[k].Js * e->Fsup / e->o->ms;
-        for (int ib = 0; ib < ncon; ib++) {
+        if (e->compliant) r[ia] -= rows[ia].row_s * e->Fsup / e->o->ms;
+        for (int ib = 0; ib < nr; ib++) {
             double wab = fb_dot(Jk + off, B[ib], nn);
-            if (e->compliant) wab += gp[k].Js * gp[e->con[ib]].Js / e->o->ms;
-            W[ia * ncon + ib] = wab;
+            if (e->compliant) wab += rows[ia].row_s * rows[ib].col_s / e->o->ms;
+            W[ia * nr + ib] = wab;
         }
     }
-    if (fb_solve(W, r, ncon)) return -1;
-    for (int ia = 0; ia < ncon; ia++) {
-        int k = e->con[ia];
-        e->F[k] = r[ia];
-        for (int i = 0; i < N; i++) e->Q[i] += e->J[k][i] * e->F[k];
-        e->Fsup += gp[k].Js * e->F[k];
+    if (fb_solve(W, r, nr)) return -1;
+    for (int ia = 0; ia < nr; ia++) {
+        int k = rows[ia].pair;
+        if (rows[ia].tangential)
+            e->Ft[k] = r[ia];
+        else
+            e->F[k] = r[ia];
+        for (int i = 0; i < N; i++) e->Q[i] += rows[ia].col[i] * r[ia];
+        e->Fsup += rows[ia].col_s * r[ia];
     }
+    if (c->friction) rough_dissipation(e);
     return 0;
 }
 

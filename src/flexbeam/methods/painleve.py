@@ -1,0 +1,81 @@
+"""Painlevé's paradox in CCM's sustained sliding, resolved by a tangential impact.
+
+While a held pair slips (Coulomb friction under CCM, :mod:`flexbeam.methods.ccm`) its constraint force acts along
+(J_n + sigma J_t)^T with sigma = -mu_k sign(v_t), so the normal multiplier solves a lambda_n = -(free normal
+acceleration), with the slip's effective inverse mass
+
+    a = W_nn + sigma W_nt,        W = [J_t; J_n] M^-1 [J_t; J_n]^T.
+
+For a <= 0 the acceleration-level contact problem has no solution or several (Painlevé 1895; Génot & Brogliato,
+Eur. J. Mech. A/Solids 18 (1999) 653-677: the rigid rod sliding on its end, a = (1 + 3 cos^2 th - 3 mu s sin th
+cos th) / m).  A slip reaching a -> 0 arrives there with lambda_n = -(free normal acceleration) / a either unbounded
+(a dynamic jam: friction's impulse stops the slip) or finite at Génot & Brogliato's singular point, where the free
+normal acceleration vanishes too; either way the collocation's multiplier system turns singular, so the slip is
+resolved where a falls to :data:`SHARE` W_nn (a located event, ``kernels/src/friction.c``), and at a slip phase's
+start with a <= SHARE W_nn.
+
+**Resolution** (as methods/friction.py resolves a jam inside an impact): a *tangential impact* (impact without
+collision) -- the tangential impulse P_t = -v_t / W_tt along J_t stops the slip at once, as if mu were unbounded
+for that instant; if that leaves the point approaching the obstacle (v_n < 0, by W_nt P_t) the impulse
+P = -W^-1 v brings both velocities to zero instead (an e = 0 impact of the stuck point).  The kinetic energy falls by
+1/2 v_t^2 / W_tt, or by 1/2 v^T W^-1 v, both >= 0 (booked as dissipation): the resolution never adds energy.  The
+pair then sticks or slips per mu_s (:func:`flexbeam.methods.coulomb.onset_row`; a reversed slip has
+a = W_nn - sigma W_nt > 0), or leaves the obstacle if it moves off it or its multiplier would pull
+(:meth:`flexbeam.methods.ccm.CCM.leaving`); a :class:`~flexbeam.errors.FlexbeamWarning` names Painlevé, the time
+and the pair.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from .. import numerics as nm
+from ..errors import FlexbeamWarning
+from ..model.system import BeamSystem
+from . import coulomb
+from .impulse import _apply
+
+#: the slip's a is resolved where it falls to this share of W_nn (the kernel's PAINLEVE_SHARE, friction.c): the
+#: collocation's multiplier system turns singular as a -> 0 (its step size underflows at a ~ 1e-5 W_nn on the rod of
+#: tests/validation/test_friction_ccm.py)
+SHARE = 1e-3
+
+
+def slip_inverse_mass(system: BeamSystem, t: float, y: np.ndarray, pair: int, sigma: float) -> tuple[float, float]:
+    """(a, W_nn) of a held pair slipping with the tangential force sigma lambda_n, a = W_nn + sigma W_nt [1/kg]."""
+    W = coulomb.inverse_mass(system, t, y, [pair])  # [[W_tt, W_tn], [W_nt, W_nn]]
+    return float(W[1, 1] + sigma * W[1, 0]), float(W[1, 1])
+
+
+def _stop_slip(W: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """The impulse (P_t, P_n) of the tangential impact: P_t = -v_t / W_tt; both velocities to zero if that leaves
+    v_n < 0."""
+    Pt = -v[0] / W[0, 0]
+    if v[1] + W[1, 0] * Pt >= 0.0:
+        return np.array([Pt, 0.0])
+    return -nm.solve(W, np.ascontiguousarray(v))
+
+
+def tangential_impact(system: BeamSystem, t: float, y: np.ndarray, pair: int) -> tuple[np.ndarray, float, float]:
+    """The state after the tangential impact of ``pair`` at (t, y) (module docstring), its impulses (P_t, P_n) [N s];
+    the energy the impulses remove goes to the dissipated-energy integral."""
+    _, rate, vt, Jn, Jt = system.tangent(t, y, pair)
+    zd = system.velocities(t, y)
+    J = np.vstack((Jt, Jn))
+    v = np.array([vt, rate])
+    drift = v - nm.matmul(J, zd)
+    y_plus, P, _, _, _ = _apply(system, t, y, J, zd, v, drift, _stop_slip)
+    return y_plus, float(P[0]), float(P[1])
+
+
+def warn(t: float, pair: int, a: float) -> None:
+    """The FlexbeamWarning that names Painlevé's paradox at (t, pair)."""
+    warnings.warn(
+        f"contact.friction: Painlevé's paradox at t = {t:.9g} s, pair {pair}: the slip's effective inverse mass "
+        f"W_nn - mu_k s W_nt = {a:.3g} 1/kg reached zero (no or several contact forces beyond); resolved by a "
+        "tangential impact stopping the slip",
+        FlexbeamWarning,
+        stacklevel=4,
+    )
