@@ -181,6 +181,9 @@ typedef struct {
 
 void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
                       int flat, fb_surface_point *out);
+void fb_centre_point(const fb_model *m, double x, fb_surface_point *out);
+double fb_anywhere_gamma(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
+                         double s, double sd, int flat, double x, double gamma);
 void fb_anywhere_bound(const fb_model *m, const double *q, double *env);
 double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd);
 double fb_law_potential(const double *p, double d);

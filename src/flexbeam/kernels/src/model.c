@@ -293,6 +293,7 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double 
     double x = pair_point(m, pr, o, f, q, qd, s, &k, J ? dr : NULL);
     fb_gap g = fb_gap_state(o, f, &k, J ? dr : NULL, fb_nfull(m), s, sd, J);
     g.x = x;
+    if (pr->anywhere && want_acc) g.gamma = fb_anywhere_gamma(m, o, f, q, qd, s, sd, pr->anywhere == 2, x, g.gamma);
     return g;
 }
 
@@ -310,6 +311,7 @@ fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const dou
     double x = pair_point(m, pr, o, f, q, qd, s, &k, dr);
     fb_gap g = fb_gap_state(o, f, &k, dr, N, s, sd, J);
     g.x = x;
+    if (pr->anywhere && want_acc) g.gamma = fb_anywhere_gamma(m, o, f, q, qd, s, sd, pr->anywhere == 2, x, g.gamma);
     double tx = -g.ny, ty = g.nx, vx = k.v[0] - sd * o->ux, vy = k.v[1] - sd * o->uy;
     if (o->ground) vx += f->vO[0], vy += f->vO[1]; /* relative to an obstacle fixed to the ground (fb_gap_state) */
     for (int i = 0; i < N; i++) Jt[i] = tx * dr[i] + ty * dr[N + i];

@@ -190,6 +190,17 @@ static void material_shapes(const line_t *ln, double x, fb_surface_point *out) {
     }
 }
 
+/* The centre line's material point at x (no offsets): Psi, Psi', H, Phi_a interpolated as the search's (the kinematics
+ * of the true gap's second derivative, anywhere_gamma.c). */
+void fb_centre_point(const fb_model *m, double x, fb_surface_point *out) {
+    int M = m->nst;
+    line_t ln = {m, NULL, fb_nb(m), M, m->hub_radius, m->st_x[M - 1] / (M - 1), NULL, NULL, NULL, NULL, NULL, NULL};
+    material_shapes(&ln, x, out);
+    out->x = x;
+    out->P.base = ln.rh + x;
+    out->P.offset = out->P.offset_t = 0.0;
+}
+
 void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
                       int flat, fb_surface_point *out) {
     int n = fb_nb(m), na = m->na, M = m->nst;
