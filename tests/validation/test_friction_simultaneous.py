@@ -42,7 +42,7 @@ from scipy.optimize import Bounds, LinearConstraint, milp
 
 import flexbeam as fb
 from flexbeam.errors import FlexbeamWarning
-from flexbeam.methods import imm as imm_module
+from flexbeam.methods import base as methods_base
 from flexbeam.methods.friction import frictional_impulse
 from flexbeam.methods.frictional_lcp import solve_frictional_impact
 from flexbeam.methods.impulse import frictional_impulses
@@ -300,14 +300,14 @@ def test_flexible_bar_dropped_flat_on_rough_stops(monkeypatch, e, tolerances):
     fast_rtol = 1e-10 (measured 2e-14: the jumps' work is booked exactly).  (e = 0 comes to rest and bounces 20
     times; its resting phase at the tight tolerance fails as without friction: a limit of the resting phase.)"""
     jumps = []
-    original = imm_module.impulse_jump
+    original = methods_base.impulse_jump
 
     def recording(*args, **kwargs):
         jump = original(*args, **kwargs)
         jumps.append(jump)
         return jump
 
-    monkeypatch.setattr(imm_module, "impulse_jump", recording)
+    monkeypatch.setattr(methods_base, "impulse_jump", recording)
     case = steel_bar_on_stops(modes=2, mu=0.3, e=e, vx=0.5)
     if tolerances == "tight":
         case = fb.load_case(case.model_dump(), {"solver.fast_rtol": 1e-10, "solver.fast_atol": 1e-13})

@@ -19,7 +19,7 @@ from ..model.system import BeamSystem
 from ..parameters.case import Case
 from ..results.records import ContactEvent
 from . import coulomb
-from .impulse import Jump
+from .impulse import Jump, impulse_jump
 
 #: steps per (estimated) contact duration at least: a contact phase's step is bounded by t_c / CONTACT_STEPS
 CONTACT_STEPS = 8
@@ -193,6 +193,34 @@ class ImpactMethod:
         ev = ContactEvent(index=len(self.contacts), onset=t, velocity_before=self.gap_event(t, y, pair)[1], pair=pair)
         self.contacts.append(ev)
         return ev
+
+    def held_impact(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int], restitution) -> Jump:
+        """The impulse map of the impacting ``pairs`` (their ``restitution``) together with the pairs ``phase`` holds,
+        these with e = 0: a closed contact takes the impulse that keeps it from sinking in, or opens without one (the
+        closed contacts join the impact problem: Pfeiffer & Glocker 1996, Ch. 7).  Alone, the impacting pairs'
+        impulses would leave a held pair moving into its obstacle, where its constraint on delta = 0 cannot start.
+        A held pair's impulse is added to its record's ``jump_impulse`` (and tangential impulse); the impacting
+        pairs come first in the Jump's arrays."""
+        held = [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT and k not in pairs]
+        if not held:
+            return impulse_jump(self.system, t, y, restitution, pairs)
+        e = np.zeros(len(pairs) + len(held))
+        e[: len(pairs)] = restitution
+        jump = impulse_jump(self.system, t, y, e, [*pairs, *held])
+        for i, k in enumerate(held, start=len(pairs)):
+            rec = phase.records[k]
+            if rec is None:
+                continue
+            rec.jump_impulse = (0.0 if math.isnan(rec.jump_impulse) else rec.jump_impulse) + float(jump.impulses[i])
+            if jump.tangential is not None:
+                tan = 0.0 if math.isnan(rec.tangential_impulse) else rec.tangential_impulse
+                rec.tangential_impulse = tan + float(jump.tangential[i])
+        return jump
+
+    def opening(self, t: float, y: np.ndarray, pairs) -> list[int]:
+        """The ``pairs`` whose points leave their obstacles at (t, y) (delta' above ``grazing_speed``): a held pair
+        that an impact elsewhere lifted off, which its constraint would pull back."""
+        return [k for k in pairs if self.gap_event(t, y, k)[1] > self.grazing_speed]
 
     def log_jump(self, t: float, jump: Jump, pairs=(0,)) -> list[ContactEvent]:
         """Log an instantaneous impact (IMM, or the e = 0 onset step of CCM) at each of ``pairs``: its impulse

@@ -35,7 +35,6 @@ import numpy as np
 from ..integrate.phases import ContactMode, EventKind, Phase
 from . import coulomb, painleve
 from .base import ImpactMethod
-from .impulse import impulse_jump
 
 
 class CCM(ImpactMethod):
@@ -49,10 +48,11 @@ class CCM(ImpactMethod):
         return any(p.frictional for p in self.system.contact.pairs)
 
     def on_impact(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int]) -> tuple[Phase, np.ndarray]:
-        jump = impulse_jump(self.system, t, y, 0.0, pairs)
+        jump = self.held_impact(phase, t, y, pairs, 0.0)
         events = dict(zip(pairs, self.log_jump(t, jump, pairs)))
         held_before = [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT]
-        held = self.held_set(t, jump.y, [*held_before, *pairs], phase)
+        opened = self.opening(t, jump.y, held_before)
+        held = self.held_set(t, jump.y, [k for k in [*held_before, *pairs] if k not in opened], phase)
         modes, records = list(phase.modes), list(phase.records)
         friction = coulomb.rows(phase, self.system.pairs)
         for k in set(held_before) | set(pairs):

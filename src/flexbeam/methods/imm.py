@@ -19,7 +19,6 @@ import numpy as np
 
 from ..integrate.phases import ContactMode, Phase
 from .base import ImpactMethod
-from .impulse import impulse_jump
 
 
 class IMM(ImpactMethod):
@@ -35,9 +34,10 @@ class IMM(ImpactMethod):
         # the pairs of one impact rest together (or none of them): a pair alone at rest beside one that rebounds
         # asks the impact problem for both at once when their constraints are dependent (a rigid rod on two stops)
         resting = (e == 0.0) | bool(np.max(e * speed) < rest)
-        jump = impulse_jump(self.system, t, y, np.where(resting, 0.0, e), pairs)
+        jump = self.held_impact(phase, t, y, pairs, np.where(resting, 0.0, e))
         events = self.log_jump(t, jump, pairs)
-        held_before = [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT]
+        opened = self.opening(t, jump.y, [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT])
+        held_before = [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT and k not in opened]
         candidates = [k for k, r in zip(pairs, resting) if r]
         held = self.held_set(t, jump.y, [*held_before, *candidates], phase) if candidates or held_before else []
         modes, records = list(phase.modes), list(phase.records)
@@ -48,7 +48,7 @@ class IMM(ImpactMethod):
                 ev.end = t
                 ev.velocity_after = float(jump.velocities_after[pairs.index(k)])
                 modes[k], records[k] = ContactMode.NONE, None
-        for k in held_before:
+        for k in [*held_before, *opened]:
             if k not in held:
                 self.end_contact(phase, k, t, jump.y)
                 modes[k], records[k] = ContactMode.NONE, None
