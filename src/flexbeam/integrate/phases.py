@@ -76,7 +76,13 @@ class Phase:
 
     @property
     def stick_advice(self) -> str:
-        """What a failure inside this phase adds when a pair sticks (CCFM's Coulomb friction), else ""."""
+        """What a failure inside this phase adds when a pair sticks (CCFM's Coulomb friction) or rests (IMM), else
+        ""."""
+        if self.name == "resting":
+            return (
+                "; a pair rests there while IMM's impacts may accumulate at another (Zeno): a larger"
+                " solver.rest_velocity ends them sooner"
+            )
         if self.friction is None or not np.any(self.friction[:, 1] == 1.0):
             return ""
         return (
