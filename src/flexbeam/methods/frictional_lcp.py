@@ -8,10 +8,10 @@ v = (v_n1 .. v_ns, v_t1 .. v_ts), jump by v+ = v- + W P with the Delassus matrix
 the impulses P = (P_n, P_t).  With each pair's restitution e_i applied to both its rows, xi = v+ + e v-, pair i obeys
 
 * normal: xi_ni >= 0, P_ni >= 0, P_ni xi_ni = 0;
-* tangential (planar Coulomb): |P_ti| <= mu_s P_ni when xi_ti = 0 (stick), P_ti = -mu_k sign(xi_ti) P_ni otherwise
+* tangential (planar Coulomb): abs(P_ti) <= mu_s P_ni when xi_ti = 0 (stick), P_ti = -mu_k sign(xi_ti) P_ni otherwise
   (slip),
 
-so that P_i . xi_i = -mu_k P_ni |xi_ti| <= 0 for every pair: P . xi <= 0.
+so that P_i . xi_i = -mu_k P_ni abs(xi_ti) <= 0 for every pair: P . xi <= 0.
 
 **Energy.**  T+ - T- = P . (v- + v+) / 2 (the work of the impulses; relative to the obstacles).  With one common e,
 v- = (xi - W P) / (1 + e), hence
@@ -34,7 +34,7 @@ also a slip that stops and sticks (both end at v+ = 0).  A slip that reverses, o
 resolved differently.
 
 **Solution.**  In the plane the Coulomb cone has two edges, so each pair is in one of four modes -- separating
-(P_i = 0, xi_ni >= 0), sticking (xi_i = 0, |P_ti| <= mu_s P_ni), slipping forwards or backwards (xi_ni = 0,
+(P_i = 0, xi_ni >= 0), sticking (xi_i = 0, abs(P_ti) <= mu_s P_ni), slipping forwards or backwards (xi_ni = 0,
 P_ti = -+mu_k P_ni, +-xi_ti >= 0) -- and every one of the 4^s mode patterns (2 modes for a frictionless pair) is tried:
 its linear equations are solved for the least-norm impulses (the pseudo-inverse, :func:`least_norm_solve`), and the
 consistent patterns' impulse of least norm is returned.  A solution exists for the impact problem of a positive
@@ -42,7 +42,7 @@ definite W, and whenever the approach velocities are those of the bodies, v- in 
 Stewart-Trinkle LCP is then processable by Lemke's method: Anitescu & Potra, Nonlinear Dynamics 14 (1997) 231-247);
 it is unique for small enough mu.  With a singular W (a rigid rod on two stops, a bar flat on two points) the
 impulses are split by the least norm -- equally between identical pairs -- as :func:`~flexbeam.methods.impulse.
-solve_impact_lcp` does without friction.  The tolerance on the conditions is 1e-10 of the largest (1 + e) |v-|.
+solve_impact_lcp` does without friction.  The tolerance on the conditions is 1e-10 of the largest (1 + e) abs(v-).
 """
 
 from __future__ import annotations
