@@ -343,7 +343,7 @@ class ModalStepper:
         event = EventKind(int(info[0])) if code == _ADV_EVENT else None
         failure = ""
         if code == _ADV_UNDERFLOW:
-            failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)" + phase.stick_advice
+            failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)" + phase.underflow_advice
         elif code == _ADV_NONFINITE:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_STALLED:

@@ -75,7 +75,7 @@ class Phase:
     friction: np.ndarray | None = None
 
     @property
-    def stick_advice(self) -> str:
+    def underflow_advice(self) -> str:
         """What a failure inside this phase adds when a pair sticks (CCFM's Coulomb friction) or rests (IMM), else
         ""."""
         if self.name == "resting":
