@@ -10,15 +10,28 @@ shrink geometrically) are ended deliberately: once an impact's rebound speed ``e
 (e = 0) and P rests on the obstacle if the contact would push -- the contact is then held by the unilateral
 constraint of the CCM phase (phase "resting", the force is its multiplier) until that force would turn tensile,
 when free motion resumes.  Pairs impacting together come to rest together, once the fastest rebound among them
-is below ``solver.rest_velocity`` (a pair with e = 0 always rests).
+is below ``solver.rest_velocity`` (a pair with e = 0 always rests), or once each one's rebound flight would rise less
+than its gap can resolve (:meth:`IMM.unresolvable`: a pair pressed back hard, as by a flexible beam's vibration, whose
+landings would be lost in the gap's round-off while its rebounds are still faster than ``solver.rest_velocity``).
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
 from ..integrate.phases import ContactMode, Phase
 from .base import ImpactMethod
+
+#: a rebound flight lower than this many eps of its gap's scale cannot be located (:meth:`IMM.unresolvable`): 4x the
+#: gap's round-off GAP_ULPS of ``kernels/src/surface.c``
+RISE_ULPS = 64.0
+EPS = float(np.finfo(float).eps)
+#: [m/s^2] the largest acceleration pressing a pair back that :meth:`IMM.unresolvable` provides for (a 1 kHz vibration
+#: of 25 mm amplitude), and [m] the largest gap scale (1 km): a rebound that rises higher against both is not checked
+PRESSING_MAX = 1e6
+RISE_SCALE_MAX = RISE_ULPS * EPS * 1e3
 
 
 class IMM(ImpactMethod):
@@ -33,7 +46,7 @@ class IMM(ImpactMethod):
         speed = np.array([-self.gap_event(t, y, k)[1] for k in pairs])
         # the pairs of one impact rest together (or none of them): a pair alone at rest beside one that rebounds
         # asks the impact problem for both at once when their constraints are dependent (a rigid rod on two stops)
-        resting = (e == 0.0) | bool(np.max(e * speed) < rest)
+        resting = (e == 0.0) | bool(np.max(e * speed) < rest) | self.unresolvable(phase, t, y, pairs, e * speed)
         jump = self.held_impact(phase, t, y, pairs, np.where(resting, 0.0, e))
         events = self.log_jump(t, jump, pairs)
         opened = self.opening(t, jump.y, [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT])
@@ -53,3 +66,21 @@ class IMM(ImpactMethod):
                 self.end_contact(phase, k, t, jump.y)
                 modes[k], records[k] = ContactMode.NONE, None
         return self.phase(modes, phase.parameters, records), jump.y
+
+    def unresolvable(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int], rebound: np.ndarray) -> bool:
+        """Would every pair's rebound flight stay lower than its gap can resolve?  A flight's height is w^2 / (2 a)
+        (rebound speed w, a = -delta'' the acceleration pressing the pair back under the phase's other contacts,
+        uniform over a flight that short); below :data:`RISE_ULPS` eps (abs(r_P) + abs(c) + R) -- the gap's round-off is
+        GAP_ULPS = 16 of them (``kernels/src/surface.c``) -- its landing cannot be located, and the rest of the Zeno
+        sequence moves the pair by less than that.  (A flexible bar's end pressed back at 1.5e4 m/s^2 by the
+        bar's vibration failed at a flight of 5e-17 m, its rebounds at 1.2e-6 m/s above ``solver.rest_velocity``.)"""
+        if not np.all(rebound**2 < 2.0 * RISE_SCALE_MAX * PRESSING_MAX):  # no acceleration we look for holds them
+            return False
+        for k, w in zip(pairs, rebound):
+            press = -self.gap_acceleration(t, y, k, phase.buffer)
+            obstacle = self.system.contact.obstacles[self.system.contact.pairs[k].obstacle]
+            reach = math.hypot(*self.system.point_state(t, y, self.system.pair_point(k))[0])
+            floor = RISE_ULPS * EPS * (reach + math.hypot(*obstacle.centre) + obstacle.radius)
+            if not (press > 0.0 and w * w <= 2.0 * floor * press):
+                return False
+        return True
