@@ -311,5 +311,10 @@ class ImpactMethod:
                 return self.on_impact(phase, t, y, pairs)
             return phase, y
         if event in (EventKind.SEPARATION, EventKind.RELEASE) and phase.modes[pair] != ContactMode.NONE:
-            return self.end_contact(phase, pair, t, y), y
+            phase = self.end_contact(phase, pair, t, y)
+            held = [k for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT]
+            if event == EventKind.RELEASE and held:  # another pair whose multiplier the release turns tensile leaves
+                for k in set(held) - set(self.held_set(t, y, held, phase)):
+                    phase = self.end_contact(phase, k, t, y)
+            return phase, y
         raise ValueError(f"{self.name}: phase '{phase.name}' cannot end on {event.name} of pair {pair}")

@@ -12,6 +12,7 @@
  * step.  With theta(t) prescribed, z = q and M = M_qq is constant: R = Q_q - m_tq theta''.  A compliant support is
  * one more mode sqrt(m_s) s.
  */
+#include <float.h>
 #include <string.h>
 
 #include "integrator.h"
@@ -26,6 +27,9 @@
  * h / m_eff: ~1e-9 relative measured at h ~ 1e-7 s; 1e-7 leaves a margin of 100). */
 #define MULTIPLIER_RTOL 100.0
 #define MULTIPLIER_NOISE 1e-7
+/* A multiplier's term whose effect on the state is below this many ulps of the state's energy norm is its round-off
+ * (measured: 500-2500 on a flexible bar held on two stops at steps below 3e-7 s; multiplier_error). */
+#define MULTIPLIER_ROUNDOFF 1e4
 
 void fb_phase_init(fb_phase *ph, const fb_model *m, const fb_basis *b, const fb_contacts *c, double rtol,
                    double atol, double omega_rigid) {
@@ -134,11 +138,32 @@ static void ensure_weights(const fb_phase *ph, fb_work *w, double h) {
     w->h = h;
 }
 
+/* The state error (in units of ``tol``) a multiplier error ``L`` of pair ``l`` makes when it acts over the step as a
+ * forcing error along its column b (the end node's): propagated as the forcing interpolant's defect is. */
+static double multiplier_effect(const fb_phase *ph, const fb_node *end, int l, int tang, double L, double h,
+                                double tol) {
+    int N = ph->b->N;
+    double e2 = 0.0, lim0 = h * h / ((FB_P + 1.0) * (FB_P + 2.0));
+    for (int k = 0; k < N; k++) {
+        double d = fabs((tang ? end->bt[l][k] : end->b[l][k]) * L);
+        double om = ph->b->omega[k], lim = om > 0.0 ? fmin(lim0, 2.0 / (om * om)) : lim0;
+        double dv = h * d / (FB_P + 1.0), de = d * lim, ow = om > 0.0 ? om : ph->omega_rigid;
+        e2 += ow * ow * de * de + dv * dv;
+    }
+    return sqrt(e2) / tol;
+}
+
 /* A multiplier is algebraic, unseen by the state's error estimate: the step's error ``err`` raised to its
- * interpolant's top Legendre term over MULTIPLIER_* of its scale, for each held pair's (CCM) and each sticking pair's
- * tangential one (friction.c). */
-static double multiplier_error(const fb_phase *ph, const fb_work *w, double err) {
+ * interpolant's top Legendre term L over MULTIPLIER_* of its scale, for each held pair's (CCM) and each sticking
+ * pair's tangential one (friction.c) -- unless L moves the step's end state by less than ``noise`` (in units of the
+ * tolerance: MULTIPLIER_ROUNDOFF ulps of the state's energy norm; :func:`multiplier_effect`).  A multiplier is a
+ * velocity defect over the step's response ~ h / m_eff, so the state's round-off puts ~ m_eff eps |x| / h into its
+ * nodal values, which no relative tolerance can hold as the step shrinks: held to it, every step was rejected down
+ * to an underflow (a flexible bar held on two stops, fast_rtol 1e-9 and below). */
+static double multiplier_error(const fb_phase *ph, const fb_work *w, const fb_node *end, double h, double tol,
+                               double xnorm, double err) {
     const fb_tables *tb = fb_gauss();
+    double noise = MULTIPLIER_ROUNDOFF * DBL_EPSILON * xnorm / tol;
     for (int l = 0; l < ph->c.npairs; l++) {
         if (ph->c.friction && ph->c.stick[l]) {
             double L = 0.0, big = 0.0;
@@ -146,7 +171,8 @@ static double multiplier_error(const fb_phase *ph, const fb_work *w, double err)
                 L += tb->top[j] * w->Ft[l][j];
                 big = fmax(big, fmax(fabs(w->Ft[l][j]), w->F[l][j]));
             }
-            err = fmax(err, fabs(L) / (ph->atol + fmax(MULTIPLIER_RTOL * ph->rtol, MULTIPLIER_NOISE) * big));
+            double e = fabs(L) / (ph->atol + fmax(MULTIPLIER_RTOL * ph->rtol, MULTIPLIER_NOISE) * big);
+            if (e > err && multiplier_effect(ph, end, l, 1, L, h, tol) > noise) err = e;
         }
         if (ph->c.mode[l] != FB_MODE_CONSTRAINT) continue;
         double L = 0.0, big = w->lambda_scale;
@@ -154,7 +180,8 @@ static double multiplier_error(const fb_phase *ph, const fb_work *w, double err)
             L += tb->top[j] * w->F[l][j];
             big = fmax(big, fabs(w->F[l][j]));
         }
-        err = fmax(err, fabs(L) / (ph->atol + fmax(MULTIPLIER_RTOL * ph->rtol, MULTIPLIER_NOISE) * big));
+        double e = fabs(L) / (ph->atol + fmax(MULTIPLIER_RTOL * ph->rtol, MULTIPLIER_NOISE) * big);
+        if (e > err && multiplier_effect(ph, end, l, 0, L, h, tol) > noise) err = e;
     }
     return err;
 }
@@ -253,7 +280,8 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
     }
     tol = fb_tolerance(ph, eta0, v0, out->eta1, out->v1);
     out->err = sqrt(e2) / tol;
-    out->err = multiplier_error(ph, w, out->err);
+    double xnorm = fmax(fb_energy_norm(ph, eta0, v0), fb_energy_norm(ph, out->eta1, out->v1));
+    out->err = multiplier_error(ph, w, end, h, tol, xnorm, out->err);
     return 0;
 }
 
