@@ -23,7 +23,7 @@ import scipy.linalg as sl
 
 import flexbeam as fb
 import flexbeam.integrate.modal as modal
-from flexbeam.integrate.modal import gauss_nodes
+from flexbeam.integrate.dense import gauss_nodes
 from flexbeam.model.system import BeamSystem
 from flexbeam.simulation import initial_state
 from tests.validation.fingerprints import digest

@@ -15,7 +15,7 @@ import pytest
 
 import flexbeam as fb
 import flexbeam.methods.base as base
-from flexbeam.integrate.modal import gauss_nodes
+from flexbeam.integrate.dense import gauss_nodes
 
 T_END = 3.0
 WINDOW = (2.9, 3.0)  # the mean over 16.6 periods of the 166 Hz ringing

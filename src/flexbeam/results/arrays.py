@@ -19,16 +19,15 @@ from ..integrate.loop import RunResult, Segment
 from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
 from ..model.system import SUPPORT_COLUMNS, BeamSystem
 from .dense_force import compiled_pair_force
+from .extremes import column_extremes
 from .friction import friction_columns, has_friction
 from .limits import check_samples
-from .peaks import peak_candidates
 from .records import FRICTION_VARIABLES
 from .samplegrid import sample_count, sample_grid
 from .segment_ends import SegmentEnds
 
 #: force evaluations per step when searching a contact's force for local maxima
 PEAK_POINTS_PER_STEP = 16
-TIP = OUTPUT_COLUMNS.index("tip_deflection")
 
 
 class RunSource:
@@ -236,46 +235,9 @@ class RunSource:
         return float(cols["kinetic_energy"][0] + cols["elastic_energy"][0] + cols["gravitational_energy"][0])
 
     def extremes(self, column: str, points_per_step: int = 4) -> tuple[float, float]:
-        """(min, max) of an output column over the run, located on the dense output.
-
-        The column is evaluated at ``points_per_step`` points of every step; every local extremum of these
-        samples that could exceed the largest sample -- a smooth peak stands above its largest sample by less than
-        that sample stands above its lower neighbour -- is refined by zooming (to PEAK_XTOL) between its
-        neighbours, so that of several nearly equal peaks the largest is found.
-        """
-        grids = []
-        for i, seg in enumerate(self.segments):
-            if column == "tip_deflection" and hasattr(seg.dense, "tip_nodes"):
-                if seg.t1 > seg.t0:  # (its breaks hold two points or more)
-                    grids.append((seg, *self._tip_grid(i)))
-                continue
-            b = seg.breaks()
-            if b.size < 2:
-                continue
-            frac = np.linspace(0.0, 1.0, points_per_step + 1)[:-1]
-            t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
-            grids.append((seg, t, self.evaluate(seg, t)[0][column]))
-        if not grids:
-            return math.nan, math.nan
-        out = []
-        for sign in (-1, 1):
-            top, found = peak_candidates([v for _, _, v in grids], sign)
-            best = top
-            for k, idx, reach in found:
-                seg, t, _ = grids[k]
-                lo, hi = t[np.maximum(idx - 1, 0)], t[np.minimum(idx + 1, t.size - 1)]
-                best = max(best, self._zoom_all(seg, column, sign, lo, hi, floor=best, reach=reach))
-            out.append(sign * best)
-        return out[0], out[1]
-
-    def _tip_grid(self, i: int) -> tuple[np.ndarray, np.ndarray]:
-        """(times, tip deflection) of compiled phase ``i`` at its ends and at every step's collocation nodes, where
-        the integrator evaluated it while it ran (the ends with every phase's, :attr:`segment_ends`)."""
-        seg, ends = self.segments[i], self.segment_ends
-        t_nodes, v_nodes = seg.dense.tip_nodes()
-        t = np.concatenate(([seg.t0], t_nodes, [seg.t1]))
-        v = np.concatenate((ends.start[i, TIP : TIP + 1], v_nodes, ends.end[i, TIP : TIP + 1]))
-        return t, v
+        """(min, max) of an output column over the run, located on the dense output
+        (:func:`flexbeam.results.extremes.column_extremes`)."""
+        return column_extremes(self, column, points_per_step)
 
     def _zoom_all(
         self,

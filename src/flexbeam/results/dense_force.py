@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..integrate.dense import ModalDense
 from ..integrate.loop import Segment
-from ..integrate.modal import ModalDense
 from ..kernels import core
 
 

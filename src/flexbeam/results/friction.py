@@ -62,7 +62,7 @@ def _regularised_impulse(system: BeamSystem, seg: Segment, pair: int) -> float:
 
 def tangential_impulse(segments: list[Segment], t0: float, t1: float, pair: int, system: BeamSystem) -> float:
     """int F_t dt of ``pair`` over the whole frictional phases inside [t0, t1] (each step's Gauss quadrature of its
-    nodal sigma F + lambda_t, :meth:`~flexbeam.integrate.modal.ModalDense.tangential_impulse`); NaN when no phase
+    nodal sigma F + lambda_t, :meth:`~flexbeam.integrate.dense.ModalDense.tangential_impulse`); NaN when no phase
     there had friction."""
     total, seen = 0.0, False
     for s in segments:

@@ -54,6 +54,7 @@ FB_GLUE PyObject *py_advance(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_dense(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_column_max(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_tip_slack(PyObject *self, PyObject *args);
+FB_GLUE PyObject *py_tip_slacks(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_dense_bounds(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_pair_force(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_moments(PyObject *self, PyObject *args);

@@ -218,6 +218,34 @@ fail:
     return NULL;
 }
 
+/* tip_slacks(model, basis, records, nrec, t0, t1, y0, y1, times, out): out[i] how far the tip's deflection can exceed
+ * the larger of its values at times[i] and times[i + 1] (extremes.c; out has len(times) - 1 entries) */
+PyObject *py_tip_slacks(PyObject *self, PyObject *args) {
+    PyObject *om, *ob, *orec, *oy0, *oy1, *ot, *oo;
+    int nrec;
+    double t0, t1;
+    if (!PyArg_ParseTuple(args, "OOOiddOOOO", &om, &ob, &orec, &nrec, &t0, &t1, &oy0, &oy1, &ot, &oo)) return NULL;
+    buf_t b[7];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_basis bs;
+    if (phase_buffers(om, ob, orec, nrec, oy0, oy1, b, &m, &bs, "tip_slacks") || get_buf(ot, &b[5], 0, "times") ||
+        get_buf(oo, &b[6], 1, "out"))
+        goto fail;
+    if (LEN(b[5]) < 2 || LEN(b[6]) != LEN(b[5]) - 1) {
+        PyErr_SetString(PyExc_ValueError, "tip_slacks: two times or more, and out one shorter than times");
+        goto fail;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    fb_tip_slacks(&m, &bs, PTR(b[2]), nrec, t0, t1, PTR(b[3]), PTR(b[4]), PTR(b[5]), (int)LEN(b[5]), PTR(b[6]));
+    Py_END_ALLOW_THREADS
+    release(b, 7);
+    Py_RETURN_NONE;
+fail:
+    release(b, 7);
+    return NULL;
+}
+
 /* dense_bounds(omega, damp, h, eta0, v0, f, jm, gamma, dx) -> (curve, fast): fb_dense_bounds (events.c) for modes
  * of frequencies omega and damping coefficients damp over a step of length h from (eta0, v0) with the nodal forcing
  * f (FB_P x N, node-major) */

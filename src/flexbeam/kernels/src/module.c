@@ -19,6 +19,8 @@ static PyMethodDef methods[] = {
      "pair_force(model, basis, records, nrec, contacts, t0, t1, y0, y1, pair, times, out): a pair's contact force"},
     {"tip_slack", py_tip_slack, METH_VARARGS,
      "tip_slack(model, basis, records, nrec, t0, t1, y0, y1, a, z, T) -> (linear, rest, rounding): the tip's bound"},
+    {"tip_slacks", py_tip_slacks, METH_VARARGS,
+     "tip_slacks(model, basis, records, nrec, t0, t1, y0, y1, times, out): the tip's bound between the times"},
     {"dense_bounds", py_dense_bounds, METH_VARARGS,
      "dense_bounds(omega, damp, h, eta0, v0, f, jm, gamma, dx) -> (curve, fast): the event search's bounds"},
     {"moments", py_moments, METH_VARARGS, "moments(theta) -> (Cm, Sm)"},

@@ -30,6 +30,8 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
                    double *t_out, double *v_out);
 void fb_tip_slack_at(const fb_model *m, const fb_basis *b, const double *records, int nrec, double t0, double t1,
                      const double *y0, const double *y1, double a, double z, double T, double parts[3]);
+void fb_tip_slacks(const fb_model *m, const fb_basis *b, const double *records, int nrec, double t0, double t1,
+                   const double *y0, const double *y1, const double *times, int count, double *out);
 void fb_pair_force_many(const fb_model *m, const fb_basis *b, const double *records, int nrec, const fb_contacts *c,
                         double t0, double t1, const double *y0, const double *y1, int pair, const double *times,
                         int count, double *out);

@@ -87,33 +87,41 @@ static void mode_bounds(const fb_basis *b, const double *rec, int k, double *A, 
     *E = w * w * *A + F + c * *V;
 }
 
-void fb_tip_reach(const fb_tip_model *tm, const fb_basis *b, const double *records, int R, int r0, int r1,
-                  double theta_max, double origin_max, fb_tip_bracket *out) {
+void fb_tip_step_bounds(const fb_tip_model *tm, const fb_basis *b, const double *rec, double *A, double *V, double *E) {
+    for (int k = 0; k < tm->N; k++) mode_bounds(b, rec, k, &A[k], &V[k], &E[k]);
+}
+
+void fb_tip_combine(const fb_tip_model *tm, const double *A, const double *V, const double *E, double theta_max,
+                    double origin_max, fb_tip_bracket *out) {
     int N = tm->N;
-    for (int k = 0; k < N; k++) out->A[k] = out->E[k] = 0.0;
-    double V[FB_MAXN] = {0};
-    for (int r = r0; r <= r1; r++)
-        for (int k = 0; k < N; k++) {
-            double A, v, E;
-            mode_bounds(b, records + (size_t)r * R, k, &A, &v, &E);
-            out->A[k] = fmax(out->A[k], A), V[k] = fmax(V[k], v), out->E[k] = fmax(out->E[k], E);
-        }
     double Y = 0.0, Yd = 0.0, a = 0.0, ad = 0.0, P = 0.0, Pd = 0.0, S = 0.0, Sd = 0.0;
     for (int k = 0; k < N; k++) {
-        Y += fabs(tm->y[k]) * out->A[k], Yd += fabs(tm->y[k]) * V[k];
-        a += fabs(tm->alpha[k]) * out->A[k], ad += fabs(tm->alpha[k]) * V[k];
-        P += fabs(tm->p[k]) * out->A[k], Pd += fabs(tm->p[k]) * V[k];
+        out->A[k] = A[k], out->E[k] = E[k];
+        Y += fabs(tm->y[k]) * A[k], Yd += fabs(tm->y[k]) * V[k];
+        a += fabs(tm->alpha[k]) * A[k], ad += fabs(tm->alpha[k]) * V[k];
+        P += fabs(tm->p[k]) * A[k], Pd += fabs(tm->p[k]) * V[k];
     }
     if (tm->nonlinear)
         for (int j = 0; j < N; j++)
             for (int k = 0; k < N; k++) {
-                S += 0.5 * tm->Habs[j * N + k] * out->A[j] * out->A[k];
-                Sd += tm->Habs[j * N + k] * out->A[j] * V[k];
+                S += 0.5 * tm->Habs[j * N + k] * A[j] * A[k];
+                Sd += tm->Habs[j * N + k] * A[j] * V[k];
             }
     double base = tm->base;
     out->N0 = Y * a * a / 2.0 + base * a * a * a / 6.0 + (S + P) * a;
     out->N1 = Y * a * ad + Yd * a * a / 2.0 + base * ad * a * a / 2.0 + (Sd + Pd) * a + (S + P) * ad;
     out->rounding = 8.0 * DBL_EPSILON * ((1.0 + theta_max) * (fabs(base) + S + P + Y) + origin_max);
+}
+
+void fb_tip_reach(const fb_tip_model *tm, const fb_basis *b, const double *records, int R, int r0, int r1,
+                  double theta_max, double origin_max, fb_tip_bracket *out) {
+    int N = tm->N;
+    double A[FB_MAXN] = {0}, V[FB_MAXN] = {0}, E[FB_MAXN] = {0}, a[FB_MAXN], v[FB_MAXN], e[FB_MAXN];
+    for (int r = r0; r <= r1; r++) {
+        fb_tip_step_bounds(tm, b, records + (size_t)r * R, a, v, e);
+        for (int k = 0; k < N; k++) A[k] = fmax(A[k], a[k]), V[k] = fmax(V[k], v[k]), E[k] = fmax(E[k], e[k]);
+    }
+    fb_tip_combine(tm, A, V, E, theta_max, origin_max, out);
 }
 
 void fb_tip_slack_parts(const fb_tip_model *tm, const fb_tip_bracket *br, double T, double parts[3]) {
