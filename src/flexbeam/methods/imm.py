@@ -11,6 +11,16 @@ shrink geometrically) are ended deliberately: once an impact's rebound speed ``e
 constraint of the CCM phase (phase "resting", the force is its multiplier) until that force would turn tensile,
 when free motion resumes.  Pairs impacting together come to rest together, once the fastest rebound among them
 is below ``solver.rest_velocity`` (a pair with e = 0 always rests).
+
+**Coulomb friction** (``contact.friction``).  An impact is frictional (Stronge's process for one pair, the frictional
+impact LCP for several: :func:`~flexbeam.methods.impulse.impulse_jump`), and so is the resting contact, with CCM's
+code (:class:`~flexbeam.methods.held_friction.HeldFriction`): a resting pair slips with its normal force the
+multiplier lambda_n and the tangential force sigma lambda_n, sigma = -mu_k sign(v_t), until v_t reaches zero (a
+located STOP), then sticks, held tangentially by a second multiplier lambda_t, until abs(lambda_t) reaches
+mu_s lambda_n (a located UNSTICK: it slips on) or lambda_n turns tensile (it leaves); a slip with Painlevé's
+a = W_nn + sigma W_nt <= 0 is resolved by a tangential impact, with a warning (:mod:`flexbeam.methods.painleve`).
+The resting phase's friction needs the exponential integrator's located events: on the reference path (solver.
+integrator = "reference", a compliant support) the run stops where a frictional pair would come to rest.
 """
 
 from __future__ import annotations
@@ -18,10 +28,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..integrate.phases import ContactMode, Phase
-from .base import ImpactMethod
+from .held_friction import HeldFriction
 
 
-class IMM(ImpactMethod):
+class IMM(HeldFriction):
     """Impulse-momentum method."""
 
     name = "imm"
@@ -52,4 +62,4 @@ class IMM(ImpactMethod):
             if k not in held:
                 self.end_contact(phase, k, t, jump.y)
                 modes[k], records[k] = ContactMode.NONE, None
-        return self.phase(modes, phase.parameters, records), jump.y
+        return self.held_phase(phase, t, jump.y, modes, records, [k for k in pairs if k in held])
