@@ -151,6 +151,7 @@ def simulate(
     impact = cls(system, case)
     stepper = make_stepper(case, method, system)
     rough = any(p.frictional for p in system.contact.pairs)
+    impact.locates_friction = isinstance(stepper, ModalStepper)
     if method in ("ccfm", "ccm") and rough and not isinstance(stepper, ModalStepper):
         raise ModelError(
             f"contact.friction: {method.upper()}'s friction runs on the exponential integrator, which a compliant "

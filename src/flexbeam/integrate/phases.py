@@ -38,7 +38,7 @@ class EventKind(IntEnum):
     STOP = 4  #: a slipping pair's slip velocity reaches zero (Coulomb friction, CCFM)
     UNSTICK_PLUS = 5  #: a sticking pair's tangential multiplier reaches +mu_s F (it slips towards -t)
     UNSTICK_MINUS = 6  #: ... reaches -mu_s F (it slips towards +t)
-    PAINLEVE = 7  #: a held pair's slip reaches a = W_nn - mu_k s W_nt <= 0 (Painlevé; CCM with friction)
+    PAINLEVE = 7  #: a held pair's slip reaches a = W_nn - mu_k s W_nt <= 0 (Painlevé; CCM, IMM at rest, friction)
 
 
 #: the events of Coulomb friction (a phase with a slipping or sticking pair watches them)

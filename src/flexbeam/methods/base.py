@@ -58,6 +58,10 @@ class ImpactMethod:
     #: another pair closing within this time of a located impact impacts with it [s] (the located time is the root
     #: of the dense output's gap, which the state's own gap matches to ~1e-11 m: ~1e-10 s at 0.1 m/s)
     simultaneity = 1e-9
+    #: does the run's integrator locate friction's events (the exponential one; the simulation sets it)?  Without
+    #: them no frictional pair can be held: CCM's friction is refused before the run, IMM's run stops where a
+    #: frictional pair would come to rest (:meth:`~flexbeam.methods.held_friction.HeldFriction.held_phase`)
+    locates_friction = True
 
     def __post_init__(self) -> None:
         w = self.case.solver.baumgarte_frequency

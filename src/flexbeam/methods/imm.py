@@ -13,6 +13,16 @@ when free motion resumes.  Pairs impacting together come to rest together, once 
 is below ``solver.rest_velocity`` (a pair with e = 0 always rests), or once each one's rebound flight would rise less
 than its gap can resolve (:meth:`IMM.unresolvable`: a pair pressed back hard, as by a flexible beam's vibration, whose
 landings would be lost in the gap's round-off while its rebounds are still faster than ``solver.rest_velocity``).
+
+**Coulomb friction** (``contact.friction``).  An impact is frictional (Stronge's process for one pair, the frictional
+impact LCP for several: :func:`~flexbeam.methods.impulse.impulse_jump`), and so is the resting contact, with CCM's
+code (:class:`~flexbeam.methods.held_friction.HeldFriction`): a resting pair slips with its normal force the
+multiplier lambda_n and the tangential force sigma lambda_n, sigma = -mu_k sign(v_t), until v_t reaches zero (a
+located STOP), then sticks, held tangentially by a second multiplier lambda_t, until abs(lambda_t) reaches
+mu_s lambda_n (a located UNSTICK: it slips on) or lambda_n turns tensile (it leaves); a slip with Painlevé's
+a = W_nn + sigma W_nt <= 0 is resolved by a tangential impact, with a warning (:mod:`flexbeam.methods.painleve`).
+The resting phase's friction needs the exponential integrator's located events: on the reference path (solver.
+integrator = "reference", a compliant support) the run stops where a frictional pair would come to rest.
 """
 
 from __future__ import annotations
@@ -22,7 +32,7 @@ import math
 import numpy as np
 
 from ..integrate.phases import ContactMode, Phase
-from .base import ImpactMethod
+from .held_friction import HeldFriction
 
 #: a rebound flight lower than this many eps of its gap's scale cannot be located (:meth:`IMM.unresolvable`): 4x the
 #: gap's round-off GAP_ULPS of ``kernels/src/surface.c``
@@ -34,7 +44,7 @@ PRESSING_MAX = 1e6
 RISE_SCALE_MAX = RISE_ULPS * EPS * 1e3
 
 
-class IMM(ImpactMethod):
+class IMM(HeldFriction):
     """Impulse-momentum method."""
 
     name = "imm"
@@ -65,7 +75,7 @@ class IMM(ImpactMethod):
             if k not in held:
                 self.end_contact(phase, k, t, jump.y)
                 modes[k], records[k] = ContactMode.NONE, None
-        return self.phase(modes, phase.parameters, records), jump.y
+        return self.held_phase(phase, t, jump.y, modes, records, [k for k in pairs if k in held])
 
     def unresolvable(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int], rebound: np.ndarray) -> bool:
         """Would every pair's rebound flight stay lower than its gap can resolve?  A flight's height is w^2 / (2 a)

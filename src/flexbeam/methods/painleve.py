@@ -1,6 +1,7 @@
-"""Painlevé's paradox in CCM's sustained sliding, resolved by a tangential impact.
+"""Painlevé's paradox in a held contact's sustained sliding (CCM, IMM at rest), resolved by a tangential impact.
 
-While a held pair slips (Coulomb friction under CCM, :mod:`flexbeam.methods.ccm`) its constraint force acts along
+While a held pair slips (Coulomb friction under CCM or in IMM's resting contact,
+:mod:`flexbeam.methods.held_friction`) its constraint force acts along
 (J_n + sigma J_t)^T with sigma = -mu_k sign(v_t), so the normal multiplier solves a lambda_n = -(free normal
 acceleration), with the slip's effective inverse mass
 
@@ -21,8 +22,8 @@ P = -W^-1 v brings both velocities to zero instead (an e = 0 impact of the stuck
 1/2 v_t^2 / W_tt, or by 1/2 v^T W^-1 v, both >= 0 (booked as dissipation): the resolution never adds energy.  The
 pair then sticks or slips per mu_s (:func:`flexbeam.methods.coulomb.onset_row`; a reversed slip has
 a = W_nn - sigma W_nt > 0), or leaves the obstacle if it moves off it or its multiplier would pull
-(:meth:`flexbeam.methods.ccm.CCM.leaving`); a :class:`~flexbeam.errors.FlexbeamWarning` names Painlevé, the time
-and the pair.
+(:meth:`flexbeam.methods.held_friction.HeldFriction.leaving`); a :class:`~flexbeam.errors.FlexbeamWarning` names
+Painlevé, the time and the pair.  IMM's resting contact slips the same way (the same code).
 """
 
 from __future__ import annotations

@@ -39,8 +39,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
 }
 #: variables (time x pair) present only when a case has several contact pairs or a contact anywhere
 PAIR_VARIABLES = ("pair_gap", "pair_normal_velocity", "pair_contact_force", "pair_contact_position")
-#: variables (time x pair) present only in a frictional run: CCFM's Coulomb friction (:mod:`flexbeam.methods.coulomb`)
-#: and the FE reference's regularised law
+#: variables (time x pair) present only in a frictional run: Coulomb friction (:mod:`flexbeam.methods.coulomb`:
+#: CCFM, CCM, IMM's resting contact) and the FE reference's regularised law
 FRICTION_VARIABLES = ("pair_tangential_force", "pair_slip_velocity", "pair_friction_state")
 
 

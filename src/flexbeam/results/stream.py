@@ -136,8 +136,10 @@ class RunStream:
     ) -> None:
         self.system, self.case, self.contacts, self.provenance = system, case, contacts, provenance
         self.per_pair = system.pairs > 1 or any(p.anywhere for p in system.contact.pairs)
-        #: CCFM or CCM with Coulomb friction: the friction variables (time x pair) from the first sample on
-        self.rough = provenance.get("method") in ("ccfm", "ccm") and any(p.frictional for p in system.contact.pairs)
+        #: CCFM, CCM or IMM with Coulomb friction: the friction variables (time x pair) from the first sample on
+        self.rough = provenance.get("method") in ("ccfm", "ccm", "imm") and any(
+            p.frictional for p in system.contact.pairs
+        )
         self.names = [c for c in OUTPUT_COLUMNS if system.compliant or c not in SUPPORT_COLUMNS]
         nsb = export.precision_bits(provenance) if quantize else None
         labels = [p.label for p in system.contact.pairs] if self.per_pair or self.rough else None
