@@ -3,8 +3,10 @@
 Runs each case with CCFM frictionless and with ``contact.friction`` in one process, ``--runs`` times each, and prints
 a Markdown table: the steps, the events, the median integration time (the phase loop's wall time, without the
 outputs) and its time per step, and the ratio of the frictional run's time per step to the frictionless one's (issue
-28's target: at most 1.3).  A step costs the same with friction (the sliding bar: sustained slip); a friction event
-(a stop, a stick's end) costs a phase's restart, which runs that switch often between stick and slip pay per step.
+28's target: at most 1.3); the same for the phase loop's thread CPU time, which a machine shared with other jobs
+inflates less than the wall time.  A step costs the same with friction (the sliding bar: sustained slip); a friction
+event (a stop, a stick's end) costs a phase's restart, which runs that switch often between stick and slip pay per
+step.
 The machine it ran on is printed below the table.
 
     python benchmarks/friction.py [--runs 5] [--quick]
@@ -16,8 +18,25 @@ import argparse
 import os
 import platform
 import statistics
+import time
 
 import flexbeam as fb
+import flexbeam.simulation as simulation
+
+_CPU: list[float] = []  # the thread CPU time of each phase loop run since the last measure()
+_run_phases = simulation.run_phases
+
+
+def _timed_run_phases(*args, **kwargs):
+    """simulation.run_phases, its thread CPU time appended to _CPU."""
+    c0 = time.thread_time()
+    try:
+        return _run_phases(*args, **kwargs)
+    finally:
+        _CPU.append(time.thread_time() - c0)
+
+
+simulation.run_phases = _timed_run_phases
 
 #: a flexible steel bar (4 modes) sliding along its axis on two hemispherical stops, contact anywhere: sustained slip
 #: with two events (the rigid bar of tests/validation/test_friction_ccfm.py, bar_on_stops)
@@ -58,15 +77,18 @@ CASES = [
 ]  # fmt: skip
 
 
-def measure(source: str | dict, overrides: dict, runs: int) -> tuple[int, int, float]:
-    """(steps, events, median integration wall time [s]) of ``runs`` CCFM runs of the case."""
-    walls, steps, events = [], 0, 0
+def measure(source: str | dict, overrides: dict, runs: int) -> tuple[int, int, float, float]:
+    """(steps, events, median integration wall time [s], its median thread CPU time [s]) of ``runs`` CCFM runs of the
+    case."""
+    walls, cpus, steps, events = [], [], 0, 0
     case = fb.load_case(source, overrides)
     for _ in range(runs):
+        _CPU.clear()
         sol = fb.simulate(case, "ccfm")
         walls.append(sol.source.run.wall_time)
+        cpus.append(_CPU[-1])
         steps, events = sol.source.run.steps, sol.source.run.events
-    return steps, events, statistics.median(walls)
+    return steps, events, statistics.median(walls), statistics.median(cpus)
 
 
 def main() -> None:
@@ -76,16 +98,18 @@ def main() -> None:
     args = parser.parse_args()
     cases = CASES[:1] if args.quick else CASES
     runs = 1 if args.quick else args.runs
-    print("| case | friction | steps | events | integration [ms] | per step [us] | ratio per step |")
-    print("|---|---|---|---|---|---|---|")
+    print("| case | friction | steps | events | integration [ms] | per step [us] | ratio per step | CPU per step [us] |"
+          " CPU ratio per step |")  # fmt: skip
+    print("|---|---|---|---|---|---|---|---|---|")
     for name, source, rough in cases:
         smooth = {k: v for k, v in rough.items() if not k.startswith("contact.friction")}
-        n0, e0, w0 = measure(source, smooth, runs)
-        n1, e1, w1 = measure(source, rough, runs)
-        ratio = (w1 / n1) / (w0 / n0)
+        n0, e0, w0, c0 = measure(source, smooth, runs)
+        n1, e1, w1, c1 = measure(source, rough, runs)
+        ratio, cpu_ratio = (w1 / n1) / (w0 / n0), (c1 / n1) / (c0 / n0)
         mu = rough["contact.friction"]
-        print(f"| {name} | 0 | {n0} | {e0} | {1e3 * w0:.1f} | {1e6 * w0 / n0:.1f} | |")
-        print(f"| {name} | {mu} | {n1} | {e1} | {1e3 * w1:.1f} | {1e6 * w1 / n1:.1f} | {ratio:.2f} |")
+        print(f"| {name} | 0 | {n0} | {e0} | {1e3 * w0:.1f} | {1e6 * w0 / n0:.1f} | | {1e6 * c0 / n0:.1f} | |")
+        print(f"| {name} | {mu} | {n1} | {e1} | {1e3 * w1:.1f} | {1e6 * w1 / n1:.1f} | {ratio:.2f} "
+              f"| {1e6 * c1 / n1:.1f} | {cpu_ratio:.2f} |")  # fmt: skip
     machine = platform.processor() or platform.machine()
     print(f"\n{machine}, {os.cpu_count()} cores, Python {platform.python_version()}, median of {runs} run(s)")
 

@@ -33,60 +33,10 @@ static double gap_x(const fb_dense *d, double x, double *rate) {
     return g.delta;
 }
 
-typedef double (*fb_scalar)(const fb_dense *d, double x);
-
 static double gap_value(const fb_dense *d, double x) { return gap_x(d, x, NULL); }
 
-/* Root of fn on [a, b] (fa fb <= 0) by Brent's method (Brent 1973, ch. 4), to 1e-15 of the step. */
-static double brent_fn(const fb_dense *d, double a, double b, double fa, double fb, fb_scalar fn) {
-    if (fa == 0.0) return a;
-    if (fb == 0.0) return b;
-    double c = a, fc = fa, e = b - a, dd = e;
-    for (int it = 0; it < 200; it++) {
-        if (fb * fc > 0.0) {
-            c = a;
-            fc = fa;
-            dd = e = b - a;
-        }
-        if (fabs(fc) < fabs(fb)) {
-            a = b; b = c; c = a;
-            fa = fb; fb = fc; fc = fa;
-        }
-        double tol = 2.0 * 2.2e-16 * fabs(b) + 0.5e-15, m = 0.5 * (c - b);
-        if (fabs(m) <= tol || fb == 0.0) return b;
-        if (fabs(e) >= tol && fabs(fa) > fabs(fb)) {
-            double s = fb / fa, p, q;
-            if (a == c) {
-                p = 2.0 * m * s;
-                q = 1.0 - s;
-            } else {
-                double qq = fa / fc, r = fb / fc;
-                p = s * (2.0 * m * qq * (qq - r) - (b - a) * (r - 1.0));
-                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
-            }
-            if (p > 0.0)
-                q = -q;
-            else
-                p = -p;
-            if (2.0 * p < fmin(3.0 * m * q - fabs(tol * q), fabs(e * q))) {
-                e = dd;
-                dd = p / q;
-            } else {
-                dd = e = m;
-            }
-        } else {
-            dd = e = m;
-        }
-        a = b;
-        fa = fb;
-        b += fabs(dd) > tol ? dd : (m > 0.0 ? tol : -tol);
-        fb = fn(d, b);
-    }
-    return b;
-}
-
 static double brent(const fb_dense *d, double a, double b, double fa, double fb) {
-    return brent_fn(d, a, b, fa, fb, gap_value);
+    return fb_brent(d, a, b, fa, fb, gap_value);
 }
 
 /* The contact law's unclipped value K d^n (1 + chi' d') + C d' at the fraction x (d = -delta; -1 out of contact). */
@@ -107,7 +57,7 @@ double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, in
         double pen = -known[i].delta, rate = -known[i].rate;
         double raw = pen > 0.0 ? p[0] * fb_pow(pen, p[1]) * (1.0 + p[2] * rate) + p[3] * rate : -1.0;
         if (i > 0 && pen > 0.0 && -known[i - 1].delta > 0.0 && (prev > 0.0) != (raw > 0.0))
-            return brent_fn(d, kx[i - 1], kx[i], prev, raw, law_raw_x);
+            return fb_brent(d, kx[i - 1], kx[i], prev, raw, law_raw_x);
         prev = raw;
     }
     return FB_NO_EVENT;

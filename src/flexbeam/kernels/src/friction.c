@@ -78,38 +78,54 @@ double fb_slip_coefficient(const fb_contacts *c, int k, double vt) {
     return vt > 0.0 ? s : (vt < 0.0 ? -s : 0.0);
 }
 
-/* sign(v_t) of the slip times v_t at the fraction x of the step (> 0 while the pair slips its way). */
-static double slip_x(const fb_dense *d, double x) {
-    double eta[FB_MAXN], v[FB_MAXN], vt;
-    fb_dense_state(d, x, eta, v);
+/* sign(v_t) times v_t at the state (eta, v) at the fraction x of the step (> 0 while the pair slips its way). */
+static double slip_state(const fb_dense *d, double x, const double *eta, const double *v) {
+    double vt;
     fb_tangent_at(d->ph, d->pair, d->t0 + x * d->h, eta, v, &vt);
     return d->ph->c.slip[d->pair] < 0.0 ? vt : -vt;
 }
 
-/* Root of slip_x + shift on [a, b] (opposite signs) by bisection to 1e-15 of the step. */
-static double bisect(const fb_dense *d, double a, double b, double shift) {
-    for (int it = 0; it < 55 && b - a > 1e-15; it++) {
-        double mid = 0.5 * (a + b);
-        if (slip_x(d, mid) + shift > 0.0)
-            a = mid;
-        else
-            b = mid;
-    }
-    return b;
+/* slip_state at the fraction x of the step, by the step's dense output. */
+static double slip_x(const fb_dense *d, double x) {
+    double eta[FB_MAXN], v[FB_MAXN];
+    fb_dense_state(d, x, eta, v);
+    return slip_state(d, x, eta, v);
 }
+
+/* The residual slip speed a slip that started at rest may run back by before it counts as reversed. */
+static double rest_noise(const fb_dense *d) { return fmax(VT_NOISE, d->ph->c.vrest[d->pair]); }
+
+/* slip_x beyond the run back of a slip that started at rest (zero where it counts as reversed). */
+static double reversed_x(const fb_dense *d, double x) { return slip_x(d, x) + rest_noise(d); }
 
 /* Where the slip of pair d->pair stops -- its slip velocity, positive along its direction, reaches zero -- or, for a
  * slip that started at rest, where it runs backwards beyond VT_NOISE or the stick's residual v_rest it started from
- * (the pair's vrest); FB_NO_EVENT if neither. */
+ * (the pair's vrest); FB_NO_EVENT if neither.  The slip velocity is sampled at STOP_SAMPLES points by exact hops
+ * between them (one set of propagation weights for all, as the gap's samples in events.c); a sign change seen there
+ * is located on the step's dense output. */
 double fb_find_stop(const fb_dense *d) {
-    double start = slip_x(d, 0.0), noise = fmax(VT_NOISE, d->ph->c.vrest[d->pair]);
+    const fb_basis *b = d->ph->b;
+    int N = b->N;
+    double start = slip_x(d, 0.0), noise = rest_noise(d), prev = start;
     int forward = start > 0.0;
     if (start < -noise) return 0.0;
+    fb_hops H;
+    double A[FB_P * FB_MAXN], eta[FB_MAXN], v[FB_MAXN];
+    fb_hops_fill(b, d->h / STOP_SAMPLES, &H);
+    fb_monomial(d->f, N, A);
+    memcpy(eta, d->eta0, sizeof(double) * N);
+    memcpy(v, d->v0, sizeof(double) * N);
     for (int i = 1; i <= STOP_SAMPLES; i++) {
-        double x = (double)i / STOP_SAMPLES, cur = slip_x(d, x);
-        if (forward && cur <= 0.0) return bisect(d, (i - 1.0) / STOP_SAMPLES, x, 0.0);
-        if (!forward && cur < -noise) return bisect(d, (i - 1.0) / STOP_SAMPLES, x, noise);
+        double x = (double)i / STOP_SAMPLES, a = (i - 1.0) / STOP_SAMPLES;
+        fb_hop_advance(b, &H, A, a, 1.0 / STOP_SAMPLES, eta, v);
+        double cur = slip_state(d, x, eta, v), shift = forward ? 0.0 : noise;
+        if (cur + shift <= 0.0 && (forward || cur + shift < 0.0)) { /* seen passed: confirmed by the dense output */
+            cur = slip_x(d, x);
+            if (cur + shift <= 0.0 && (forward || cur + shift < 0.0))
+                return fb_brent_past(d, a, x, prev + shift, cur + shift, forward ? slip_x : reversed_x);
+        }
         forward |= cur > 0.0;
+        prev = cur;
     }
     return FB_NO_EVENT;
 }

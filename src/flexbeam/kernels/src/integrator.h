@@ -126,6 +126,12 @@ void fb_forcing_bound(const double *f, int N, int k, fb_forcing *out);
 /* (max|f| + |f(0)| + V) / w^2: bounds the forced response from rest over the step, damped or not */
 double fb_forced_amplitude(const fb_forcing *fc, double w);
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v);
+/* a scalar function of the fraction x of a step (its dense output d) */
+typedef double (*fb_scalar)(const fb_dense *d, double x);
+/* Root of fn on [a, b] (fa fb <= 0) by Brent's method (Brent 1973, ch. 4), to 1e-15 of the step (events.c). */
+double fb_brent(const fb_dense *d, double a, double b, double fa, double fb, fb_scalar fn);
+/* ... its end of the final bracket where fn <= 0 (fa > 0 >= fb: the root passed, as a bisection keeps it) */
+double fb_brent_past(const fb_dense *d, double a, double b, double fa, double fb, fb_scalar fn);
 int fb_gap_far(const fb_dense *d, const double *jb, double gap0);
 /* Bounds on sum_k jm_k eta_k (+ a part of curvature <= gamma) between samples spaced by the fraction dx of the step:
  * returns the resolved modes' deviation from the linear interpolant, *fast the faster modes' amplitude. */
