@@ -201,6 +201,43 @@ void fb_centre_point(const fb_model *m, double x, fb_surface_point *out) {
     out->P.offset = out->P.offset_t = 0.0;
 }
 
+/* The obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction), into
+ * c; returns whether it is a sphere. */
+static int obstacle_in_body(const fb_model *m, const fb_obstacle *o, const fb_frame *f, double s, double c[2]) {
+    double p[2] = {o->cx + s * o->ux, o->cy + s * o->uy}, nrm[2] = {o->nx, o->ny};
+    if (o->ground) p[0] -= f->rO[0], p[1] -= f->rO[1]; /* fixed to the ground: at C - r_O in the base frame */
+    int sphere = o->kind == FB_SPHERE;
+    fb_joint(m)->to_body(m, f, sphere ? p : nrm, !sphere, c);
+    return sphere;
+}
+
+/* The rate x*' of the search's minimiser x (an interior root of objective_slope's f(x; q, C)): -f_t / f_x, f_t the
+ * rate of f at fixed x as q moves at q' and the obstacle in the body frame with the frame (theta', R', v_O) and its
+ * support (s'), by a central difference over -+ EPS_T (f is a polynomial in q and smooth in the frame: truncation
+ * EPS_T^2 f''' / 6, round-off eps |f| / EPS_T).  The search's own minimiser, so that the slip velocity taken there
+ * has this rate (anywhere_gamma.c). */
+#define EPS_T 1e-6 /* [s] */
+double fb_nearest_rate(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
+                       double s, double sd, double x) {
+    int n = fb_nb(m), na = m->na, M = m->nst, nq = n + na;
+    double w[M], w1[M], w2[M], u[M], sx[na ? M : 1], sx1[na ? M : 1], qe[nq], fe[2], fx = 0.0, c[2], df;
+    for (int side = 0; side < 2; side++) {
+        double e = side ? EPS_T : -EPS_T;
+        fb_frame g = *f;
+        g.th += e * f->thd, g.R[0] += e * f->Rd[0], g.R[1] += e * f->Rd[1];
+        g.rO[0] += e * f->vO[0], g.rO[1] += e * f->vO[1];
+        for (int k = 0; k < nq; k++) qe[k] = q[k] + e * qd[k];
+        double dx = m->st_x[M - 1] / (M - 1);
+        line_t ln = {m, qe, n, M, m->hub_radius, dx, w, w1, w2, u, na ? sx : NULL, na ? sx1 : NULL};
+        for (int j = 0; j < M; j++) w[j] = w1[j] = w2[j] = u[j] = NAN;
+        for (int j = 0; na && j < M; j++) sx[j] = sx1[j] = NAN;
+        int sphere = obstacle_in_body(m, o, &g, s + e * sd, c);
+        fe[side] = objective_slope(&ln, sphere, c, x, &df);
+        fx += 0.5 * df;
+    }
+    return fx != 0.0 ? -(fe[1] - fe[0]) / (2.0 * EPS_T) / fx : 0.0;
+}
+
 void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
                       int flat, fb_surface_point *out) {
     int n = fb_nb(m), na = m->na, M = m->nst;
@@ -209,15 +246,8 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u, na ? sx : NULL, na ? sx1 : NULL};
     for (int j = 0; j < M; j++) w[j] = w1[j] = w2[j] = u[j] = NAN;
     for (int j = 0; na && j < M; j++) sx[j] = sx1[j] = NAN;
-    /* the obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction) */
-    double p[2] = {o->cx + s * o->ux, o->cy + s * o->uy}, nrm[2] = {o->nx, o->ny}, c[2];
-    if (o->ground) p[0] -= f->rO[0], p[1] -= f->rO[1]; /* fixed to the ground: at C - r_O in the base frame */
-    int sphere = o->kind == FB_SPHERE;
-    if (sphere) {
-        fb_joint(m)->to_body(m, f, p, 0, c);
-    } else {
-        fb_joint(m)->to_body(m, f, nrm, 1, c);
-    }
+    double c[2];
+    int sphere = obstacle_in_body(m, o, f, s, c);
     int best = 0;
     double best_val = INFINITY;
     if (sphere) {
