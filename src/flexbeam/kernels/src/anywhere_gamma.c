@@ -20,20 +20,23 @@
  * (``flat``) the material surface point's ``gamma`` is kept.
  *
  * The slip velocity's rate (Coulomb friction's sticking row, rhs.c).  The slip velocity of an anywhere pair is that
- * of the surface's material point at the nearest point, v_t(q, q') = T(x*(q), q, q') with T(x) = t(x) . w(x), w the
- * surface material point's velocity relative to the obstacle and t = (-n_y, n_x) its gap's tangent (on a sphere t
- * turns with the point).  So v_t' = Jt z'' + [the material point's rate, model.c] + T_x x*': the contact point
- * moving along the beam meets material points that move differently (T_x = t . w_x + t_x . w, t . w_x the surface
- * fibre's stretching rate where the pair sticks, w = 0).  The stick holds the contact point's slip v_t(q, q') = 0 --
- * the relative velocity of the bodies' coincident points at the current contact point (Pfeiffer & Glocker,
- * Multibody Dynamics with Unilateral Contacts, Wiley 1996, Ch. 4-5: the tangential constraint g_T' = 0 and its
- * time derivative along the moving contact point; Montana, Int. J. Robotics Research 7 (1988) 17-32, for the
- * contact point's motion) -- the function the collocation holds at its nodes, so its acceleration-level row takes
- * the whole rate.  A rigid straight bar has t . w_x = 0 (w_x = omega x rho_x is along the normal) and, sticking,
- * w = 0: the term vanishes there.  T_x is the central difference of T at x -+ h along the surface fibre of the
- * contact point's offsets (``offsets``: along the section's normal and tangent), with the same h and errors as
- * above; it is added to *tgamma where the normal correction applies (an interior proper minimum; at an end x* stays
- * put).
+ * of the surface's material point at the nearest point, v_t(q, q') = T(x*(q), off*(q); q, q') with
+ * T(x, off) = t . w, w the velocity relative to the obstacle of the material point at x with offsets off from the
+ * centre line (along the section's normal and tangent, nearest.c) and t = (-n_y, n_x) its gap's tangent (on a sphere
+ * t turns with the point).  So v_t' = Jt z'' + [the material point's rate, model.c] + T_x x*' + T_off off*': the
+ * contact point moving along the beam meets material points that move differently (T_x = t . w_x + t_x . w,
+ * t . w_x the surface fibre's stretching rate where the pair sticks, w = 0), and it moves across the section where
+ * the centre line's tangent turns against the section's (their angle ~ w'^3 / 6 - w' s') or, x* at an end, around
+ * the end cap (T_off off*', off*' by fb_nearest_rate; on a sphere ~ (n . w) / |P - C| per metre).  The stick holds
+ * the contact point's slip v_t(q, q') = 0 -- the relative velocity of the bodies' coincident points at the current
+ * contact point (Pfeiffer & Glocker, Multibody Dynamics with Unilateral Contacts, Wiley 1996, Ch. 4-5: the
+ * tangential constraint g_T' = 0 and its time derivative along the moving contact point; Montana, Int. J. Robotics
+ * Research 7 (1988) 17-32, for the contact point's motion) -- the function the collocation holds at its nodes, so
+ * its acceleration-level row takes the whole rate.  A rigid straight bar has t . w_x = 0 (w_x = omega x rho_x is along the normal) and, sticking,
+ * w = 0: T_x x*' vanishes there.  P_x and v_x are central differences at x -+ h along the surface fibre of the
+ * contact point's offsets (``offsets``), with the same h and errors as above; the terms are added to *tgamma where
+ * the normal correction applies (an interior proper minimum) and, on an end cap, T_off off*' alone (x* stays); a
+ * flat end face keeps the material point's rate.
  */
 #include <float.h>
 
@@ -58,11 +61,30 @@ static void fibre_kin(const fb_model *m, const fb_frame *f, const double *q, con
     fb_point_kinematics(m, &sp.P, f, q, qd, k, NULL);
 }
 
-/* T_x of the header at x: t . w_x + t_x . w, with w_x = v_x (the obstacle's velocity is the same all along the beam)
- * and P_x the central differences at xc -+ h along the fibre of ``offsets``; on a sphere t_x = (-n_y,x, n_x,x),
- * n_x = (P_x - (n . P_x) n) / |P - C| (on a half-plane t is fixed). */
-static double slip_slope(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
-                         double s, double sd, const double *offsets, double x, double xc, double h) {
+/* T at x of the surface's material point with offsets off + e doff. */
+static double offset_slip(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
+                          double s, double sd, const double *off, const double *doff, double e, double x) {
+    double oe[2] = {off[0] + e * doff[0], off[1] + e * doff[1]}, vx, vy;
+    fb_kin k;
+    fibre_kin(m, f, q, qd, oe, x, &k);
+    fb_gap g = fb_gap_state(o, f, &k, NULL, 0, s, sd, NULL);
+    return fb_slip_velocity(o, f, &k, &g, sd, &vx, &vy);
+}
+
+/* The slip velocity's rate along the contact point's motion over the beam at x: T_x x*' + T_off off' (header).
+ * T_x = t . w_x + t_x . w, with w_x = v_x (the obstacle's velocity is the same all along the beam) and P_x the
+ * central differences at xc -+ h along the fibre of ``offsets``; on a sphere t_x = (-n_y,x, n_x,x),
+ * n_x = (P_x - (n . P_x) n) / |P - C| (on a half-plane t is fixed).  T_off off' by the central difference of T over
+ * the offsets' motion -+ EPS_OFF off' (T is smooth in the offsets: truncation EPS_OFF^2). */
+#define EPS_OFF 1e-6 /* [s] */
+static double contact_motion(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q,
+                             const double *qd, double s, double sd, const double *offsets, double x, double xc,
+                             double h) {
+    int end = h == 0.0; /* at an end: x* stays, the contact point moves over the cap alone */
+    double doff[2], xd = fb_nearest_rate(m, o, f, q, qd, s, sd, x, end, doff);
+    double Tp = offset_slip(m, o, f, q, qd, s, sd, offsets, doff, EPS_OFF, x);
+    double Toff = (Tp - offset_slip(m, o, f, q, qd, s, sd, offsets, doff, -EPS_OFF, x)) / (2.0 * EPS_OFF);
+    if (end) return Toff;
     fb_kin k, km, kp;
     fibre_kin(m, f, q, qd, offsets, x, &k);
     fibre_kin(m, f, q, qd, offsets, xc - h, &km);
@@ -77,12 +99,13 @@ static double slip_slope(const fb_model *m, const fb_obstacle *o, const fb_frame
         double nxx = (Px[0] - pn * g.nx) / dist, nyx = (Px[1] - pn * g.ny) / dist;
         Tx += -nyx * w[0] + nxx * w[1];
     }
-    return Tx;
+    return Tx * xd + Toff;
 }
 
 /* D'' at z'' = 0 of an anywhere pair whose nearest point is at material coordinate x (``gamma``: the material surface
  * point's, model.c's fb_gap_state), obstacle o displaced by s (rate sd) along its support axis; with ``tgamma`` (the
- * material point's slip rate, its surface offsets in ``offsets``) the slip rate's term T_x x*' is added to it. */
+ * material point's slip rate, its surface offsets in ``offsets``) the contact point's motion's T_x x*' + T_off off'
+ * is added to it (on an end cap T_off off' alone). */
 double fb_anywhere_gamma(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
                          double s, double sd, int flat, double x, double gamma, const double *offsets,
                          double *tgamma) {
@@ -92,7 +115,10 @@ double fb_anywhere_gamma(const fb_model *m, const fb_obstacle *o, const fb_frame
     fb_kin kc;
     centre_kin(m, f, q, qd, x, 1, &kc);
     fb_gap gc = fb_gap_state(o, f, &kc, NULL, 0, s, sd, NULL);
-    if (!interior) return gc.gamma;
+    if (!interior) {
+        if (tgamma) *tgamma += contact_motion(m, o, f, q, qd, s, sd, offsets, x, x, 0.0);
+        return gc.gamma;
+    }
     double h = (L - x0) / (m->nst - 1) / 64.0, xc = fmin(fmax(x, x0 + h), L - h);
     fb_kin km, k0 = kc, kp;
     if (xc != x) centre_kin(m, f, q, qd, xc, 0, &k0);
@@ -114,7 +140,6 @@ double fb_anywhere_gamma(const fb_model *m, const fb_obstacle *o, const fb_frame
     }
     double round = 1e3 * DBL_EPSILON * (fabs(k0.r[0]) + fabs(k0.r[1])) / (h * h);
     if (!(dxx > round)) return gc.gamma;
-    if (tgamma) /* T_x x*' */
-        *tgamma += slip_slope(m, o, f, q, qd, s, sd, offsets, x, xc, h) * fb_nearest_rate(m, o, f, q, qd, s, sd, x);
+    if (tgamma) *tgamma += contact_motion(m, o, f, q, qd, s, sd, offsets, x, xc, h);
     return gc.gamma - b * b / dxx;
 }

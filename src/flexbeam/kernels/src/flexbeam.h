@@ -199,7 +199,7 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
                       int flat, fb_surface_point *out);
 void fb_centre_point(const fb_model *m, double x, fb_surface_point *out);
 double fb_nearest_rate(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
-                       double s, double sd, double x);
+                       double s, double sd, double x, int end, double *doff);
 double fb_anywhere_gamma(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
                          double s, double sd, int flat, double x, double gamma, const double *offsets, double *tgamma);
 void fb_anywhere_bound(const fb_model *m, const double *q, double *env);
