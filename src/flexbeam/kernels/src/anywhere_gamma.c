@@ -19,24 +19,23 @@
  * the capsule (its cap: a sphere around rho(L)) takes the centre line's material value; on a flat end face
  * (``flat``) the material surface point's ``gamma`` is kept.
  *
- * The slip velocity's rate (Coulomb friction's sticking row, rhs.c).  The slip velocity of an anywhere pair is that
- * of the surface's material point at the nearest point, v_t(q, q') = T(x*(q), off*(q); q, q') with
- * T(x, off) = t . w, w the velocity relative to the obstacle of the material point at x with offsets off from the
- * centre line (along the section's normal and tangent, nearest.c) and t = (-n_y, n_x) its gap's tangent (on a sphere
- * t turns with the point).  So v_t' = Jt z'' + [the material point's rate, model.c] + T_x x*' + T_off off*': the
- * contact point moving along the beam meets material points that move differently (T_x = t . w_x + t_x . w,
- * t . w_x the surface fibre's stretching rate where the pair sticks, w = 0), and it moves across the section where
- * the centre line's tangent turns against the section's (their angle ~ w'^3 / 6 - w' s') or, x* at an end, around
- * the end cap (T_off off*', off*' by fb_nearest_rate; on a sphere ~ (n . w) / |P - C| per metre).  The stick holds
- * the contact point's slip v_t(q, q') = 0 -- the relative velocity of the bodies' coincident points at the current
- * contact point (Pfeiffer & Glocker, Multibody Dynamics with Unilateral Contacts, Wiley 1996, Ch. 4-5: the
- * tangential constraint g_T' = 0 and its time derivative along the moving contact point; Montana, Int. J. Robotics
- * Research 7 (1988) 17-32, for the contact point's motion) -- the function the collocation holds at its nodes, so
- * its acceleration-level row takes the whole rate.  A rigid straight bar has t . w_x = 0 (w_x = omega x rho_x is along the normal) and, sticking,
- * w = 0: T_x x*' vanishes there.  P_x and v_x are central differences at x -+ h along the surface fibre of the
- * contact point's offsets (``offsets``), with the same h and errors as above; the terms are added to *tgamma where
- * the normal correction applies (an interior proper minimum) and, on an end cap, T_off off*' alone (x* stays); a
- * flat end face keeps the material point's rate.
+ * The slip velocity's rate (Coulomb friction's sticking row, rhs.c).  The slip velocity of an anywhere pair is that of
+ * the surface's material point at the nearest point, v_t(q, q') = T(x*(q), off*(q); q, q') with T(x, off) = t . w, w
+ * the velocity relative to the obstacle of the material point at x with offsets off from the centre line (along the
+ * section's normal and tangent, nearest.c) and t = (-n_y, n_x) its gap's tangent (on a sphere t turns with the point).
+ * So v_t' = Jt z'' + [the material point's rate, model.c] + T_x x*' + T_off off*': the contact point moving along the
+ * beam meets material points that move differently (T_x = t . w_x + t_x . w, t . w_x the surface fibre's stretching
+ * rate where the pair sticks, w = 0), and it moves across the section where the centre line's tangent turns against the
+ * section's (their angle ~ w'^3 / 6 - w' s') or, x* at an end, around the end cap (T_off off*', off*' by
+ * fb_nearest_rate; on a sphere ~ (n . w) / |P - C| per metre).  The stick holds the contact point's slip v_t(q, q') = 0
+ * -- the relative velocity of the bodies' coincident points at the current contact point (Pfeiffer & Glocker, Multibody
+ * Dynamics with Unilateral Contacts, Wiley 1996, Ch. 4-5: the tangential constraint g_T' = 0 and its time derivative
+ * along the moving contact point; Montana, Int. J. Robotics Research 7 (1988) 17-32, for the contact point's motion) --
+ * the function the collocation holds at its nodes, so its acceleration-level row takes the whole rate.  A rigid
+ * straight bar has t . w_x = 0 (w_x = omega x rho_x is along the normal) and, sticking, w = 0: T_x x*' vanishes there.
+ * P_x and v_x are central differences at x -+ h along the surface fibre of the contact point's offsets (``offsets``),
+ * with the same h and errors as above; the terms are added to *tgamma where the normal correction applies (an interior
+ * proper minimum) and, on an end cap, T_off off*' alone (x* stays); a flat end face keeps the material point's rate.
  */
 #include <float.h>
 
