@@ -58,9 +58,10 @@ class Phase:
     (after it the integrator's own bound and error control alone set the step: a contact under its law that has
     outlasted its impact, see :data:`flexbeam.methods.base.RESTING_DURATIONS`; the compiled
     :class:`~flexbeam.integrate.modal.ModalStepper` lifts it there, the reference integrator keeps it).
-    ``friction`` (pairs x 4, None without): per pair [sigma, stick, mu_s, v_rest] of Coulomb friction under CCFM: a
-    slipping pair's tangential force sigma F along its tangent (sigma = -mu_k sign(v_t)), a sticking pair (stick = 1)
-    held tangentially while its multiplier stays within mu_s F (:mod:`flexbeam.methods.coulomb`).
+    ``friction`` (pairs x 5, None without): per pair [sigma, stick, mu_s, v_rest, s] of Coulomb friction under CCFM: a
+    slipping pair's tangential force sigma F along its tangent (sigma = -mu_k s, s = sign(v_t) its slip's direction),
+    a sticking pair (stick = 1) held tangentially while its multiplier stays within mu_s F
+    (:mod:`flexbeam.methods.coulomb`).
     """
 
     name: str

@@ -127,16 +127,17 @@ def pack_contacts(
 ) -> np.ndarray:
     """The contacts buffer: per pair its :class:`~flexbeam.integrate.phases.ContactMode` and law parameters
     [K, n, chi/d'_0, C] (rows of ``parameters``), and the constraints' Baumgarte alpha, beta; with ``friction``
-    (pairs x 4: [sigma, stick, mu_s, v_rest] per pair, some row nonzero) each pair's row carries them too."""
+    (pairs x 5: [sigma, stick, mu_s, v_rest, sign(v_t) of a slip] per pair, some row nonzero) each pair's row carries
+    them too."""
     S = len(modes)
-    fric = None if friction is None else np.asarray(friction, float).reshape(S, 4)
-    width = 5 if fric is None or not fric.any() else 9
+    fric = None if friction is None else np.asarray(friction, float).reshape(S, 5)
+    width = 5 if fric is None or not fric.any() else 10
     out = np.empty(3 + width * S)
     out[:3] = S, alpha, beta
     rows = out[3:].reshape(S, width)
     rows[:, 0] = modes
     rows[:, 1:5] = np.asarray(parameters, float).reshape(S, 4)
-    if width == 9:
+    if width == 10:
         rows[:, 5:] = fric
     return out
 

@@ -18,14 +18,15 @@ slip speed is below :data:`REST_SPEED` starts sticking if the stick's ratio lamb
 inverse mass matrix [J_t; J] M^-1 [J_t; J]^T is within mu_s (Stronge's stick condition at the onset of an impact),
 else slips in the direction the normal force drives it (:func:`onset_row`).
 
-Each row of :attr:`~flexbeam.integrate.phases.Phase.friction` is [sigma, stick, mu_s, v_rest] with sigma = -mu_k
-sign(v_t) (0 unless slipping) and v_rest the residual slip speed a slip starting from a stick may run back by
-(:func:`unstick`); a pair with mu_k = 0 slips without friction and is not watched for stops.
+Each row of :attr:`~flexbeam.integrate.phases.Phase.friction` is [sigma, stick, mu_s, v_rest, s] with s = sign(v_t)
+the slip's direction (0 unless slipping), sigma = -mu_k s and v_rest the residual slip speed a slip starting from a
+stick may run back by (:func:`unstick`).  The direction is kept apart from sigma so that a pair with mu_k = 0 <
+mu_s, which slips without friction, is still watched for its stop and sticks there (:func:`slip_row`).
 
 ``contact.friction_model = "threlfall"`` replaces the switching by Threlfall's regularised law (Threlfall,
 Mechanism and Machine Theory 13 (1978) 475-483), F_t = -mu_k F (1 - exp(-3 abs(v_t) / v_0)) sign(v_t) with
 v_0 = ``contact.friction_velocity``: no events, no stick (a body on an incline creeps at a speed ~ v_0 tan(alpha) /
-(3 mu_k)); its row is [mu_k, -1, v_0, 0].
+(3 mu_k)); its row is [mu_k, -1, v_0, 0, 0].
 """
 
 from __future__ import annotations
@@ -43,9 +44,24 @@ REST_SPEED = 1e-9
 DEPENDENT = 1e-9
 
 
+#: the columns of a friction row: [sigma, stick, mu_s, v_rest, s]
+COLUMNS = 5
+
+
 def rows(phase: Phase, pairs: int) -> np.ndarray:
-    """A copy of ``phase``'s friction rows (pairs x 3; zeros without friction)."""
-    return np.zeros((pairs, 4)) if phase.friction is None else phase.friction.copy()
+    """A copy of ``phase``'s friction rows (pairs x :data:`COLUMNS`; zeros without friction)."""
+    return np.zeros((pairs, COLUMNS)) if phase.friction is None else phase.friction.copy()
+
+
+def slip_row(mu_k: float, mu_s: float, direction: float) -> np.ndarray:
+    """The row of a pair slipping with sign(v_t) = ``direction`` (+-1): sigma = -mu_k sign(v_t), watched for its stop
+    whatever mu_k."""
+    return np.array([-mu_k * direction, 0.0, mu_s, 0.0, direction])
+
+
+def slipping(row: np.ndarray) -> bool:
+    """Does the pair of friction ``row`` slip under Coulomb's switching law (a direction, no stick)?"""
+    return bool(row[4] != 0.0 and row[1] == 0.0)
 
 
 def onset_row(system: BeamSystem, t: float, y: np.ndarray, pair: int) -> np.ndarray:
@@ -54,17 +70,17 @@ def onset_row(system: BeamSystem, t: float, y: np.ndarray, pair: int) -> np.ndar
     force drives it (Stronge 2000, Impact Mechanics, ch. 5); zeros for a frictionless pair."""
     p = system.contact.pairs[pair]
     if not p.frictional:
-        return np.zeros(4)
+        return np.zeros(COLUMNS)
     if p.friction_model == "threlfall":
-        return np.array([p.friction, -1.0, p.friction_velocity, 0.0])
+        return np.array([p.friction, -1.0, p.friction_velocity, 0.0, 0.0])
     vt = system.tangent(t, y, pair)[2]
     if abs(vt) > REST_SPEED:
-        return np.array([-p.friction * np.sign(vt), 0.0, p.friction_static, 0.0])
+        return slip_row(p.friction, p.friction_static, float(np.sign(vt)))
     W = inverse_mass(system, t, y, [pair])  # [[W_tt, W_tn], [W_nt, W_nn]]
     r = -W[0, 1] / W[0, 0] if W[0, 0] > 0.0 else 0.0
     if abs(r) <= p.friction_static:  # the stick's ratio lambda_t / F (Stronge's stick condition)
-        return np.array([0.0, 1.0, p.friction_static, 0.0])
-    return np.array([p.friction * np.sign(r), 0.0, p.friction_static, 0.0])
+        return np.array([0.0, 1.0, p.friction_static, 0.0, 0.0])
+    return slip_row(p.friction, p.friction_static, -float(np.sign(r)))
 
 
 def inverse_mass(system: BeamSystem, t: float, y: np.ndarray, pairs: list[int]) -> np.ndarray:
@@ -80,12 +96,11 @@ def inverse_mass(system: BeamSystem, t: float, y: np.ndarray, pairs: list[int]) 
 
 def after_event(system: BeamSystem, event: EventKind, pair: int) -> np.ndarray:
     """The friction row of ``pair`` after one of its friction events: a stop sticks, an unstick slips with the
-    kinetic force in the direction of the multiplier that last held it."""
+    kinetic force in the direction of the multiplier that last held it (the slip against it)."""
     p = system.contact.pairs[pair]
     if event == EventKind.STOP:
-        return np.array([0.0, 1.0, p.friction_static, 0.0])
-    sign = 1.0 if event == EventKind.UNSTICK_PLUS else -1.0
-    return np.array([sign * p.friction, 0.0, p.friction_static, 0.0])
+        return np.array([0.0, 1.0, p.friction_static, 0.0, 0.0])
+    return slip_row(p.friction, p.friction_static, -1.0 if event == EventKind.UNSTICK_PLUS else 1.0)
 
 
 def stop(system: BeamSystem, phase: Phase, t: float, y: np.ndarray, pair: int) -> np.ndarray:
@@ -94,7 +109,7 @@ def stop(system: BeamSystem, phase: Phase, t: float, y: np.ndarray, pair: int) -
     out = rows(phase, system.pairs)
     out[pair] = after_event(system, EventKind.STOP, pair)
     for k in range(system.pairs):
-        if k != pair and out[k, 0] != 0.0 and out[k, 1] == 0.0 and abs(system.tangent(t, y, k)[2]) <= REST_SPEED:
+        if k != pair and slipping(out[k]) and abs(system.tangent(t, y, k)[2]) <= REST_SPEED:
             out[k] = after_event(system, EventKind.STOP, k)
     return out
 
@@ -142,5 +157,5 @@ def state(phase: Phase, pair: int) -> int:
     """The pair's friction state in ``phase``: 0 no frictional contact, 1 slip (or the regularised law), 2 stick."""
     if phase.friction is None:
         return 0
-    sigma, stick = phase.friction[pair, 0], phase.friction[pair, 1]
-    return 2 if stick > 0.0 else (1 if sigma != 0.0 else 0)
+    row = phase.friction[pair]
+    return 2 if row[1] > 0.0 else (1 if row[0] != 0.0 or row[4] != 0.0 else 0)

@@ -270,8 +270,15 @@ class BeamSystem:
         (Coulomb friction)."""
         size = self.nfull + (1 if self.compliant else 0)
         J, Jt = np.empty(size), np.empty(size)
-        delta, rate, vt, _, _ = core.tangent(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J, Jt)
+        delta, rate, vt, _, _, _ = core.tangent(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J, Jt)
         return delta, rate, vt, J, Jt
+
+    def slip_acceleration(self, t: float, y: np.ndarray, pair: int = 0) -> float:
+        """gamma_t [m/s^2]: the rate of a pair's slip velocity at z'' = 0 (v_t' = J_t z'' + gamma_t), for a pair
+        anywhere the contact point's, moving along the beam (``kernels/src/anywhere_gamma.c``)."""
+        size = self.nfull + (1 if self.compliant else 0)
+        J, Jt = np.empty(size), np.empty(size)
+        return core.tangent(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J, Jt, 1)[5]
 
     def contact_coordinate(self, t: float, y: np.ndarray, pair: int = 0) -> float:
         """The material coordinate x [m] of a pair's contact point: its fixed point's, or for a pair anywhere the

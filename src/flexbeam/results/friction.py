@@ -42,7 +42,7 @@ def friction_columns(system: BeamSystem, seg: Segment, times: np.ndarray, Y: np.
         if stick < 0.0:  # the regularised law: [mu_k, -1, v_0]
             sigma = regularised(sigma, fr[k, 2], vt[:, k])
         Ft[:, k] = sigma * F[:, k] + (_multipliers(seg, k, times) if stick == 1.0 else 0.0)
-        state[:, k] = 2.0 if stick > 0.0 else (1.0 if fr[k, 0] != 0.0 else 0.0)
+        state[:, k] = 2.0 if stick > 0.0 else (1.0 if fr[k, 0] != 0.0 or fr[k, 4] != 0.0 else 0.0)
     return Ft, vt, state
 
 

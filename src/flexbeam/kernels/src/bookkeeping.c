@@ -45,7 +45,7 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
     for (int i = 0; i < n; i++) mq += M[nr + i] * qd[i];
     for (int k = 0; k < S; k++) {
         if (ph->c.mode[k] == FB_MODE_NONE) continue;
-        if (ph->c.friction && (ph->c.slip[k] != 0.0 || ph->c.stick[k] || ph->c.regv[k] > 0.0)) { /* friction's share */
+        if (fb_rough(&ph->c, k)) { /* friction's share */
             double Jt[FB_MAXN], vt;
             fb_pair_tangent(m, k, &nd->frame, q, qd, 0.0, 0.0, 0, J, Jt, &vt);
             JF += Jt[0] * (fb_slip_coefficient(&ph->c, k, vt) * F[k][j] + (ph->c.stick[k] ? Ft[k][j] : 0.0));

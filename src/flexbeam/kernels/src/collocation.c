@@ -84,7 +84,7 @@ void fb_eval_node_acc(const fb_phase *ph, double t, const double *eta, const dou
     for (int k = 0; k < m->npairs; k++) {
         int active = ph->c.mode[k] != FB_MODE_NONE, jac = active || want == FB_WANT_JM;
         if (!active && want == FB_WANT_ACTIVE) continue;
-        int rough = active && ph->c.friction && (ph->c.slip[k] != 0.0 || ph->c.stick[k] || ph->c.regv[k] > 0.0);
+        int rough = active && fb_rough(&ph->c, k);
         double J[FB_MAXN], Jx[FB_MAXN], Jt[FB_MAXN], vt = 0.0;
         out->gap[k] = rough ? fb_pair_tangent(m, k, &out->frame, q, qd, s, sd, want_acc, J, Jt, &vt)
                             : fb_pair_gap(m, k, &out->frame, q, qd, s, sd, want_acc, jac ? J : NULL);

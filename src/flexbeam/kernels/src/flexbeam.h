@@ -91,22 +91,29 @@ typedef struct {
     double p[FB_MAX_PAIRS][4];
     double alpha, beta;
     /* Coulomb friction of a FORCE pair (friction.c): slip[k] = sigma_k, the tangential force sigma_k F_k along the
-     * tangent t = (-n_y, n_x) of a slipping pair (sigma = -mu_k sign(v_t); 0: none); stick[k]: the pair is held
-     * tangentially by a multiplier lambda_t (|lambda_t| <= mus[k] (F_k + the forces of its followers), mus the static
-     * coefficient); follow[k] >= 0: the pair sticks along with pair follow[k], its tangential row dependent on that
+     * tangent t = (-n_y, n_x) of a slipping pair (sigma = -mu_k sdir[k]; 0: none); sdir[k] = sign(v_t) of a slipping
+     * pair (0: none), watched for its stop whatever mu_k (a pair with mu_k = 0 < mu_s sticks where it stops);
+     * stick[k]: the pair is held tangentially by a multiplier lambda_t (|lambda_t| <= mus[k] (F_k + the forces of
+     * its followers), mus the static coefficient); follow[k] >= 0: the pair sticks along with pair follow[k], its tangential row dependent on that
      * pair's (two points of a rigid bar on two stops), which holds for both (-1: none).  regv[k] > 0: the pair's
      * friction is Threlfall's regularised law sigma(v_t) = -regmu[k] (1 - exp(-3 |v_t| / regv[k])) sign(v_t). */
     int friction; /* some pair slips, sticks or is under the regularised law */
     double slip[FB_MAX_PAIRS], mus[FB_MAX_PAIRS], regmu[FB_MAX_PAIRS], regv[FB_MAX_PAIRS];
     double vrest[FB_MAX_PAIRS]; /* a slip that starts from a stick: the stick's residual slip speed it may run back */
+    double sdir[FB_MAX_PAIRS]; /* the slip's direction sign(v_t) (+-1; 0: not slipping) */
     int stick[FB_MAX_PAIRS], follow[FB_MAX_PAIRS];
 } fb_contacts;
+
+/* Does pair k carry Coulomb friction in these contacts (it slips, sticks, or is under the regularised law)? */
+static inline int fb_rough(const fb_contacts *c, int k) {
+    return c->friction && (c->sdir[k] != 0.0 || c->stick[k] || c->regv[k] > 0.0);
+}
 
 /* The tangential force per unit normal force of pair k slipping at v_t (friction.c). */
 double fb_slip_coefficient(const fb_contacts *c, int k, double vt);
 
 /* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair],
- * with friction [npairs, alpha, beta, (mode, p0, p1, p2, p3, sigma, stick, mu_s, v_rest) per pair]. */
+ * with friction [npairs, alpha, beta, (mode, p0, p1, p2, p3, sigma, stick, mu_s, v_rest, sign(v_t)) per pair]. */
 int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf);
 
 /* The bending modes' count (the flexible coordinates without the axial ones). */
@@ -134,6 +141,15 @@ typedef struct {
     double speed; /* |r' - s' u|: P's speed relative to the obstacle */
     double x;     /* the contact point's material coordinate (fb_pair_gap) */
 } fb_gap;
+
+/* The slip velocity t . (v - the obstacle's velocity) of a point with kinematics k and gap state g (its normal), the
+ * tangent t = (-n_y, n_x), obstacle o moving at sd along its support axis (fixed to the ground: plus v_O). */
+static inline double fb_slip_velocity(const fb_obstacle *o, const fb_frame *f, const fb_kin *k, const fb_gap *g,
+                                      double sd, double *vx, double *vy) {
+    *vx = k->v[0] - sd * o->ux, *vy = k->v[1] - sd * o->uy;
+    if (o->ground) *vx += f->vO[0], *vy += f->vO[1];
+    return -g->ny * *vx + g->nx * *vy;
+}
 
 /* The frame and the modal coordinates of a reference-layout state y = [z, z', ...] at time t. */
 void fb_state_split(const fb_model *m, double t, const double *y, fb_frame *f, const double **q, const double **qd);
@@ -182,8 +198,10 @@ typedef struct {
 void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
                       int flat, fb_surface_point *out);
 void fb_centre_point(const fb_model *m, double x, fb_surface_point *out);
+double fb_nearest_rate(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
+                       double s, double sd, double x, int end, double *doff);
 double fb_anywhere_gamma(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
-                         double s, double sd, int flat, double x, double gamma);
+                         double s, double sd, int flat, double x, double gamma, const double *offsets, double *tgamma);
 void fb_anywhere_bound(const fb_model *m, const double *q, double *env);
 double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd);
 double fb_law_potential(const double *p, double d);

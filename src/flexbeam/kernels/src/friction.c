@@ -78,11 +78,12 @@ double fb_slip_coefficient(const fb_contacts *c, int k, double vt) {
     return vt > 0.0 ? s : (vt < 0.0 ? -s : 0.0);
 }
 
-/* sign(v_t) times v_t at the state (eta, v) at the fraction x of the step (> 0 while the pair slips its way). */
+/* sign(v_t) of the slip (sdir) times v_t at the state (eta, v) at the fraction x of the step (> 0 while the pair
+ * slips its way). */
 static double slip_state(const fb_dense *d, double x, const double *eta, const double *v) {
     double vt;
     fb_tangent_at(d->ph, d->pair, d->t0 + x * d->h, eta, v, &vt);
-    return d->ph->c.slip[d->pair] < 0.0 ? vt : -vt;
+    return d->ph->c.sdir[d->pair] > 0.0 ? vt : -vt;
 }
 
 /* slip_state at the fraction x of the step, by the step's dense output. */
@@ -187,7 +188,7 @@ static double slip_stop(const fb_dense *d, const fb_work *w, int *kind) {
     const fb_phase *ph = d->ph;
     int k = d->pair;
     *kind = FB_EVENT_STOP;
-    double sg = ph->c.slip[k] < 0.0 ? 1.0 : -1.0, vt, lo, hi;
+    double sg = ph->c.sdir[k] > 0.0 ? 1.0 : -1.0, vt, lo, hi;
     fb_tangent_at(ph, k, d->t0, d->eta0, d->v0, &vt);
     lo = hi = sg * vt;
     for (int j = 0; j <= FB_P; j++) {
@@ -254,7 +255,7 @@ double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *k
             return xp;
         }
     }
-    if (ph->c.slip[k] != 0.0 && (events & EV_STOP)) {
+    if (ph->c.sdir[k] != 0.0 && (events & EV_STOP)) { /* whatever mu_k: a pair with mu_k = 0 < mu_s sticks too */
         double xs = slip_stop(d, w, kind);
         if (xp < xs) *kind = FB_EVENT_PAINLEVE;
         return fmin(xs, xp);

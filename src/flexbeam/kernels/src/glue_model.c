@@ -121,13 +121,14 @@ fail:
     return NULL;
 }
 
-/* tangent(model, pair, t, y, J, Jt) -> (delta, rate, slip velocity, nx, ny); J and Jt (nfull [+ 1 with a support]):
- * the normal and tangential Jacobians of the pair's contact point (fb_pair_tangent) */
+/* tangent(model, pair, t, y, J, Jt[, acc]) -> (delta, rate, slip velocity, nx, ny, slip rate); J and Jt (nfull [+ 1
+ * with a support]): the normal and tangential Jacobians of the pair's contact point (fb_pair_tangent); with acc the
+ * slip velocity's rate at z'' = 0 (gamma_t; else 0) */
 PyObject *py_tangent(PyObject *self, PyObject *args) {
     PyObject *om, *oy, *oJ, *oJt;
-    int pair;
+    int pair, acc = 0;
     double t;
-    if (!PyArg_ParseTuple(args, "OidOOO", &om, &pair, &t, &oy, &oJ, &oJt)) return NULL;
+    if (!PyArg_ParseTuple(args, "OidOOO|i", &om, &pair, &t, &oy, &oJ, &oJt, &acc)) return NULL;
     buf_t b[4];
     memset(b, 0, sizeof b);
     fb_model m;
@@ -146,14 +147,14 @@ PyObject *py_tangent(PyObject *self, PyObject *args) {
     fb_state_split(&m, t, y, &fr, &q, &qd);
     int nb = 2 * fb_nz(&m);
     double s = compliant ? y[nb] : 0.0, sd = compliant ? y[nb + 1] : 0.0;
-    fb_gap g = fb_pair_tangent(&m, pair, &fr, q, qd, s, sd, 0, J, Jt, &vt);
+    fb_gap g = fb_pair_tangent(&m, pair, &fr, q, qd, s, sd, acc != 0, J, Jt, &vt);
     if (compliant) {
         const fb_obstacle *o = &m.obstacles[m.pairs[pair].obstacle];
         J[N] = g.Js;
         Jt[N] = o->ms > 0.0 ? -(-g.ny * o->ux + g.nx * o->uy) : 0.0;
     }
     release(b, 4);
-    return Py_BuildValue("ddddd", g.delta, g.rate, vt, g.nx, g.ny);
+    return Py_BuildValue("dddddd", g.delta, g.rate, vt, g.nx, g.ny, g.tgamma);
 fail:
     release(b, 4);
     return NULL;

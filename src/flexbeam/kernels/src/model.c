@@ -269,13 +269,15 @@ fb_gap fb_gap_state(const fb_obstacle *o, const fb_frame *f, const fb_kin *k, co
 /* The gap state of contact pair ``pair`` with the frame f and (q, q'), the support at (s, s') (used only if the
  * pair's obstacle is the compliant obstacle 0), and J = d delta / d[rigid, q] (nfull entries; NULL: not wanted). */
 /* The kinematics of pair pr's contact point (the surface point nearest the obstacle now for an anywhere pair, as a
- * material point: envelope theorem) into k and dr; returns its material coordinate. */
+ * material point: envelope theorem, its offsets from the centre line in ``offsets`` if not NULL) into k and dr;
+ * returns its material coordinate. */
 static double pair_point(const fb_model *m, const fb_pair *pr, const fb_obstacle *o, const fb_frame *f,
-                         const double *q, const double *qd, double s, fb_kin *k, double *dr) {
+                         const double *q, const double *qd, double s, fb_kin *k, double *dr, double *offsets) {
     if (pr->anywhere) {
         fb_surface_point sp;
         fb_nearest_point(m, o, f, q, s, pr->anywhere == 2, &sp);
         fb_point_kinematics(m, &sp.P, f, q, qd, k, dr);
+        if (offsets) offsets[0] = sp.P.offset, offsets[1] = sp.P.offset_t;
         return sp.x;
     }
     const fb_point *P = &m->points[pr->point];
@@ -290,16 +292,18 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double 
     double dr[2 * MAXZ];
     fb_kin k = {.want_acc = want_acc};
     if (o->ms <= 0.0) s = sd = 0.0;
-    double x = pair_point(m, pr, o, f, q, qd, s, &k, J ? dr : NULL);
+    double x = pair_point(m, pr, o, f, q, qd, s, &k, J ? dr : NULL, NULL);
     fb_gap g = fb_gap_state(o, f, &k, J ? dr : NULL, fb_nfull(m), s, sd, J);
     g.x = x;
-    if (pr->anywhere && want_acc) g.gamma = fb_anywhere_gamma(m, o, f, q, qd, s, sd, pr->anywhere == 2, x, g.gamma);
+    if (pr->anywhere && want_acc)
+        g.gamma = fb_anywhere_gamma(m, o, f, q, qd, s, sd, pr->anywhere == 2, x, g.gamma, NULL, NULL);
     return g;
 }
 
 /* fb_pair_gap with J, and along the contact's tangent t = (-n_y, n_x) (the normal turned by +90 degrees) the
  * Jacobian Jt = t . dr/dz (nfull entries) and the slip velocity *vt = t . (v - the obstacle's velocity): Coulomb
- * friction's kinematics (flexbeam.methods.friction). */
+ * friction's kinematics (flexbeam.methods.friction).  With want_acc, tgamma = v_t' at z'' = 0: the material point's,
+ * and for an anywhere pair plus the contact point's motion along the beam (anywhere_gamma.c). */
 fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                        double sd, int want_acc, double *J, double *Jt, double *vt) {
     const fb_pair *pr = &m->pairs[pair];
@@ -308,14 +312,13 @@ fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const dou
     fb_kin k = {.want_acc = want_acc};
     if (o->ms <= 0.0) s = sd = 0.0;
     int N = fb_nfull(m);
-    double x = pair_point(m, pr, o, f, q, qd, s, &k, dr);
+    double offsets[2];
+    double x = pair_point(m, pr, o, f, q, qd, s, &k, dr, offsets);
     fb_gap g = fb_gap_state(o, f, &k, dr, N, s, sd, J);
     g.x = x;
-    if (pr->anywhere && want_acc) g.gamma = fb_anywhere_gamma(m, o, f, q, qd, s, sd, pr->anywhere == 2, x, g.gamma);
-    double tx = -g.ny, ty = g.nx, vx = k.v[0] - sd * o->ux, vy = k.v[1] - sd * o->uy;
-    if (o->ground) vx += f->vO[0], vy += f->vO[1]; /* relative to an obstacle fixed to the ground (fb_gap_state) */
+    double tx = -g.ny, ty = g.nx, vx, vy; /* relative to the obstacle (fixed to the ground: fb_gap_state) */
     for (int i = 0; i < N; i++) Jt[i] = tx * dr[i] + ty * dr[N + i];
-    *vt = tx * vx + ty * vy;
+    *vt = fb_slip_velocity(o, f, &k, &g, sd, &vx, &vy);
     if (want_acc) { /* v_t' at z'' = 0: t . a0 (+ a_O), and on a sphere t' . v, t' = (-n_y', n_x'),
                      * n' = (v - v_n n) / |r - c| */
         double ax = k.a0[0], ay = k.a0[1];
@@ -326,6 +329,8 @@ fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const dou
             g.tgamma += -nyd * vx + nxd * vy;
         }
     }
+    if (pr->anywhere && want_acc)
+        g.gamma = fb_anywhere_gamma(m, o, f, q, qd, s, sd, pr->anywhere == 2, x, g.gamma, offsets, &g.tgamma);
     return g;
 }
 

@@ -201,6 +201,81 @@ void fb_centre_point(const fb_model *m, double x, fb_surface_point *out) {
     out->P.offset = out->P.offset_t = 0.0;
 }
 
+/* The unit direction from the centre line's point r to the obstacle c (obstacle_in_body). */
+static void obstacle_direction(int sphere, const double c[2], const double r[2], double dir[2]) {
+    if (sphere) {
+        double ex = c[0] - r[0], ey = c[1] - r[1], d = sqrt(ex * ex + ey * ey);
+        dir[0] = d > 0.0 ? ex / d : 0.0, dir[1] = d > 0.0 ? ey / d : -1.0;
+    } else {
+        dir[0] = -c[0], dir[1] = -c[1];
+    }
+}
+
+/* The surface point's offsets off = [-c u . n, c u . t] along the normal and tangent of the section at angle ang (u =
+ * dir, c the surface offset). */
+static void section_offsets(double cs, const double dir[2], double ang, double off[2]) {
+    double sa, ca;
+    fb_sincos(ang, &sa, &ca);
+    off[1] = cs * (dir[0] * ca + dir[1] * sa);  /* c u . t */
+    off[0] = -cs * (-dir[0] * sa + dir[1] * ca); /* -c u . n */
+}
+
+/* The obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction), into
+ * c; returns whether it is a sphere. */
+static int obstacle_in_body(const fb_model *m, const fb_obstacle *o, const fb_frame *f, double s, double c[2]) {
+    double p[2] = {o->cx + s * o->ux, o->cy + s * o->uy}, nrm[2] = {o->nx, o->ny};
+    if (o->ground) p[0] -= f->rO[0], p[1] -= f->rO[1]; /* fixed to the ground: at C - r_O in the base frame */
+    int sphere = o->kind == FB_SPHERE;
+    fb_joint(m)->to_body(m, f, sphere ? p : nrm, !sphere, c);
+    return sphere;
+}
+
+/* The search's line at q + e q' and the obstacle in the body frame with the frame advanced by e (theta', R', v_O)
+ * and its support (s'), into ln (its station arrays in st, 6 M doubles) and c; returns whether it is a sphere. */
+static int advanced(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
+                    double s, double sd, double e, double *qe, double *st, line_t *ln, double c[2]) {
+    int n = fb_nb(m), na = m->na, M = m->nst;
+    fb_frame g = *f;
+    g.th += e * f->thd, g.R[0] += e * f->Rd[0], g.R[1] += e * f->Rd[1];
+    g.rO[0] += e * f->vO[0], g.rO[1] += e * f->vO[1];
+    for (int k = 0; k < n + na; k++) qe[k] = q[k] + e * qd[k];
+    double *w = st, *w1 = st + M, *w2 = st + 2 * M, *u = st + 3 * M, *sx = st + 4 * M, *sx1 = st + 5 * M;
+    *ln = (line_t){m, qe, n, M, m->hub_radius, m->st_x[M - 1] / (M - 1), w, w1, w2, u, na ? sx : NULL, na ? sx1 : NULL};
+    for (int j = 0; j < 6 * M; j++) st[j] = NAN;
+    return obstacle_in_body(m, o, &g, s + e * sd, c);
+}
+
+/* The rate x*' of the search's minimiser x (an interior root of objective_slope's f(x; q, C)): -f_t / f_x, f_t the
+ * rate of f at fixed x as q moves at q' and the obstacle in the body frame with the frame and its support; and the
+ * rate of the surface point's offsets doff (the point of the section facing the obstacle turns against the section
+ * where the centre line's tangent is not the section's: a relative angle ~ w'^3 / 6 - w' s'; on an end cap (``end``:
+ * x* stays there, x*' = 0) the point turns around the cap).  Central differences
+ * over -+ EPS_T (f and the offsets are smooth in q and the frame: truncation EPS_T^2 f''' / 6, round-off
+ * eps |f| / EPS_T).  The search's own minimiser and offsets, so that the slip velocity taken there has these rates
+ * (anywhere_gamma.c). */
+#define EPS_T 1e-6 /* [s] */
+double fb_nearest_rate(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
+                       double s, double sd, double x, int end, double *doff) {
+    int M = m->nst;
+    double st[6 * M], qe[m->n], fe[2], fx = 0.0, c[2], df, r[2], r1[2], r2[2], dir[2], off[2][2];
+    line_t ln;
+    for (int side = 0; side < 2 && !end; side++) {
+        int sphere = advanced(m, o, f, q, qd, s, sd, side ? EPS_T : -EPS_T, qe, st, &ln, c);
+        fe[side] = objective_slope(&ln, sphere, c, x, &df);
+        fx += 0.5 * df;
+    }
+    double xd = !end && fx != 0.0 ? -(fe[1] - fe[0]) / (2.0 * EPS_T) / fx : 0.0; /* an end's x* stays */
+    for (int side = 0; side < 2; side++) {
+        double e = side ? EPS_T : -EPS_T;
+        int sphere = advanced(m, o, f, q, qd, s, sd, e, qe, st, &ln, c);
+        centre_line(&ln, x + e * xd, r, r1, r2);
+        obstacle_direction(sphere, c, r, dir);
+        section_offsets(m->surface, dir, r1[1], off[side]); /* the section's angle: the slope Psi' q */
+    }
+    for (int i = 0; i < 2; i++) doff[i] = (off[1][i] - off[0][i]) / (2.0 * EPS_T);
+    return xd;
+}
+
 void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, double s,
                       int flat, fb_surface_point *out) {
     int n = fb_nb(m), na = m->na, M = m->nst;
@@ -209,15 +284,8 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u, na ? sx : NULL, na ? sx1 : NULL};
     for (int j = 0; j < M; j++) w[j] = w1[j] = w2[j] = u[j] = NAN;
     for (int j = 0; na && j < M; j++) sx[j] = sx1[j] = NAN;
-    /* the obstacle in the body frame: a sphere's centre, or a plane's outward normal (the objective's direction) */
-    double p[2] = {o->cx + s * o->ux, o->cy + s * o->uy}, nrm[2] = {o->nx, o->ny}, c[2];
-    if (o->ground) p[0] -= f->rO[0], p[1] -= f->rO[1]; /* fixed to the ground: at C - r_O in the base frame */
-    int sphere = o->kind == FB_SPHERE;
-    if (sphere) {
-        fb_joint(m)->to_body(m, f, p, 0, c);
-    } else {
-        fb_joint(m)->to_body(m, f, nrm, 1, c);
-    }
+    double c[2];
+    int sphere = obstacle_in_body(m, o, f, s, c);
     int best = 0;
     double best_val = INFINITY;
     if (sphere) {
@@ -256,20 +324,16 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     double x = minimise(&ln, sphere, c, a, b);
     material_shapes(&ln, x, out);
     /* the direction from the centre line to the obstacle, and the offsets along the section's normal and tangent */
-    double r[2], r1[2], r2[2], dir[2];
+    double r[2], r1[2], r2[2], dir[2], off[2];
     centre_line(&ln, x, r, r1, r2);
-    if (sphere) {
-        double ex = c[0] - r[0], ey = c[1] - r[1], d = sqrt(ex * ex + ey * ey);
-        dir[0] = d > 0.0 ? ex / d : 0.0, dir[1] = d > 0.0 ? ey / d : -1.0;
-    } else {
-        dir[0] = -c[0], dir[1] = -c[1];
-    }
+    obstacle_direction(sphere, c, r, dir);
     double ang = dot(out->dphi, q, n), sa, ca, cs = m->surface;
     fb_sincos(ang, &sa, &ca);
+    section_offsets(cs, dir, ang, off);
     out->x = x;
     out->P.base = ln.rh + x;
-    out->P.offset_t = cs * (dir[0] * ca + dir[1] * sa);  /* c u . t */
-    out->P.offset = -cs * (-dir[0] * sa + dir[1] * ca);  /* -c u . n */
+    out->P.offset_t = off[1];
+    out->P.offset = off[0];
     if (flat && (x == m->st_x[0] || x == L)) { /* an end face: its point nearest the obstacle, along the section */
         double across = -dir[0] * sa + dir[1] * ca, t; /* u . n */
         if (sphere) {

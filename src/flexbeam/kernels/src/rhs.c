@@ -74,10 +74,6 @@ static double assemble(rhs_eval *e, const fb_model *m, const fb_contacts *c, dou
     return tau;
 }
 
-/* Does constrained pair k carry Coulomb friction (it slips, sticks, or is under the regularised law)? */
-static int rough(const fb_contacts *c, int k) {
-    return c->friction && (c->slip[k] != 0.0 || c->stick[k] || c->regv[k] > 0.0);
-}
 
 /* The pairs in contact: their gaps and Jacobians; the law force of each FB_MODE_FORCE pair acts as J_k^T F_k (and
  * Js_k F_k on the support), its damping dissipates; the FB_MODE_CONSTRAINT pairs are listed for the solve. */
@@ -89,7 +85,7 @@ static void pair_forces(rhs_eval *e) {
     for (int k = 0; k < e->m->npairs; k++) {
         e->F[k] = 0.0;
         if (c->mode[k] == FB_MODE_NONE) continue;
-        if (c->mode[k] == FB_MODE_CONSTRAINT && rough(c, k))
+        if (c->mode[k] == FB_MODE_CONSTRAINT && fb_rough(c, k))
             e->gp[k] = fb_pair_tangent(e->m, k, &e->fr, e->q, e->qd, e->s, e->sd, 1, e->J[k], e->Jt[k], &e->vt[k]);
         else
             e->gp[k] = fb_pair_gap(e->m, k, &e->fr, e->q, e->qd, e->s, e->sd, 1, e->J[k]);
@@ -115,7 +111,7 @@ static int rough_rows(rhs_eval *e, fb_row *rows) {
     for (int ia = 0; ia < e->ncon; ia++) {
         int k = e->con[ia];
         e->Ft[k] = 0.0;
-        if (!rough(c, k)) continue;
+        if (!fb_rough(c, k)) continue;
         const fb_gap *g = &e->gp[k];
         double sigma = fb_slip_coefficient(c, k, e->vt[k]);
         const fb_obstacle *o = &e->m->obstacles[e->m->pairs[k].obstacle];
@@ -135,7 +131,7 @@ static int rough_rows(rhs_eval *e, fb_row *rows) {
 static void rough_dissipation(rhs_eval *e) {
     for (int ia = 0; ia < e->ncon; ia++) {
         int k = e->con[ia];
-        if (rough(e->c, k)) e->diss -= (fb_slip_coefficient(e->c, k, e->vt[k]) * e->F[k] + e->Ft[k]) * e->vt[k];
+        if (fb_rough(e->c, k)) e->diss -= (fb_slip_coefficient(e->c, k, e->vt[k]) * e->F[k] + e->Ft[k]) * e->vt[k];
     }
 }
 
