@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 import flexbeam as fb
+from flexbeam.methods import coulomb
 
 VT_NOISE = 1e-9  # [m/s] friction.c's VT_NOISE
 ROUNDOFF = 1e-12  # [m/s] the slip velocity's round-off (1e-16 of the tip's speeds, times 1e4 for the modal sums)
@@ -41,13 +42,13 @@ def test_a_slip_keeps_its_direction_and_stops_at_zero_slip_velocity():
         rows = seg.phase.friction
         if rows is None or seg.t1 <= seg.t0:
             continue
-        for pair, (sigma, stick, _, v_rest) in enumerate(rows):
-            if sigma == 0.0 or stick != 0.0:
+        for pair, row in enumerate(rows):
+            if not coulomb.slipping(row):
                 continue
             slips += 1
-            back = max(VT_NOISE, v_rest) + ROUNDOFF
+            back = max(VT_NOISE, row[3]) + ROUNDOFF
             times = np.linspace(seg.t0, seg.t1, 66)[1:-1]
-            along = [-np.sign(sigma) * slip_velocity(system, t, y, pair) for t, y in zip(times, seg.states(times))]
+            along = [row[4] * slip_velocity(system, t, y, pair) for t, y in zip(times, seg.states(times))]
             assert min(along) >= -back, (seg.t0, seg.t1, min(along))
             after = next((s for s in segments[i + 1 :] if s.phase.friction is not None), None)
             if after is not None and after.phase.friction[pair, 1] != 0.0:  # the slip stopped: the pair sticks
