@@ -36,6 +36,10 @@ _ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED = 
 _INFO_T0, _INFO_REJECT = 5, 6
 _REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
 _INFO_SIZE = _INFO_REJECT + len(_REJECT_CAUSES)
+#: EventKind by the kernel's code (a tuple look-up: the enum's call costs microseconds)
+_EVENT_KINDS = (None, *EventKind)
+#: the event bits of a phase's events tuple, filled as met
+_EVENT_MASKS: dict[tuple, int] = {}
 _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4, EventKind.STOP: 8,
                EventKind.UNSTICK_PLUS: 16, EventKind.UNSTICK_MINUS: 32, EventKind.PAINLEVE: 64}  # fmt: skip
 #: the largest block of step records the kernel fills in one call (the blocks grow from 64 by doubling); a stepper
@@ -157,17 +161,36 @@ class ModalStepper:
 
     # state conversion between the reference layout [z, z', (s, s'), E_d, W] and modal (eta, v)
     def to_modal(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        N = self.basis.N
+        eta, v = np.empty(N), np.empty(N)
+        self._put_modal(y, eta, v)
+        return eta, v
+
+    def _put_modal(self, y: np.ndarray, eta: np.ndarray, v: np.ndarray) -> None:
+        """Write the modal coordinates and velocities (eta, v) of state ``y`` into the arrays ``eta``, ``v``."""
         nz, N = self.system.nz, self.basis.N
+        if self.to_m is not None and N == nz:  # a diagonal basis (the system frame): no matrix product
+            np.multiply(self.to_m, y[:nz], out=eta)
+            np.multiply(self.to_m, y[nz : 2 * nz], out=v)
+            return
         z, zd = np.empty(N), np.empty(N)
         z[:nz], zd[:nz] = y[:nz], y[nz : 2 * nz]
         if N > nz:
             z[nz], zd[nz] = y[2 * nz], y[2 * nz + 1]
-        if self.to_m is not None:  # a diagonal basis (the system frame): no matrix product
-            return self.to_m * z, self.to_m * zd
-        return nm.matmul(self.basis.toM, z), nm.matmul(self.basis.toM, zd)
+        if self.to_m is not None:
+            np.multiply(self.to_m, z, out=eta)
+            np.multiply(self.to_m, zd, out=v)
+        else:
+            eta[:], v[:] = nm.matmul(self.basis.toM, z), nm.matmul(self.basis.toM, zd)
 
     def from_modal(self, eta: np.ndarray, v: np.ndarray, Ed: float, W: float) -> np.ndarray:
         nz, N = self.system.nz, self.basis.N
+        if self.psi is not None and N == nz:  # a diagonal basis without a support's mode: straight into y
+            y = np.empty(self.system.size)
+            np.multiply(self.psi, eta, out=y[:nz])
+            np.multiply(self.psi, v, out=y[nz : 2 * nz])
+            y[-2], y[-1] = Ed, W
+            return y
         if self.psi is not None:
             z, zd = self.psi * eta, self.psi * v
         else:
@@ -181,8 +204,8 @@ class ModalStepper:
 
     def advance(self, phase: Phase, t: float, y: np.ndarray, t_end: float) -> PhaseRun:
         N = self.basis.N
-        eta, v = self.to_modal(y)
         state = np.zeros(self.state_size)
+        self._put_modal(y, state[5 : 5 + N], state[5 + N : 5 + 2 * N])
         # a contact starts with a short step (the force grows as d^n from zero: not polynomial at the onset),
         # free flight where the last phase left off; the controller grows either by up to 5x per step
         # (a friction event -- the same pairs in contact, the friction switched -- keeps the step: no new contact)
@@ -190,7 +213,6 @@ class ModalStepper:
         h = min(self.h, FIRST_STEP) if phase.in_contact and not switched else self.h
         self._modes = phase.modes
         state[:5] = t, h, y[-2], y[-1], 0.0
-        state[5 : 5 + N], state[5 + N : 5 + 2 * N] = eta, v
         # the phase's step bound holds up to phase.max_step_until (an impact's force pulse); the rest of the phase
         # continues from the same state buffer (its nodal forcing the guess) under the stepper's own bound alone
         until = phase.max_step_until
@@ -198,14 +220,12 @@ class ModalStepper:
         if legs[0][1] < t_end:
             legs.append((self.max_step, t_end))
         chunks: list[np.ndarray] = []
-        handed = _Handed(float(t), np.asarray(y, float).copy())
+        handed = _Handed(float(t), np.array(y, float))
         steps, nfev = 0, 0
+        info = np.empty(_INFO_SIZE)
         for hmax, leg_end in legs:
-            ctrl = pack_controls(
-                rtol=self.rtol, atol=self.atol, max_step=hmax, omega_rigid=self.omega_rigid,
-                event_bits=sum(_EVENT_BITS[e] for e in phase.events), contacts=phase.buffer,
-            )  # fmt: skip
-            info = np.zeros(_INFO_SIZE)
+            ctrl = self._controls(phase, hmax)
+            info.fill(0.0)
             info[_INFO_T0] = state[0]  # the kernel sets it only at the phase's start (its effort budget)
             code = self._run(ctrl, state, leg_end, info, chunks, handed)
             steps, nfev = steps + int(info[1]), nfev + int(info[3])
@@ -214,8 +234,10 @@ class ModalStepper:
         t1 = float(state[0])
         self.h = float(state[1])
         y1 = self.from_modal(state[5 : 5 + N], state[5 + N : 5 + 2 * N], state[2], state[3])
-        dense = ModalDense(self, np.ascontiguousarray(np.concatenate(chunks))) if chunks else None
-        event = EventKind(int(info[0])) if code == _ADV_EVENT else None
+        dense = None
+        if chunks:  # (one block, the common case: its rows copied, as the concatenation of several blocks would)
+            dense = ModalDense(self, chunks[0].copy() if len(chunks) == 1 else np.concatenate(chunks))
+        event = _EVENT_KINDS[int(info[0])] if code == _ADV_EVENT else None
         failure = ""
         if code == _ADV_UNDERFLOW:
             failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)" + phase.underflow_advice
@@ -227,6 +249,14 @@ class ModalStepper:
         if handed.start is not None:
             run.t0, run.y0 = handed.start
         return run
+
+    def _controls(self, phase: Phase, hmax: float) -> np.ndarray:
+        """The control buffer of ``phase`` under the step bound ``hmax`` (:func:`~flexbeam.kernels.pack_controls`)."""
+        bits = _EVENT_MASKS.get(phase.events)
+        if bits is None:
+            bits = _EVENT_MASKS[phase.events] = sum(_EVENT_BITS[e] for e in phase.events)
+        return pack_controls(rtol=self.rtol, atol=self.atol, max_step=hmax, omega_rigid=self.omega_rigid,
+                             event_bits=bits, contacts=phase.buffer)  # fmt: skip
 
     def _run(
         self, ctrl: np.ndarray, state: np.ndarray, t_end: float, info: np.ndarray, chunks: list, handed: _Handed

@@ -99,7 +99,7 @@ class Phase:
     @property
     def in_contact(self) -> bool:
         """Is some pair in contact during this phase (force law, constraint, or resting)?"""
-        return self.mode != ContactMode.NONE
+        return any(self.modes)  # (NONE is 0: as mode != NONE, without comparing the enums)
 
     @property
     def contact(self) -> ContactEvent | None:

@@ -66,13 +66,20 @@ class ImpactMethod:
     def __post_init__(self) -> None:
         w = self.case.solver.baumgarte_frequency
         self.baumgarte = (w, w)
+        self._free: Phase | None = None  # the free phase, built once (a Phase is immutable)
+        #: the contacts buffer :meth:`held_set` built last: (modes, parameters, buffer); the phase of those modes and
+        #: that parameters array (never changed in place: a new phase copies it) takes it for its own
+        self._held_buffer: tuple = ((), None, None)
 
     # phases -----------------------------------------------------------------
     def free_phase(self) -> Phase:
         """Unimpact motion until a gap closes."""
+        if self._free is not None:
+            return self._free
         S = self.system.pairs
-        return Phase("free", (ContactMode.NONE,) * S, ALL_EVENTS, self.case.sample_steps()[0], np.zeros((S, 4)),
-                     (None,) * S, self.baumgarte)  # fmt: skip
+        self._free = Phase("free", (ContactMode.NONE,) * S, ALL_EVENTS, self.case.sample_steps()[0],
+                           np.zeros((S, 4)), (None,) * S, self.baumgarte)  # fmt: skip
+        return self._free
 
     def phase(self, modes, parameters: np.ndarray, records, friction: np.ndarray | None = None) -> Phase:
         """The phase with the pairs in ``modes`` (their law ``parameters``, their contact ``records``; ``friction``:
@@ -87,8 +94,8 @@ class ImpactMethod:
         resting one, whose force follows the beam's slow motion and the ringing of its modes, and the error
         control resolves it without the bound.
         """
-        modes = tuple(ContactMode(m) for m in modes)
-        if all(m == ContactMode.NONE for m in modes):
+        modes = tuple(m if type(m) is ContactMode else ContactMode(m) for m in modes)  # (the enum's call: ~1 us)
+        if not any(modes):
             return self.free_phase()
         force = any(m == ContactMode.FORCE for m in modes)
         name = "contact" if force else self.held_name
@@ -101,8 +108,12 @@ class ImpactMethod:
         events = ALL_EVENTS + FRICTION_EVENTS if rough else ALL_EVENTS
         if rough and any(m == ContactMode.CONSTRAINT and f[0] != 0.0 for m, f in zip(modes, friction)):
             events += PAINLEVE_EVENTS  # a held pair slips (CCM): its a = W_nn + sigma W_nt is watched
-        return Phase(name, modes, events, sample, np.asarray(parameters, float), tuple(records), self.baumgarte,
-                     min(steps, default=math.inf), until, np.array(friction, float) if rough else None)  # fmt: skip
+        out = Phase(name, modes, events, sample, np.asarray(parameters, float), tuple(records), self.baumgarte,
+                    min(steps, default=math.inf), until, np.array(friction, float) if rough else None)  # fmt: skip
+        held_modes, held_params, buffer = self._held_buffer
+        if not rough and out.parameters is held_params and modes == held_modes:
+            out.__dict__["buffer"] = buffer  # Phase.buffer (a cached property): the same packing, built once
+        return out
 
     # events -----------------------------------------------------------------
     def gap_event(self, t: float, y: np.ndarray, pair: int = 0) -> tuple[float, float]:
@@ -154,7 +165,9 @@ class ImpactMethod:
         while held:
             modes = [ContactMode.CONSTRAINT if k in held else (m if m == ContactMode.FORCE else ContactMode.NONE)
                      for k, m in enumerate(base)]  # fmt: skip
-            F = self.system.rhs(t, y, self.system.contacts(modes, params, *self.baumgarte))[1]
+            buffer = self.system.contacts(modes, params, *self.baumgarte)
+            self._held_buffer = (tuple(modes), params, buffer)
+            F = self.system.rhs(t, y, buffer)[1]
             worst = min(held, key=lambda k: F[k])
             if F[worst] >= 0.0:
                 return held
@@ -186,15 +199,18 @@ class ImpactMethod:
         return self.held_set(t, y, [pair]) == [pair]
 
     # the contact log -----------------------------------------------------------
-    def new_contact(self, t: float, y: np.ndarray, pair: int = 0) -> ContactEvent:
-        """Log a contact onset of a pair, stopping the run past ``solver.max_contacts``."""
+    def new_contact(self, t: float, y: np.ndarray, pair: int = 0, velocity_before: float | None = None) -> ContactEvent:
+        """Log a contact onset of a pair (its approach speed ``velocity_before``, default: its delta' at y), stopping
+        the run past ``solver.max_contacts``."""
         if len(self.contacts) >= self.case.solver.max_contacts:
             raise Stop(
                 "max-contacts",
                 f"stopped at t = {t:.9g} s after {len(self.contacts)} contacts "
                 f"(solver.max_contacts); the contacts accumulate (Zeno-like)",
             )
-        ev = ContactEvent(index=len(self.contacts), onset=t, velocity_before=self.gap_event(t, y, pair)[1], pair=pair)
+        if velocity_before is None:
+            velocity_before = self.gap_event(t, y, pair)[1]
+        ev = ContactEvent(index=len(self.contacts), onset=t, velocity_before=velocity_before, pair=pair)
         self.contacts.append(ev)
         return ev
 
@@ -232,8 +248,7 @@ class ImpactMethod:
         when the record is completed)."""
         out = []
         for i, k in enumerate(pairs):
-            ev = self.new_contact(t, jump.y, k)
-            ev.velocity_before = float(jump.velocities_before[i])
+            ev = self.new_contact(t, jump.y, k, float(jump.velocities_before[i]))
             ev.impulse = ev.jump_impulse = float(jump.impulses[i])
             if jump.tangential is not None:
                 ev.tangential_impulse = float(jump.tangential[i])

@@ -152,7 +152,7 @@ def _apply(system: BeamSystem, t: float, y: np.ndarray, J: np.ndarray, zd: np.nd
     zd_plus[free] += nm.matmul(MinvJ, P)
     y_plus = system.with_velocities(t, y, zd_plus)
     v_plus = nm.matmul(J, zd_plus) + drift
-    T_plus = system.energies(t, y_plus)["kinetic"]
+    T_plus = system.kinetic(t, y_plus)
     work_contact = 0.5 * nm.dot(P, v_minus + v_plus)
     y_plus[-2] += -work_contact
     y_plus[-1] += (T_plus - T_minus) - work_contact

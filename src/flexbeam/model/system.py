@@ -174,13 +174,20 @@ class BeamSystem:
 
     def velocities(self, t: float, y: np.ndarray) -> np.ndarray:
         """Generalised velocities over the full coordinates, z' = [theta', q'] (and s' of a compliant support)."""
+        if not self.ngiven and not self.compliant:  # all of them in the state (the joint's own copy, without its call)
+            nz = self.nz
+            return np.array(y[nz : 2 * nz], float)
         zd = self.joint.full_velocities(t, y, self.n)
         return np.append(zd, self.support_state(y)[1]) if self.compliant else zd
 
     def with_velocities(self, t: float, y: np.ndarray, zd: np.ndarray) -> np.ndarray:
         """Copy of y with the generalised velocities ``zd`` (full coordinates [, s']) put in (those the joint gives
         are left out)."""
-        y = self.joint.with_velocities(y, zd, self.n)
+        if not self.ngiven:  # (the joint's copy, without its call)
+            y, nz = y.copy(), self.nz
+            y[nz : 2 * nz] = zd[:nz]
+        else:
+            y = self.joint.with_velocities(y, zd, self.n)
         if self.compliant:
             y[self.support_index + 1] = zd[self.nfull]
         return y
@@ -324,6 +331,10 @@ class BeamSystem:
             "dissipated": float(y[-2]),
             "drive_work": float(y[-1]),
         }
+
+    def kinetic(self, t: float, y: np.ndarray) -> float:
+        """The kinetic energy of :meth:`energies` alone [J]."""
+        return self._kinetic(self._equations(t, y)[2][0], y)
 
     def _kinetic(self, T: float, y: np.ndarray) -> float:
         """The beam's kinetic energy T plus the support's 1/2 m_s s'^2."""
