@@ -9,7 +9,7 @@ d . W d <= sum_i mu_i abs(d_ni) abs((W d)_ti) <= norm(d)^2 norm(diag(mu) W_t)_2,
 
     lambda_min(W) > norm(diag(mu) W_t)_2        (W positive definite, mu_s = mu_k)
 
-makes the solution unique (the argument of Klarbring & Pang, SIAM J. Optim. 8 (1998) 573-592, for small friction).
+makes the solution unique (derived here; the usual argument for small friction).
 With a singular W (fewer coordinates than 2 s rows, e.g. a bar with few modes on many stops) or mu_s > mu_k it is not
 certified, and the caller enumerates every pattern for the least-norm one.
 
