@@ -41,12 +41,15 @@ def _gap(W: np.ndarray, mu: np.ndarray) -> float:
 @st.composite
 def certified_problems(draw):
     """(M, J, zd, e, mu): s = 4..6 pairs, n = 2 s + 1..3 coordinates with masses in [0.1, 10], J's rows random in
-    [-1, 1], mu_i = f_i c lambda_min(W) / norm(W_t)_2 with f_i in [0, 1] and c in [0, 0.95] (certified unique)."""
+    [-1, 1] or the identity's plus up to half of that, mu_i = f_i c lambda_min(W) / norm(W_t)_2 with f_i in [0, 1]
+    and c in [0, 0.95] (certified unique)."""
     s = draw(st.integers(4, 6))
     n = 2 * s + draw(st.integers(1, 3))
     rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
     M = np.diag(rng.uniform(0.1, 10.0, n))
     J = rng.uniform(-1.0, 1.0, (2 * s, n))
+    if draw(st.booleans()):  # nearly uncoupled rows: a larger lambda_min, mu up to ~1, sticks and slips both met
+        J = np.eye(2 * s, n) + draw(st.floats(0.0, 0.5)) * J
     W = J @ np.diag(1.0 / np.diag(M)) @ J.T
     scale = np.linalg.eigvalsh(W)[0] / np.linalg.norm(W[s:, :], 2)
     f = rng.uniform(0.0, 1.0, s) if draw(st.booleans()) else np.ones(s)
