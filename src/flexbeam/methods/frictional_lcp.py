@@ -43,6 +43,15 @@ Stewart-Trinkle LCP is then processable by Lemke's method: Anitescu & Potra, Non
 it is unique for small enough mu.  With a singular W (a rigid rod on two stops, a bar flat on two points) the
 impulses are split by the least norm -- equally between identical pairs -- as :func:`~flexbeam.methods.impulse.
 solve_impact_lcp` does without friction.  The tolerance on the conditions is 1e-10 of the largest (1 + e) abs(v-).
+
+**Many pairs.**  The enumeration costs 4^s pattern solutions (~3 ms for 3 pairs, ~12 s for 8;
+benchmarks/frictional_impacts.py).  For s > :data:`ENUMERATED_PAIRS` pairs with mu_s = mu_k and a positive definite W
+such that lambda_min(W) > norm(diag(mu) W_t)_2 (W_t: the tangential rows of W), the solution is unique
+(:mod:`flexbeam.methods.frictional_search`, De Saxce's bipotential form of the law), so the first consistent
+pattern is it: an active-set walk from the frictionless normal problem's pushing pairs, slipping against their
+approach's tangential velocity, finds it, in ~0.5-2.5 ms for the 8-stop bar; the same pattern, hence the same
+impulses bit for bit, as the enumeration wherever one pattern is consistent.  Otherwise (s <= 3, mu_s > mu_k, a
+singular W -- a bar with fewer than 2 s - 3 modes on s stops -- or larger mu) every pattern is still tried.
 """
 
 from __future__ import annotations
@@ -52,77 +61,24 @@ import itertools
 import numpy as np
 
 from .. import numerics as nm
+from .frictional_modes import (
+    FREE,
+    SEPARATE,
+    SLIP_BACKWARD,
+    SLIP_FORWARD,
+    STICK,
+    clipped,
+    consistent,
+    least_norm_solve,
+    pattern_impulse,
+)
+from .frictional_search import certified_unique, first_consistent
 
-#: the modes of a pair (FREE: a frictionless pair that pushes)
-SEPARATE, STICK, SLIP_FORWARD, SLIP_BACKWARD, FREE = "separate", "stick", "slip+", "slip-", "free"
+__all__ = ["FREE", "SEPARATE", "SLIP_BACKWARD", "SLIP_FORWARD", "STICK", "impulse_work", "least_norm_solve",
+           "solve_frictional_impact"]  # fmt: skip
 
-
-def least_norm_solve(A: np.ndarray, b: np.ndarray, rcond: float = 1e-12) -> np.ndarray:
-    """The least-norm least-squares solution A^+ b of a square (possibly singular, non-symmetric) system.
-
-    The singular triplets come from the symmetric augmented matrix [[0, A], [A^T, 0]], whose eigenpairs are
-    (+-sigma_i, (u_i, +-v_i) / sqrt 2) (Golub & Van Loan, Matrix Computations, 4th ed., Sec. 8.6.1), by the
-    deterministic Jacobi method of :func:`flexbeam.numerics.eigh`: A^+ b = sum over sigma_i > rcond sigma_max of
-    v_i (u_i . b) / sigma_i, with sigma's absolute accuracy eps sigma_max (no squared condition number).
-    """
-    k = A.shape[0]
-    if k == 0:
-        return np.zeros(0)
-    H = np.zeros((2 * k, 2 * k))
-    H[:k, k:], H[k:, :k] = A, A.T
-    lam, V = nm.eigh(H)
-    top = float(np.max(np.abs(lam)))
-    x = np.zeros(k)
-    if top == 0.0:
-        return x
-    for j in np.flatnonzero(lam > rcond * top):
-        u, v = V[:k, j], V[k:, j]
-        x += v * (2.0 * nm.dot(u, b) / lam[j])
-    return x
-
-
-def _pattern_impulse(W: np.ndarray, q: np.ndarray, modes, mu_k: np.ndarray) -> np.ndarray:
-    """The least-norm impulses P (normal rows then tangential) that make a mode pattern's equations hold: xi = q + W P
-    vanishes in the normal row of every pushing pair and the tangential row of a sticking one."""
-    s = len(modes)
-    cols, rows = [], []
-    for i, mode in enumerate(modes):
-        if mode == SEPARATE:
-            continue
-        rows.append(i)
-        if mode == STICK:
-            rows.append(s + i)
-            cols += [np.eye(2 * s)[i], np.eye(2 * s)[s + i]]
-            continue
-        c = np.zeros(2 * s)
-        sign = {SLIP_FORWARD: 1.0, SLIP_BACKWARD: -1.0, FREE: 0.0}[mode]
-        c[i], c[s + i] = 1.0, -sign * mu_k[i]
-        cols.append(c / np.sqrt(1.0 + (sign * mu_k[i]) ** 2))  # unit columns: |u| = |P|, the least norm is P's
-    if not cols:
-        return np.zeros(2 * s)
-    B = np.array(cols).T
-    A = nm.matmul(W[rows, :], B)
-    return nm.matmul(B, least_norm_solve(A, -q[rows]))
-
-
-def _consistent(W: np.ndarray, q: np.ndarray, P: np.ndarray, modes, mu_s: np.ndarray, tol_v: float,
-                tol_p: float) -> bool:  # fmt: skip
-    """Whether the impulses P of a mode pattern satisfy the law's equations and inequalities (module docstring)."""
-    s = len(modes)
-    xi = q + nm.matmul(W, P)
-    for i, mode in enumerate(modes):
-        xn, xt, pn, pt = xi[i], xi[s + i], P[i], P[s + i]
-        if mode == SEPARATE:
-            ok = xn >= -tol_v
-        else:
-            ok = abs(xn) <= tol_v and pn >= -tol_p
-            if mode == STICK:
-                ok = ok and abs(xt) <= tol_v and abs(pt) <= mu_s[i] * max(pn, 0.0) + tol_p
-            elif mode in (SLIP_FORWARD, SLIP_BACKWARD):
-                ok = ok and (xt if mode == SLIP_FORWARD else -xt) >= -tol_v
-        if not ok:
-            return False
-    return True
+#: the most pairs solved by the enumeration of all mode patterns whatever W (bit for bit with the first version)
+ENUMERATED_PAIRS = 3
 
 
 def solve_frictional_impact(W: np.ndarray, v_minus: np.ndarray, e: np.ndarray, mu_s: np.ndarray,
@@ -143,32 +99,26 @@ def solve_frictional_impact(W: np.ndarray, v_minus: np.ndarray, e: np.ndarray, m
     Returns
     -------
     The consistent impulses of least norm, or None when no mode pattern is consistent (see the module docstring for
-    when a solution exists).
+    when a solution exists).  More than :data:`ENUMERATED_PAIRS` pairs whose solution is certified unique
+    (:func:`~flexbeam.methods.frictional_search.certified_unique`) are solved by
+    :func:`~flexbeam.methods.frictional_search.first_consistent`; all others by trying every pattern.
     """
     s = e.size
     q = np.concatenate(((1.0 + e) * v_minus[:s], (1.0 + e) * v_minus[s:]))
     tol_v = 1e-10 * max(float(np.max(np.abs(q), initial=0.0)), 1e-300)
     tol_p = tol_v / max(float(np.max(np.abs(W))), 1e-300)
+    if s > ENUMERATED_PAIRS and certified_unique(W, mu_s, mu_k):
+        found = first_consistent(W, q, mu_s, mu_k, tol_v, tol_p)
+        return None if found is None else clipped(found[0], found[1], mu_s, mu_k)
     choices = [(SEPARATE, STICK, SLIP_FORWARD, SLIP_BACKWARD) if mu_s[i] > 0.0 else (SEPARATE, FREE) for i in range(s)]
     best: np.ndarray | None = None
     for modes in itertools.product(*choices):
-        P = _pattern_impulse(W, q, modes, mu_k)
-        if not _consistent(W, q, P, modes, mu_s, tol_v, tol_p):
+        P = pattern_impulse(W, q, modes, mu_k)
+        if not consistent(W, q, P, modes, mu_s, tol_v, tol_p):
             continue
         if best is None or nm.dot(P, P) < nm.dot(best, best) - 1e-30:
-            best = _clipped(P, modes, mu_s, mu_k)
+            best = clipped(P, modes, mu_s, mu_k)
     return best
-
-
-def _clipped(P: np.ndarray, modes, mu_s: np.ndarray, mu_k: np.ndarray) -> np.ndarray:
-    """P with round-off's negative normal impulses set to 0 and the tangential ones held inside their cones."""
-    s = len(modes)
-    P = P.copy()
-    for i, mode in enumerate(modes):
-        P[i] = max(P[i], 0.0)
-        bound = (mu_s if mode == STICK else mu_k)[i] * P[i]
-        P[s + i] = min(max(P[s + i], -bound), bound)
-    return P
 
 
 def impulse_work(W: np.ndarray, v_minus: np.ndarray, P: np.ndarray) -> float:
