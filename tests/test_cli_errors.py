@@ -86,6 +86,8 @@ SET_CASES = [
     ("hub.inertia=-1", "hub.inertia", "greater than or equal to 0"),
     # the beam's structural damping (issue 27)
     ("beam.kelvin_voigt=-1e-5", "beam.kelvin_voigt", "greater than or equal to 0"),
+    ("beam.kelvin_voigt=1e300", "beam.kelvin_voigt", "less than or equal to 1000"),
+    ("beam.viscous_damping=1e300", "beam.viscous_damping", "less than or equal to 1000000000"),
     ("beam.viscous_damping=-0.1", "beam.viscous_damping", "greater than or equal to 0"),
     ("beam.viscous_damping=inf", "beam.viscous_damping", "finite"),
     ("model.gravity=-9.81", "model.gravity", "greater than or equal to 0"),

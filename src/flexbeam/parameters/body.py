@@ -33,15 +33,15 @@ class Beam(Section):
     area: Positive | None = Field(None, description="cross-section area S [m^2]")
     second_moment: Positive | None = Field(None, description="second moment of area I [m^4]")
     half_depth: NonNegative | None = Field(None, description="distance from the centre line to the contact surface [m]")
-    kelvin_voigt: NonNegative = Field(
+    kelvin_voigt: Bounded(0.0, 1e3) = Field(
         0.0,
         description="Kelvin-Voigt (stiffness-proportional) material damping c [s]: E -> E (1 + c d/dt), modal ratio "
-        "zeta_i = c omega_i / 2",
+        "zeta_i = c omega_i / 2 (at most 1e3 s: a 1 Hz mode's zeta 3e3, far overdamped; c K must stay finite)",
     )
-    viscous_damping: NonNegative = Field(
+    viscous_damping: Bounded(0.0, 1e9) = Field(
         0.0,
         description="viscous damping eta [N s/m^2] per unit length on the deformation velocity relative to the "
-        "beam's frame, modal ratio zeta_i = eta / (2 mu omega_i)",
+        "beam's frame, modal ratio zeta_i = eta / (2 mu omega_i) (at most 1e9 N s/m^2)",
     )
     end_caps: Literal["hemisphere", "flat"] = Field(
         "hemisphere",
