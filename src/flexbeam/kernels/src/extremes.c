@@ -306,13 +306,13 @@ void fb_tip_slack_at(const fb_model *m, const fb_basis *b, const double *records
                      const double *y0, const double *y1, double a, double z, double T, double parts[3]) {
     probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), NULL, t0, t1, y0, y1, FB_COL_TIP, 1.0, NULL,
                  NULL};
-    tip_search *ts = malloc(sizeof *ts);
-    fb_tip_model_init(m, b, &ts->tip);
-    p.tip = &ts->tip;
+    fb_tip_model *tm = malloc(sizeof *tm); /* the tip's model alone: not a pruned search's open set */
+    fb_tip_model_init(m, b, tm);
+    p.tip = tm;
     fb_tip_bracket br;
     tip_bracket(&p, a, z, &br);
     fb_tip_slack_parts(p.tip, &br, T, parts);
-    free(ts);
+    free(tm);
 }
 
 /* For the count - 1 intervals between consecutive ``times`` of a phase, how far the tip's deflection can exceed the
@@ -322,9 +322,9 @@ void fb_tip_slacks(const fb_model *m, const fb_basis *b, const double *records, 
                    const double *y0, const double *y1, const double *times, int count, double *out) {
     probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), NULL, t0, t1, y0, y1, FB_COL_TIP, 1.0, NULL,
                  NULL};
-    tip_search *ts = malloc(sizeof *ts);
-    fb_tip_model_init(m, b, &ts->tip);
-    p.tip = &ts->tip;
+    fb_tip_model *tm = malloc(sizeof *tm); /* the tip's model alone: not a pruned search's open set */
+    fb_tip_model_init(m, b, tm);
+    p.tip = tm;
     int N = b->N, r = 0, cur = -1, joint = -1; /* cur: the step bounded in A..E[1] (its predecessor's in [0]) */
     double th, R, A[2][FB_MAXN], V[2][FB_MAXN], E[2][FB_MAXN], a[FB_MAXN], v[FB_MAXN], e[FB_MAXN];
     fb_tip_bracket own, both; /* the current step's bracket, and its own with its predecessor's */
@@ -356,7 +356,7 @@ void fb_tip_slacks(const fb_model *m, const fb_basis *b, const double *records, 
         }
         out[i] = tz > ta ? fb_tip_slack(p.tip, br, tz - ta) : 0.0;
     }
-    free(ts);
+    free(tm);
 }
 
 /* The contact force (or multiplier) of ``pair`` at ``count`` times of a phase [t0, t1] (exact states y0, y1 at its
