@@ -24,42 +24,14 @@ import numpy as np
 import flexbeam as fb
 from flexbeam.methods import frictional_lcp
 from flexbeam.methods.frictional_search import certified_unique
-from flexbeam.model.system import BeamSystem
-from flexbeam.simulation import initial_state
+from flexbeam.validation import bars
+from flexbeam.validation.bars import start_delassus
 
 
 def bar_on_stops(s: int, modes: int, mu: float, vx: float) -> fb.Case:
     """The steel bar horizontal with G at (0, 0.1 m), s stops (r = 1 cm) touching its lower surface beneath
-    x = (0.05 .. 0.95) L, moving at (vx, -1 m/s), gravity on, friction mu."""
-    Ls, c, yG, r = 0.2, 0.00635, 0.1, 0.01
-    xs = np.linspace(0.05, 0.95, s) * Ls if s > 1 else np.array([0.5 * Ls])
-    stops = [{"kind": "sphere", "centre": [float(x - 0.5 * Ls), yG - c - r], "radius": r,
-              "contact": {"position": float(x)}} for x in xs[1:]]  # fmt: skip
-    return fb.load_case({
-        "name": "rough-bar-on-stops",
-        "beam": {"length": Ls, "density": 7870.0, "youngs_modulus": 200e9, "poisson_ratio": 0.29,
-                 "section": "circle", "radius": c},
-        "joint": {"kind": "free"},
-        "model": {"modes": modes, "gravity": 9.81},
-        "obstacle": {"kind": "sphere", "centre": [float(xs[0] - 0.5 * Ls), yG - c - r], "radius": r},
-        "obstacles": stops,
-        "contact": {"law": "lankarani_nikravesh", "position": float(xs[0]), "stiffness": 1.16e10, "side": "below",
-                    "restitution": 0.5, "anywhere": True, "friction": mu},
-        "initial": {"kind": "state", "position": [0.0, yG], "velocity": [vx, -1.0], "angle": 0.0, "rate": 0.0},
-        "solver": {"t_end": 0.05},
-    })  # fmt: skip
-
-
-def delassus(case: fb.Case) -> tuple[np.ndarray, np.ndarray]:
-    """(W, v-) of all the case's pairs at its start: normal rows, then tangential, as impulse.py builds them."""
-    system = BeamSystem.from_case(case)
-    y, _ = initial_state(system, case)
-    rows = [system.tangent(0.0, y, k) for k in range(len(system.contact.pairs))]
-    J = np.vstack([r[3] for r in rows] + [r[4] for r in rows])
-    M, _ = system.mass_and_kinetic(0.0, y)
-    free = slice(system.ngiven, None)
-    W = J[:, free] @ np.linalg.solve(M[free, free], J[:, free].T)
-    return W, np.array([r[1] for r in rows] + [r[2] for r in rows])
+    x = (0.05 .. 0.95) L, moving at (vx, -1 m/s), gravity on, friction mu (:mod:`flexbeam.validation.bars`)."""
+    return bars.bar_on_stops(bars.evenly_beneath(s), (vx, -1.0), modes=modes, mu=mu, name="rough-bar-on-stops")
 
 
 def timed(W, v, mu, runs: int, enumerate_all: bool) -> tuple[float, np.ndarray]:
@@ -89,7 +61,7 @@ def main() -> None:
     print("|---|---|---|---|---|---|---|")
     for s in range(1, args.max_pairs + 1):
         for vx in (0.5, 0.01):
-            W, v = delassus(bar_on_stops(s, args.modes, args.mu, vx))
+            W, v = start_delassus(bar_on_stops(s, args.modes, args.mu, vx))
             mu = np.full(s, args.mu)
             search = s > frictional_lcp.ENUMERATED_PAIRS and certified_unique(W, mu, mu)
             t1, P1 = timed(W, v, args.mu, args.runs, False)

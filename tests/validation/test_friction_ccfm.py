@@ -56,12 +56,12 @@ from flexbeam.contact.laws import threlfall
 from flexbeam.errors import ModelError
 from flexbeam.integrate.phases import ContactMode
 from flexbeam.model.system import BeamSystem
+from flexbeam.validation import bars
 
 sys.path.insert(0, str(Path(__file__).parent))
 from test_friction_impact import after, rough_bar  # noqa: E402
 
-STEEL = {"length": 0.2, "density": 7870.0, "youngs_modulus": 200e9, "poisson_ratio": 0.29, "section": "circle",
-         "radius": 0.00635}  # fmt: skip
+STEEL = bars.STEEL_BAR
 A, R_STOP, G = 0.3, 0.01, 9.81
 #: the kernel's stick noise: the slip velocity a stick holds to, and a slip starting from rest may run back (m/s)
 VT_NOISE = 1e-9
@@ -70,21 +70,9 @@ VT_NOISE = 1e-9
 def bar_on_stops(mu: float, v0: float, t_end: float, alpha: float = 0.0, mu_s: float | None = None) -> fb.Case:
     """The rigid bar with G at (0, 0.1 m) and its axis at ``alpha``, touching two stops beneath x = L/2 -+ a L, moving
     along its axis at ``v0``; Coulomb friction mu_k = ``mu`` (mu_s = ``mu_s``, default mu)."""
-    L, c, yG = STEEL["length"], STEEL["radius"], 0.1
-    ca, sa, r = math.cos(alpha), math.sin(alpha), c + R_STOP
-    stops = [(s * A * L * ca + r * sa, yG + s * A * L * sa - r * ca) for s in (-1.0, 1.0)]
-    return fb.load_case({
-        "name": "bar-on-stops", "beam": dict(STEEL), "joint": {"kind": "free"}, "model": {"modes": 0, "gravity": G},
-        "obstacle": {"kind": "sphere", "centre": list(stops[0]), "radius": R_STOP},
-        "obstacles": [{"kind": "sphere", "centre": list(stops[1]), "radius": R_STOP,
-                       "contact": {"position": (0.5 + A) * L}}],
-        "contact": {"law": "lankarani_nikravesh", "position": (0.5 - A) * L, "stiffness": 1.16e10, "side": "below",
-                    "restitution": 0.5, "anywhere": True, "friction": mu,
-                    "friction_static": mu if mu_s is None else mu_s},
-        "initial": {"kind": "state", "position": [0.0, yG], "velocity": [v0 * ca, v0 * sa], "angle": alpha,
-                    "rate": 0.0},
-        "solver": {"t_end": t_end},
-    })  # fmt: skip
+    d, v = A * STEEL["length"], (v0 * math.cos(alpha), v0 * math.sin(alpha))
+    mu_s = mu if mu_s is None else mu_s
+    return bars.bar_on_stops([-d, d], v, mu=mu, mu_s=mu_s, angle=alpha, t_end=t_end, stop_radius=R_STOP)
 
 
 def states(sol, times: np.ndarray) -> np.ndarray:

@@ -25,10 +25,9 @@ from hypothesis import strategies as st
 from flexbeam.methods import frictional_lcp
 from flexbeam.methods.frictional_lcp import solve_frictional_impact
 from flexbeam.methods.frictional_search import certified_unique
+from flexbeam.validation.bars import bar_on_stops, evenly_beneath, start_delassus
 
 sys.path.insert(0, str(Path(__file__).parent))
-sys.path.insert(0, str(Path(__file__).parents[2] / "benchmarks"))
-from frictional_impacts import bar_on_stops, delassus  # noqa: E402
 from test_friction_simultaneous import assert_the_law_and_no_gain, stewart_trinkle  # noqa: E402
 
 
@@ -99,8 +98,8 @@ def test_bar_flat_on_eight_stops(vx):
     frictional_impacts.py's case): certified, solved by the search, the law holds with no energy gain (in coordinates
     where M = I: z~ = L^T z', J~ = J L^-T with M = L L^T), and the impulses equal Stewart & Trinkle's LCP solution to
     1e-8 of the largest (the MILP's active set is exact; the rest is round-off and the 1e-10 acceptance)."""
-    case = bar_on_stops(8, modes=16, mu=0.1, vx=vx)
-    W, v_minus = delassus(case)
+    case = bar_on_stops(evenly_beneath(8), (vx, -1.0), modes=16, mu=0.1)
+    W, v_minus = start_delassus(case)
     mu, e = np.full(8, 0.1), 0.5
     assert certified_unique(W, mu, mu)
     P = solve_frictional_impact(W, v_minus, np.full(8, e), mu, mu)

@@ -46,6 +46,7 @@ from flexbeam.methods import base as methods_base
 from flexbeam.methods.friction import frictional_impulse
 from flexbeam.methods.frictional_lcp import solve_frictional_impact
 from flexbeam.methods.impulse import frictional_impulses
+from flexbeam.validation.bars import STEEL_BAR, bar_on_stops
 
 sys.path.insert(0, str(Path(__file__).parent))
 import test_obstacles as ob  # noqa: E402
@@ -278,23 +279,11 @@ def test_rigid_rod_on_two_rough_stops_singular_w(e):
 
 # ----------------------------------------------------------------------------------------------------- simulations
 def steel_bar_on_stops(modes: int, mu: float, e: float, vx: float, v0: float = 1.0) -> fb.Case:
-    """test_free_beam_two_stops.py's steel bar (20 cm, 12.7 mm across) horizontal, G at (0, 0.1 m), both stops
-    (r = 1 cm, beneath x = L/2 -+ 0.3 L) touching its lower surface, moving at (vx, -v0), gravity on, friction mu."""
-    Ls, c, yG, a, r = 0.2, 0.00635, 0.1, 0.3, 0.01
-    return fb.load_case({
-        "name": "rough-flat-bar",
-        "beam": {"length": Ls, "density": 7870.0, "youngs_modulus": 200e9, "poisson_ratio": 0.29,
-                 "section": "circle", "radius": c},
-        "joint": {"kind": "free"},
-        "model": {"modes": modes, "gravity": 9.81},
-        "obstacle": {"kind": "sphere", "centre": [-a * Ls, yG - c - r], "radius": r},
-        "obstacles": [{"kind": "sphere", "centre": [a * Ls, yG - c - r], "radius": r,
-                       "contact": {"position": (0.5 + a) * Ls}}],
-        "contact": {"law": "lankarani_nikravesh", "position": (0.5 - a) * Ls, "stiffness": 1.16e10, "side": "below",
-                    "restitution": e, "anywhere": True, "friction": mu},
-        "initial": {"kind": "state", "position": [0.0, yG], "velocity": [vx, -v0], "angle": 0.0, "rate": 0.0},
-        "solver": {"t_end": 0.05},
-    })  # fmt: skip
+    """The steel bar (:mod:`flexbeam.validation.bars`, as test_free_beam_two_stops.py's) horizontal, G at (0, 0.1 m),
+    both stops (r = 1 cm, beneath x = L/2 -+ 0.3 L) touching its lower surface, moving at (vx, -v0), gravity on,
+    friction mu."""
+    a = 0.3 * STEEL_BAR["length"]
+    return bar_on_stops([-a, a], (vx, -v0), modes=modes, mu=mu, restitution=e, name="rough-flat-bar")
 
 
 @pytest.mark.parametrize(("e", "tolerances"), [(0.5, "default"), (0.5, "tight"), (0.0, "default"), (0.0, "tight")])
