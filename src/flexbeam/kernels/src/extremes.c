@@ -300,15 +300,24 @@ void fb_column_max(const fb_model *m, const fb_basis *b, const double *records, 
     free(ts);
 }
 
+/* A probe of the tip's deflection on a phase [t0, t1], with the tip's model alone (not a pruned search's open set),
+ * which the caller frees. */
+static fb_tip_model *tip_probe(const fb_model *m, const fb_basis *b, const double *records, int nrec, double t0,
+                               double t1, const double *y0, const double *y1, probe_t *p) {
+    *p = (probe_t){m, b, records, nrec, fb_record_size(b->N, m->npairs), NULL, t0, t1, y0, y1, FB_COL_TIP, 1.0, NULL,
+                   NULL};
+    fb_tip_model *tm = malloc(sizeof *tm);
+    fb_tip_model_init(m, b, tm);
+    p->tip = tm;
+    return tm;
+}
+
 /* The tip's pruned search's bound for samples T apart in [a, z] of a phase (fb_tip_slack_parts: the linear part's,
  * the rest's and the rounding's shares), for the tests that check it against brute force. */
 void fb_tip_slack_at(const fb_model *m, const fb_basis *b, const double *records, int nrec, double t0, double t1,
                      const double *y0, const double *y1, double a, double z, double T, double parts[3]) {
-    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), NULL, t0, t1, y0, y1, FB_COL_TIP, 1.0, NULL,
-                 NULL};
-    fb_tip_model *tm = malloc(sizeof *tm); /* the tip's model alone: not a pruned search's open set */
-    fb_tip_model_init(m, b, tm);
-    p.tip = tm;
+    probe_t p;
+    fb_tip_model *tm = tip_probe(m, b, records, nrec, t0, t1, y0, y1, &p);
     fb_tip_bracket br;
     tip_bracket(&p, a, z, &br);
     fb_tip_slack_parts(p.tip, &br, T, parts);
@@ -320,11 +329,8 @@ void fb_tip_slack_at(const fb_model *m, const fb_basis *b, const double *records
  * search, whatever the samples' spacing against the modes' periods. */
 void fb_tip_slacks(const fb_model *m, const fb_basis *b, const double *records, int nrec, double t0, double t1,
                    const double *y0, const double *y1, const double *times, int count, double *out) {
-    probe_t p = {m, b, records, nrec, fb_record_size(b->N, m->npairs), NULL, t0, t1, y0, y1, FB_COL_TIP, 1.0, NULL,
-                 NULL};
-    fb_tip_model *tm = malloc(sizeof *tm); /* the tip's model alone: not a pruned search's open set */
-    fb_tip_model_init(m, b, tm);
-    p.tip = tm;
+    probe_t p;
+    fb_tip_model *tm = tip_probe(m, b, records, nrec, t0, t1, y0, y1, &p);
     int N = b->N, r = 0, cur = -1, joint = -1; /* cur: the step bounded in A..E[1] (its predecessor's in [0]) */
     double th, R, A[2][FB_MAXN], V[2][FB_MAXN], E[2][FB_MAXN], a[FB_MAXN], v[FB_MAXN], e[FB_MAXN];
     fb_tip_bracket own, both; /* the current step's bracket, and its own with its predecessor's */
