@@ -112,8 +112,8 @@ class ModalDense:
 
     def tangential_impulse(self, pair: int, sigma: float) -> float:
         """int F_t dt of a pair over the phase, F_t = sigma F + lambda_t: its slip's kinetic friction (``sigma``, 0
-        unless it slips) and its stick's tangential multiplier (zero unless it sticks), by each step's Gauss
-        quadrature of the nodal values."""
+        unless it slips) and its nodal tangential unknown (a stick's multiplier, or the regularised law's force
+        sigma(v_t) F: zero otherwise; ``kernels/src/nodal.c``), by each step's Gauss quadrature of the nodal values."""
         _, w = gauss_nodes()
         N, S = self.stepper.basis.N, self.stepper.system.pairs
         off = 4 + 6 * N + 4 * S + 8 + 4 * pair

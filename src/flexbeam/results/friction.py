@@ -46,23 +46,9 @@ def friction_columns(system: BeamSystem, seg: Segment, times: np.ndarray, Y: np.
     return Ft, vt, state
 
 
-def _regularised_impulse(system: BeamSystem, seg: Segment, pair: int) -> float:
-    """int F_t dt of a pair under the regularised law over ``seg``: each step's Gauss quadrature of its nodal
-    sigma(v_t) F (the slip velocity at the nodes from the dense output)."""
-    dense, (mu, _, v0) = seg.dense, seg.phase.friction[pair, :3]
-    t, F = dense.nodal_forces(pair)
-    inner = (t > seg.t0) & (t < seg.t1)
-    Y = dense(t[inner])
-    vt = np.array([system.tangent(ti, yi, pair)[2] for ti, yi in zip(t[inner], Y)])
-    g = np.zeros(t.size)
-    g[inner] = regularised(mu, v0, vt) * F[inner]
-    w = np.array([0.347854845137453857, 0.652145154862546143, 0.652145154862546143, 0.347854845137453857]) / 2.0
-    return float(np.sum(dense.records[:, 1] * (g.reshape(-1, 4) @ w)))
-
-
-def tangential_impulse(segments: list[Segment], t0: float, t1: float, pair: int, system: BeamSystem) -> float:
+def tangential_impulse(segments: list[Segment], t0: float, t1: float, pair: int) -> float:
     """int F_t dt of ``pair`` over the whole frictional phases inside [t0, t1] (each step's Gauss quadrature of its
-    nodal sigma F + lambda_t, :meth:`~flexbeam.integrate.dense.ModalDense.tangential_impulse`); NaN when no phase
+    nodal sigma F + F_t, :meth:`~flexbeam.integrate.dense.ModalDense.tangential_impulse`); NaN when no phase
     there had friction."""
     total, seen = 0.0, False
     for s in segments:
@@ -71,8 +57,6 @@ def tangential_impulse(segments: list[Segment], t0: float, t1: float, pair: int,
         seen = True
         if s.dense is None or not hasattr(s.dense, "tangential_impulse"):
             continue
-        if s.phase.friction[pair, 1] < 0.0:
-            total += _regularised_impulse(system, s, pair)
-        else:
-            total += s.dense.tangential_impulse(pair, float(s.phase.friction[pair, 0]))
+        law = s.phase.friction[pair, 1] < 0.0  # the regularised law: a nodal tangential unknown (kernels/src/nodal.c)
+        total += s.dense.tangential_impulse(pair, 0.0 if law else float(s.phase.friction[pair, 0]))
     return total if seen else math.nan

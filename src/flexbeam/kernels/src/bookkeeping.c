@@ -48,7 +48,7 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
         if (fb_rough(&ph->c, k)) { /* friction's share */
             double Jt[FB_MAXN], vt;
             fb_pair_tangent(m, k, &nd->frame, q, qd, 0.0, 0.0, 0, J, Jt, &vt);
-            JF += Jt[0] * (fb_slip_coefficient(&ph->c, k, vt) * F[k][j] + (ph->c.stick[k] ? Ft[k][j] : 0.0));
+            JF += Jt[0] * (fb_tangential_unknown(&ph->c, k) ? Ft[k][j] : fb_slip_coefficient(&ph->c, k, vt) * F[k][j]);
         } else {
             fb_pair_gap(m, k, &nd->frame, q, qd, 0.0, 0.0, 0, J);
         }
@@ -115,24 +115,28 @@ double fb_node_energy_parts(const fb_phase *ph, const fb_node *nd, double *scale
 }
 
 /* Forcing guess for a phase's first step: the forcing at its start, constant (each law's force at the start, F's
- * first S rows; the tangential multipliers, its next S rows, zero). */
+ * first S rows; the tangential unknowns, its next S rows: the regularised law's force there, a stick's zero). */
 void fb_start_guess(const fb_phase *ph, double t, const double *eta, const double *v, double *f,
                         double F[][FB_P]) {
     fb_node nd;
     int N = ph->b->N, S = ph->c.npairs;
     fb_eval_node(ph, t, eta, v, ph->contact ? FB_WANT_ACTIVE : FB_WANT_NONE, &nd);
-    double F0[FB_MAX_PAIRS];
+    double F0[FB_MAX_PAIRS], Ft0[FB_MAX_PAIRS];
     for (int k = 0; k < S; k++) {
-        F0[k] = 0.0;
+        F0[k] = Ft0[k] = 0.0;
         if (ph->c.mode[k] == FB_MODE_FORCE)
             F0[k] = fb_law_force(ph->c.p[k], -nd.gap[k].delta, -nd.gap[k].rate, NULL, NULL, NULL);
-        for (int j = 0; j < FB_P; j++) F[k][j] = F0[k], F[S + k][j] = 0.0;
+        if (fb_tangential_unknown(&ph->c, k) && !ph->c.stick[k])
+            Ft0[k] = fb_slip_coefficient(&ph->c, k, nd.vt[k]) * fmax(F0[k], 0.0);
+        for (int j = 0; j < FB_P; j++) F[k][j] = F0[k], F[S + k][j] = Ft0[k];
     }
     for (int j = 0; j < FB_P; j++)
         for (int i = 0; i < N; i++) {
             double x = nd.smooth[i];
-            for (int k = 0; k < S; k++)
+            for (int k = 0; k < S; k++) {
                 if (ph->c.mode[k] != FB_MODE_NONE) x += nd.b[k][i] * F0[k];
+                if (Ft0[k] != 0.0) x += nd.bt[k][i] * Ft0[k];
+            }
             f[j * N + i] = x;
         }
 }

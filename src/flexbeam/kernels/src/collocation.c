@@ -221,7 +221,7 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
                 double fn = w->node[j].smooth[k];
                 for (int l = 0; l < S; l++) {
                     if (ph->c.mode[l] != FB_MODE_NONE) fn += w->node[j].b[l][k] * w->F[l][j];
-                    if (ph->c.friction && ph->c.stick[l]) fn += w->node[j].bt[l][k] * w->Ft[l][j];
+                    if (fb_tangential_unknown(&ph->c, l)) fn += w->node[j].bt[l][k] * w->Ft[l][j];
                 }
                 double df = fn - f[j * N + k];
                 f[j * N + k] = fn;
@@ -264,13 +264,15 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
         } else if (ph->c.mode[l] == FB_MODE_CONSTRAINT) {
             for (int j = 0; j < FB_P; j++) Fe[l] += fb_lagrange(j, 1.0) * w->F[l][j];
         }
+        if (fb_tangential_unknown(&ph->c, l) && !ph->c.stick[l]) /* the regularised law's force at the end */
+            Fte[l] = fb_slip_coefficient(&ph->c, l, end->vt[l]) * fmax(Fe[l], 0.0);
     }
     double e2 = 0.0, lim0 = h * h / ((FB_P + 1.0) * (FB_P + 2.0));
     for (int k = 0; k < N; k++) {
         double d = end->smooth[k];
         for (int l = 0; l < S; l++) {
             if (ph->c.mode[l] != FB_MODE_NONE) d += end->b[l][k] * Fe[l];
-            if (ph->c.friction && ph->c.stick[l]) d += end->bt[l][k] * Fte[l];
+            if (fb_tangential_unknown(&ph->c, l)) d += end->bt[l][k] * Fte[l];
         }
         for (int j = 0; j < FB_P; j++) d -= tb->lend[j] * f[j * N + k];
         double om = ph->b->omega[k], lim = om > 0.0 ? fmin(lim0, 2.0 / (om * om)) : lim0;

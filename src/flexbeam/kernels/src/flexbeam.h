@@ -109,8 +109,15 @@ static inline int fb_rough(const fb_contacts *c, int k) {
     return c->friction && (c->sdir[k] != 0.0 || c->stick[k] || c->regv[k] > 0.0);
 }
 
-/* The tangential force per unit normal force of pair k slipping at v_t (friction.c). */
+/* Does pair k carry a tangential unknown at the collocation nodes (nodal.c): a sticking pair's multiplier, or the
+ * regularised law's tangential force, solved with the normal forces by Newton's method? */
+static inline int fb_tangential_unknown(const fb_contacts *c, int k) {
+    return c->friction && c->mode[k] != FB_MODE_NONE && (c->stick[k] || c->regv[k] > 0.0);
+}
+
+/* The tangential force per unit normal force of pair k slipping at v_t, and its derivative in v_t (friction.c). */
 double fb_slip_coefficient(const fb_contacts *c, int k, double vt);
+double fb_slip_slope(const fb_contacts *c, int k, double vt);
 
 /* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair],
  * with friction [npairs, alpha, beta, (mode, p0, p1, p2, p3, sigma, stick, mu_s, v_rest, sign(v_t)) per pair]. */

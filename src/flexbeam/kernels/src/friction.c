@@ -47,7 +47,8 @@ fb_gap fb_tangent_at(const fb_phase *ph, int pair, double t, const double *eta, 
 
 /* A frictional pair k in contact at an evaluated node (its b[k] already the normal force's direction), its tangent
  * Jacobian Jt and slip velocity vt (fb_pair_tangent): jt = Psi^T Jt^T, bt = Psi^T M0 M^-1 Jt^T (the update up of the
- * node's mass matrix), and a slipping pair's force direction b[k] += sigma bt. */
+ * node's mass matrix), and a slipping pair's force direction b[k] += sigma bt (not the regularised law's, whose
+ * tangential force is an unknown of its own: fb_tangential_unknown). */
 void fb_node_friction(const fb_phase *ph, int k, const double *Jt, double vt, const fb_update *up, fb_node *out) {
     const fb_model *m = ph->m;
     const fb_basis *b = ph->b;
@@ -65,7 +66,7 @@ void fb_node_friction(const fb_phase *ph, int k, const double *Jt, double vt, co
     } else {
         memcpy(out->bt[k], out->jt[k], sizeof(double) * N);
     }
-    double sigma = fb_slip_coefficient(&ph->c, k, vt);
+    double sigma = ph->c.regv[k] > 0.0 ? 0.0 : fb_slip_coefficient(&ph->c, k, vt);
     if (sigma != 0.0)
         for (int i = 0; i < N; i++) out->b[k][i] += sigma * out->bt[k][i];
 }
@@ -76,6 +77,13 @@ double fb_slip_coefficient(const fb_contacts *c, int k, double vt) {
     if (!(c->regv[k] > 0.0)) return c->slip[k];
     double s = c->regmu[k] * fb_expm1(-3.0 * fabs(vt) / c->regv[k]);
     return vt > 0.0 ? s : (vt < 0.0 ? -s : 0.0);
+}
+
+/* d sigma / d v_t of fb_slip_coefficient: -3 mu_k / v_0 exp(-3 |v_t| / v_0) under the regularised law (the same from
+ * either side of v_t = 0), 0 for a slipping pair's constant sigma. */
+double fb_slip_slope(const fb_contacts *c, int k, double vt) {
+    if (!(c->regv[k] > 0.0)) return 0.0;
+    return -3.0 * c->regmu[k] / c->regv[k] * fb_exp(-3.0 * fabs(vt) / c->regv[k]);
 }
 
 /* sign(v_t) of the slip (sdir) times v_t at the state (eta, v) at the fraction x of the step (> 0 while the pair
@@ -272,10 +280,10 @@ double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *k
     return FB_NO_EVENT;
 }
 
-/* Friction's dissipation rate -(sigma F + lambda_t) v_t of pair k at an evaluated node (normal force F, tangential
- * multiplier Ft); 0 for a frictionless pair. */
+/* Friction's dissipation rate -(sigma F + F_t) v_t of pair k at an evaluated node (normal force F, tangential
+ * unknown Ft: a stick's multiplier or the regularised law's force); 0 for a frictionless pair. */
 double fb_friction_rate(const fb_phase *ph, const fb_node *nd, int k, double F, double Ft) {
-    if (ph->c.slip[k] != 0.0 || ph->c.regv[k] > 0.0) return -fb_slip_coefficient(&ph->c, k, nd->vt[k]) * F * nd->vt[k];
-    if (ph->c.stick[k]) return -Ft * nd->vt[k];
+    if (fb_tangential_unknown(&ph->c, k)) return -Ft * nd->vt[k];
+    if (ph->c.slip[k] != 0.0) return -fb_slip_coefficient(&ph->c, k, nd->vt[k]) * F * nd->vt[k];
     return 0.0;
 }

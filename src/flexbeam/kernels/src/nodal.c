@@ -7,8 +7,8 @@
  * and each step end's collocation error) at the rate max(kappa, STICK_DECAY / h): to 2 % of it at the step's end */
 #define STICK_DECAY 4.0
 
-/* The contact unknowns of a step: (pair, node) for the pairs in contact, pair-major, then the sticking pairs'
- * tangential multipliers (row 1). */
+/* The contact unknowns of a step: (pair, node) for the pairs in contact, pair-major, then the tangential unknowns
+ * (row 1: the sticking pairs' multipliers, the regularised law's forces; fb_tangential_unknown). */
 void fb_list_unknowns(const fb_phase *ph, fb_unknowns *u) {
     u->count = 0;
     for (int k = 0; k < ph->c.npairs; k++)
@@ -19,7 +19,7 @@ void fb_list_unknowns(const fb_phase *ph, fb_unknowns *u) {
                 u->node[u->count++] = i;
             }
     for (int k = 0; k < ph->c.npairs; k++)
-        if (ph->c.friction && ph->c.stick[k])
+        if (fb_tangential_unknown(&ph->c, k))
             for (int i = 0; i < FB_P; i++) {
                 u->pair[u->count] = k;
                 u->row[u->count] = 1;
@@ -67,7 +67,15 @@ static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u,
         d0[a] = w->node[i].gap[k].delta;
         r0[a] = u->row[a] ? w->node[i].vt[k] : w->node[i].gap[k].rate;
     }
-    if (!ph->force) { /* only constraints: linear, M F = target - g(F0) + M F0 in one solve */
+    int normal[MAXU], regularised = 0; /* a regularised tangential unknown's normal force (the same pair and node) */
+    for (int a = 0; a < U; a++) {
+        normal[a] = -1;
+        if (!u->row[a] || !(ph->c.regv[u->pair[a]] > 0.0)) continue;
+        regularised = 1;
+        for (int c = 0; c < U; c++)
+            if (!u->row[c] && u->pair[c] == u->pair[a] && u->node[c] == u->node[a]) normal[a] = c;
+    }
+    if (!ph->force && !regularised) { /* only constraints: linear, M F = target - g(F0) + M F0 in one solve */
         double M[MAXU * MAXU], rhs[MAXU];
         for (int a = 0; a < U; a++) {
             int k = u->pair[a], i = u->node[a];
@@ -104,7 +112,15 @@ static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u,
                 d += A[a * U + c] * (F[c] - F0[c]);
                 r += B[a * U + c] * (F[c] - F0[c]);
             }
-            if (u->row[a]) {
+            if (normal[a] >= 0) { /* the regularised law: F_t = sigma(v_t) F, F its normal force (not below 0) */
+                int n = normal[a], pos = F[n] > 0.0 || ph->c.mode[k] != FB_MODE_FORCE;
+                double Fn = pos ? F[n] : 0.0, s = fb_slip_coefficient(&ph->c, k, r);
+                double ds = fb_slip_slope(&ph->c, k, r) * Fn;
+                res[a] = -(F[a] - s * Fn);
+                for (int c = 0; c < U; c++) Jac[a * U + c] = (a == c ? 1.0 : 0.0) - ds * B[a * U + c];
+                if (pos) Jac[a * U + n] -= s;
+                big = fmax(big, fabs(F[a]));
+            } else if (u->row[a]) {
                 res[a] = g0t[k] * fb_exp(-fmax(kappa, STICK_DECAY / h) * tb->c[i] * h) - r;
                 for (int c = 0; c < U; c++) Jac[a * U + c] = B[a * U + c];
                 big = fmax(big, fabs(F[a]));
