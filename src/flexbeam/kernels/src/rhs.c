@@ -28,9 +28,10 @@ typedef struct {
     double M[MAXZ * MAXZ], Q[MAXZ], J[FB_MAX_PAIRS][MAXZ];
     fb_gap gp[FB_MAX_PAIRS];
     double F[FB_MAX_PAIRS], Fsup, diss, damping;
-    int con[FB_MAX_PAIRS], ncon; /* the constrained pairs */
-    /* a constrained pair with Coulomb friction (CCM): its tangent Jacobian, slip velocity, force direction
-     * J + sigma Jt (slip) and tangential multiplier (stick) */
+    int con[FB_MAX_PAIRS], ncon;     /* the constrained pairs */
+    int stick[FB_MAX_PAIRS], nstick; /* the law pairs (CCFM) sticking: their tangential multipliers */
+    /* a pair with Coulomb friction: its tangent Jacobian, slip velocity, force direction J + sigma Jt (a constrained
+     * pair's slip) and tangential multiplier (stick) */
     double Jt[FB_MAX_PAIRS][MAXZ], vt[FB_MAX_PAIRS], D[FB_MAX_PAIRS][MAXZ], Ft[FB_MAX_PAIRS];
 } rhs_eval;
 
@@ -75,17 +76,40 @@ static double assemble(rhs_eval *e, const fb_model *m, const fb_contacts *c, dou
 }
 
 
+/* d v_t / d s' of pair k: its slip velocity's share of the compliant support's rate (fb_node_friction). */
+static double tangent_support(const rhs_eval *e, int k) {
+    const fb_gap *g = &e->gp[k];
+    const fb_obstacle *o = &e->m->obstacles[e->m->pairs[k].obstacle];
+    return o->ms > 0.0 ? -(-g->ny * o->ux + g->nx * o->uy) : 0.0;
+}
+
+/* Coulomb friction of a law pair k (CCFM, friction.c): slipping (or under the regularised law) its force sigma F
+ * acts along Jt and dissipates -sigma F v_t; sticking, its tangential multiplier is solved with the constrained
+ * pairs' (constraint_forces). */
+static void law_friction(rhs_eval *e, int k) {
+    e->Ft[k] = 0.0;
+    if (e->c->stick[k]) {
+        e->stick[e->nstick++] = k;
+        return;
+    }
+    double f = fb_slip_coefficient(e->c, k, e->vt[k]) * e->F[k];
+    for (int i = 0; i < e->N; i++) e->Q[i] += e->Jt[k][i] * f;
+    e->Fsup += tangent_support(e, k) * f;
+    e->diss -= f * e->vt[k];
+}
+
 /* The pairs in contact: their gaps and Jacobians; the law force of each FB_MODE_FORCE pair acts as J_k^T F_k (and
- * Js_k F_k on the support), its damping dissipates; the FB_MODE_CONSTRAINT pairs are listed for the solve. */
+ * Js_k F_k on the support), its damping dissipates, its friction acts (law_friction); the FB_MODE_CONSTRAINT pairs
+ * are listed for the solve. */
 static void pair_forces(rhs_eval *e) {
     const fb_contacts *c = e->c;
     int N = e->N;
     e->diss = 0.0;
-    e->ncon = 0;
+    e->ncon = e->nstick = 0;
     for (int k = 0; k < e->m->npairs; k++) {
         e->F[k] = 0.0;
         if (c->mode[k] == FB_MODE_NONE) continue;
-        if (c->mode[k] == FB_MODE_CONSTRAINT && fb_rough(c, k))
+        if (fb_rough(c, k))
             e->gp[k] = fb_pair_tangent(e->m, k, &e->fr, e->q, e->qd, e->s, e->sd, 1, e->J[k], e->Jt[k], &e->vt[k]);
         else
             e->gp[k] = fb_pair_gap(e->m, k, &e->fr, e->q, e->qd, e->s, e->sd, 1, e->J[k]);
@@ -99,6 +123,7 @@ static void pair_forces(rhs_eval *e) {
         e->diss += (e->F[k] - fk) * (-g->rate);
         for (int i = 0; i < N; i++) e->Q[i] += e->J[k][i] * e->F[k];
         e->Fsup += g->Js * e->F[k];
+        if (fb_rough(c, k)) law_friction(e, k);
     }
 }
 
@@ -113,9 +138,7 @@ static int rough_rows(rhs_eval *e, fb_row *rows) {
         e->Ft[k] = 0.0;
         if (!fb_rough(c, k)) continue;
         const fb_gap *g = &e->gp[k];
-        double sigma = fb_slip_coefficient(c, k, e->vt[k]);
-        const fb_obstacle *o = &e->m->obstacles[e->m->pairs[k].obstacle];
-        double Jts = o->ms > 0.0 ? -(-g->ny * o->ux + g->nx * o->uy) : 0.0; /* d v_t / d s' (fb_node_friction) */
+        double sigma = fb_slip_coefficient(c, k, e->vt[k]), Jts = tangent_support(e, k);
         if (sigma != 0.0) {
             for (int i = 0; i < N; i++) e->D[k][i] = e->J[k][i] + sigma * e->Jt[k][i];
             rows[ia].col = e->D[k];
@@ -124,15 +147,22 @@ static int rough_rows(rhs_eval *e, fb_row *rows) {
         if (c->stick[k])
             rows[n++] = (fb_row){k, 1, e->Jt[k], e->Jt[k], Jts, Jts, -g->tgamma - 2.0 * c->alpha * e->vt[k]};
     }
+    for (int j = 0; j < e->nstick; j++) { /* the sticking law pairs' tangential rows */
+        int k = e->stick[j];
+        double Jts = tangent_support(e, k);
+        rows[n++] = (fb_row){k, 1, e->Jt[k], e->Jt[k], Jts, Jts, -e->gp[k].tgamma - 2.0 * c->alpha * e->vt[k]};
+    }
     return n;
 }
 
-/* Friction's dissipation -(sigma F + lambda_t) v_t of the constrained pairs (CCM), added to the dissipated power. */
+/* Friction's dissipation -(sigma F + lambda_t) v_t of the constrained pairs (CCM) and -lambda_t v_t of the sticking
+ * law pairs, added to the dissipated power. */
 static void rough_dissipation(rhs_eval *e) {
     for (int ia = 0; ia < e->ncon; ia++) {
         int k = e->con[ia];
         if (fb_rough(e->c, k)) e->diss -= (fb_slip_coefficient(e->c, k, e->vt[k]) * e->F[k] + e->Ft[k]) * e->vt[k];
     }
+    for (int j = 0; j < e->nstick; j++) e->diss -= e->Ft[e->stick[j]] * e->vt[e->stick[j]];
 }
 
 /* The constrained pairs' multipliers: [M D^T; J_c 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
@@ -238,7 +268,7 @@ int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, d
     double tau = assemble(&e, m, c, t, y), torque;
     pair_forces(&e);
     if (m->Cd) e.diss += e.damping;
-    if (e.ncon && constraint_forces(&e)) goto fail;
+    if ((e.ncon || e.nstick) && constraint_forces(&e)) goto fail;
     if (e.compliant) {
         dy[nb] = e.sd;
         dy[nb + 1] = e.Fsup / e.o->ms;
