@@ -255,6 +255,9 @@ def sample_arrays(beam: FemBeam, sampler: _Sampler) -> dict[str, np.ndarray]:
             out[name] = np.array([r[j] for r in sampler.friction_rows], float).reshape(m, S)
     out["q"] = np.empty((m, 0))
     out["q_rate"] = np.empty((m, 0))
+    if beam.free:  # G's position and velocity, as the modal model's centre_of_mass variables
+        rigid = np.asarray(sampler.rigid_rows, float).reshape(m, 8)
+        out["centre_of_mass"], out["centre_of_mass_velocity"] = rigid[:, 0:2].copy(), rigid[:, 2:4].copy()
     out["total_energy"] = (
         out["kinetic_energy"]
         + out["elastic_energy"]

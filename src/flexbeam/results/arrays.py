@@ -22,12 +22,21 @@ from .dense_force import compiled_pair_force
 from .extremes import column_extremes
 from .friction import friction_columns, has_friction
 from .limits import check_samples
-from .records import FRICTION_VARIABLES
+from .records import CENTRE_VARIABLES, FRICTION_VARIABLES
 from .samplegrid import sample_count, sample_grid
 from .segment_ends import SegmentEnds
 
 #: force evaluations per step when searching a contact's force for local maxima
 PEAK_POINTS_PER_STEP = 16
+
+
+def centre_columns(system: BeamSystem, Y: np.ndarray) -> dict[str, np.ndarray]:
+    """A free beam's G position and velocity (samples x 2: its coordinates x_G, y_G and their rates, the first two of
+    the state's coordinates and of their rates) at the states ``Y``; empty for a beam on a joint."""
+    if system.joint.kind != "free":
+        return {}
+    nz = system.nz
+    return dict(zip(CENTRE_VARIABLES, (np.ascontiguousarray(Y[:, 0:2]), np.ascontiguousarray(Y[:, nz : nz + 2]))))
 
 
 class RunSource:
@@ -100,7 +109,7 @@ class RunSource:
             qds = Y[:, 2 * nz - n : 2 * nz]
             times.append(t)
             phases.append(np.full(t.size, seg.phase.name, dtype=object))
-            parts.append((cols, mv, qs, qds, pc))
+            parts.append((cols, mv, qs, qds, pc, centre_columns(sysm, Y)))
         names = [c for c in OUTPUT_COLUMNS if sysm.compliant or c not in SUPPORT_COLUMNS]
         if not parts:
             empty = {name: np.empty(0) for name in names}
@@ -122,6 +131,8 @@ class RunSource:
                 out[f"pair_{name}"] = pc[:, :, j]
         for j, name in enumerate(FRICTION_VARIABLES if rough else ()):
             out[name] = np.concatenate([p[j] for p in fparts])
+        for name in parts[0][5]:
+            out[name] = np.concatenate([p[5][name] for p in parts])
         return np.concatenate(times), np.concatenate(phases), out
 
     # ---------------------------------------------------------------- contact force on the dense output

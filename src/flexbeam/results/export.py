@@ -22,7 +22,7 @@ import numpy as np
 
 from .files import atomic_path, jsonable
 from .poincare import drive_phase
-from .records import VARIABLES
+from .records import CENTRE_VARIABLES, VARIABLES
 
 if TYPE_CHECKING:
     from .solution import Solution
@@ -35,7 +35,8 @@ COMPLEVEL = 6
 #: the outputs stored to the integrator's precision: functions of the integrated state, whose error the step control
 #: bounds relative to the state's size.  Stored exactly: ``time``; ``theta``, the rigid angle, which the error norm
 #: leaves out (its value has no scale: a long spin carries it far from its error); ``total_energy``, whose drift is
-#: what it shows; ``pair_contact_position`` (a nearest-point search, not a state); the contact records.
+#: what it shows; ``pair_contact_position`` (a nearest-point search, not a state); a free beam's ``centre_of_mass``
+#: and its velocity (G's coordinates, as theta: a long flight carries them far from their error); the contact records.
 QUANTIZED = frozenset(
     {
         "theta_rate", "q", "q_rate", "gap", "normal_velocity", "contact_force", "contact_energy", "kinetic_energy",
@@ -124,6 +125,8 @@ def variable_dims(name: str) -> tuple[str, ...]:
         return ("time", "point")
     if name.startswith("pair_"):
         return ("time", "pair")
+    if name in CENTRE_VARIABLES:
+        return ("time", "axis")
     return ("time",)
 
 
@@ -165,9 +168,10 @@ def contact_fields(sol: Solution) -> dict[str, tuple[str, str, np.ndarray]]:
 
 
 def coordinate_specs(
-    n_modes: int, points: np.ndarray, contacts: int, pair_labels: list[str] | None
+    n_modes: int, points: np.ndarray, contacts: int, pair_labels: list[str] | None, axes: bool = False
 ) -> dict[str, tuple[np.ndarray, dict[str, str]]]:
-    """The coordinates besides ``time``: name -> (values, attributes)."""
+    """The coordinates besides ``time``: name -> (values, attributes); ``axis`` (x, y) with ``axes`` (a free beam's
+    :data:`~flexbeam.results.records.CENTRE_VARIABLES`)."""
     coords = {
         "mode": (np.arange(1, n_modes + 1), {"long_name": "Mode number"}),
         "point": (np.asarray(points, float), {"units": "m", "long_name": "Measuring point x"}),
@@ -175,6 +179,8 @@ def coordinate_specs(
     }
     if pair_labels is not None:
         coords["pair"] = (np.asarray(pair_labels, str), {"long_name": "Contact pair (its obstacle)"})
+    if axes:
+        coords["axis"] = (np.array(["x", "y"]), {"long_name": "Inertial axis"})
     return coords
 
 
@@ -205,7 +211,9 @@ def to_xarray(sol: Solution):
         data_vars[name] = (("contact",), values, {"units": units, "long_name": long_name})
     pairs = sol.pair_labels if any(name.startswith("pair_") for name in sol.arrays) else None
     coords: dict[str, Any] = {"time": ("time", sol.time, dict(TIME_ATTRS))}
-    for name, (values, attrs) in coordinate_specs(n_modes, sol.measuring_points, len(sol.contacts), pairs).items():
+    axes = CENTRE_VARIABLES[0] in sol.arrays
+    specs = coordinate_specs(n_modes, sol.measuring_points, len(sol.contacts), pairs, axes)
+    for name, (values, attrs) in specs.items():
         coords[name] = (name, values, attrs)
     return xr.Dataset(data_vars, coords=coords, attrs=global_attrs(sol))
 

@@ -53,7 +53,8 @@ def sample_bytes(case: Case, pairs: int, count: float) -> float:
     n = case.model.modes
     columns = len(OUTPUT_COLUMNS) - (0 if case.obstacle.support.compliant else 2)
     per_pair = len(PAIR_COLUMNS) * pairs if pairs > 1 or anywhere(case) else 0
-    floats = columns + 2 * n + len(case.output.measuring_points) + per_pair + 3  # + total energy, time, phase
+    centre = 4 if case.joint.kind == "free" else 0  # G's position and velocity
+    floats = columns + 2 * n + len(case.output.measuring_points) + per_pair + centre + 3  # + total energy, time, phase
     return count * floats * SAMPLE_BYTES_PER_FLOAT
 
 

@@ -36,12 +36,17 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "pair_tangential_force": ("N", "Friction force of each contact pair along its tangent t = (-n_y, n_x)"),
     "pair_slip_velocity": ("m/s", "Slip velocity of each contact pair's point along its tangent"),
     "pair_friction_state": ("1", "Friction state of each contact pair: 0 no frictional contact, 1 slip, 2 stick"),
+    "centre_of_mass": ("m", "Position (x, y) of the free beam's centre of mass G"),
+    "centre_of_mass_velocity": ("m/s", "Velocity (x, y) of the free beam's centre of mass G"),
 }
 #: variables (time x pair) present only when a case has several contact pairs or a contact anywhere
 PAIR_VARIABLES = ("pair_gap", "pair_normal_velocity", "pair_contact_force", "pair_contact_position")
 #: variables (time x pair) present only in a frictional run: Coulomb friction (:mod:`flexbeam.methods.coulomb`:
 #: CCFM, CCM, IMM's resting contact) and the FE reference's regularised law
 FRICTION_VARIABLES = ("pair_tangential_force", "pair_slip_velocity", "pair_friction_state")
+#: variables (time x axis) present only for a free beam (``joint.kind = "free"``): G's position and velocity, the
+#: coordinates x_G, y_G and their rates (docs/free-beam.md)
+CENTRE_VARIABLES = ("centre_of_mass", "centre_of_mass_velocity")
 
 
 @dataclass

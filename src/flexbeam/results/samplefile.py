@@ -116,7 +116,9 @@ class SampleFile:
                 attrs.update(export.quantization_attrs(self.nsb, self.rtol))
             data_vars[name] = (export.variable_dims(name), self._rounded(name, values), attrs)
         coords: dict[str, Any] = {"time": ("time", t, dict(export.TIME_ATTRS))}
-        for name, (values, attrs) in export.coordinate_specs(self.n_modes, self.points, 0, self.pair_labels).items():
+        axes = export.CENTRE_VARIABLES[0] in arrays
+        specs = export.coordinate_specs(self.n_modes, self.points, 0, self.pair_labels, axes)
+        for name, (values, attrs) in specs.items():
             if name != "contact":  # its size is known at the end
                 coords[name] = (name, values, attrs)
         ds = xr.Dataset(data_vars, coords=coords)
