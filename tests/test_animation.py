@@ -323,3 +323,74 @@ def test_anywhere_contact_point_is_on_the_side_facing_the_obstacle():
     assert touching.any()
     dist = np.linalg.norm(scene.pair_points[touching, 0] - ob.centre, axis=1) - ob.radius
     assert np.max(np.abs(dist)) < 1e-3
+
+
+# ------------------------------------------------------------------------------------------------ a free beam
+@pytest.fixture(scope="module")
+def bar_drop_run():
+    from pathlib import Path
+
+    case = fb.load_case(str(Path(__file__).parent / "validation" / "data" / "free-bar-drop.toml"), {"model.modes": 4})
+    return fb.simulate(case, "ccfm")
+
+
+def test_beam_shape_of_a_free_beam_is_the_kernels_tip():
+    """A free bar (4 modes) at random frame origins R, angles and large deflections (tip ~1 cm on 20 cm: the
+    foreshortening counts): beam_shape's tip with ``origin`` = R is the compiled kinematics' tip point, whose
+    foreshortening starts from -H_bar (docs/free-beam.md); 1e-12 m as for the joint (round-off of |r| ~ 1 m)."""
+    from pathlib import Path
+
+    case = fb.load_case(str(Path(__file__).parent / "validation" / "data" / "free-bar-drop.toml"), {"model.modes": 4})
+    system = BeamSystem.from_case(case)
+    rng = np.random.default_rng(2)
+    L = system.beam.length
+    for _ in range(5):
+        R, th = rng.uniform(-1.0, 1.0, 2), rng.uniform(-math.pi, math.pi)
+        q = rng.normal(scale=0.003, size=system.n)
+        y = system.joint.state(system.n, np.array([R[0], R[1], th]), np.zeros(3), q, np.zeros(system.n), [0.0, 0.0])
+        X, Y = beam_shape(system, th, q, [L], origin=R)
+        assert_allclose([X[0], Y[0]], system.point_state(0.0, y, 1)[0], rtol=0, atol=1e-12)
+        assert abs(float(system.beam.shapes(np.array([L]), 0)[0] @ q)) > 1e-3  # a deflection that counts
+
+
+def test_a_free_beams_scene_is_its_outline_about_g(bar_drop_run):
+    """Drawn at true scale (scale 1) the free bar's band is the outline the clearance check computes at the same
+    state (flexbeam.model.clearance.outline: the frame origin R = G plus A(theta) rho(x), its own quadrature of the
+    foreshortening; the band's normal from the line's differences: 1e-6 m, the station spacing's slope error times
+    c; measured 1.9e-8), the chord runs end to end through G along the frame's axis, and the dataset's history draws
+    the same."""
+    from flexbeam.model.clearance import outline
+
+    sol = bar_drop_run
+    history = History.load(sol)
+    scene = Scene.build(history, None, 6, 0.5, "contact", 1.0)
+    system = scene.system
+    L = system.beam.length
+    i = 3
+    t = scene.times[i]
+    R = scene.origin[i]
+    e1 = (scene.chord[i, 1] - scene.chord[i, 0]) / L
+    assert_allclose(np.linalg.norm(scene.chord[i, 1] - scene.chord[i, 0]), L, rtol=1e-12)
+    assert_allclose(0.5 * (scene.chord[i, 0] + scene.chord[i, 1]), R, rtol=0, atol=1e-12)
+    theta = float(np.interp(t, sol.time, sol["theta"]))
+    assert_allclose(e1, [math.cos(theta), math.sin(theta)], rtol=0, atol=1e-12)
+    q = np.array([np.interp(t, sol.time, c) for c in sol["q"].T])[: system.beam.n]
+    xs, lower, upper = outline(system.beam, system.contact.offset, theta, q, tuple(R))
+    x = np.union1d(np.linspace(0.0, L, 121), [p.position for p in system.contact.pairs])
+    for edge, ref in ((scene.lower[i], lower), (scene.upper[i], upper)):
+        drawn = np.column_stack([np.interp(xs, x, edge[:, k]) for k in range(2)])
+        assert_allclose(drawn, ref, rtol=0, atol=1e-6)
+    again = Scene.build(History.from_dataset(sol.to_xarray()), None, 6, 0.5, "contact", 1.0)
+    assert_allclose(again.centre, scene.centre, rtol=0, atol=1e-12)
+
+
+def test_a_free_beam_is_animated(bar_drop_run, tmp_path):
+    """The bar drop renders (a GIF of the frames and size asked), G marked where the frames put it."""
+    from flexbeam.views.animation import FrameRenderer
+
+    scene = Scene.build(History.load(bar_drop_run), None, 5, 0.5, "contact", "auto")
+    renderer = FrameRenderer(scene, 160, 120, 25.0)
+    renderer.update(2)
+    assert_allclose(renderer._beam.hub.center, scene.origin[2])
+    path = animate(bar_drop_run, tmp_path / "drop.gif", frames=5, size=(160, 120), progress=False)
+    assert frames_and_size(path)[:2] == (5, (160, 120))

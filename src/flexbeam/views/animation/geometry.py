@@ -29,7 +29,8 @@ REFERENCES = ("contact", "hub")
 
 # ------------------------------------------------------------------------------------------------ kinematics
 def coupling_matrices(beam: ModalBeam, x: np.ndarray) -> np.ndarray:
-    """H(x) = r_h d^T d + int_0^x Psi'^T Psi' dxi at each point of ``x``, shape (len(x), n, n).
+    """H(x) = H(0) + int_0^x Psi'^T Psi' dxi at each point of ``x``, shape (len(x), n, n), H(0) = r_h d^T d on a
+    joint, -H_bar for a free beam (``beam.H_root``: its foreshortening has zero mean, docs/free-beam.md).
 
     The coupling (foreshortening) matrix of ``docs/formulation.md``, u_x(x) = -1/2 q^T H(x) q; zero for the
     zeroth-order model.  The integral is accumulated over the intervals between the sorted points, each by an
@@ -48,16 +49,18 @@ def coupling_matrices(beam: ModalBeam, x: np.ndarray) -> np.ndarray:
     nodes = (0.5 * (edges[1:] + edges[:-1]))[:, None] + half[:, None] * xi[None, :]  # (k, p)
     slopes = beam.shapes(nodes.ravel(), 1).reshape(*nodes.shape, n)  # (k, p, n)
     pieces = np.einsum("kp,kpi,kpj->kij", half[:, None] * wi[None, :], slopes, slopes)
-    H[order] = np.cumsum(pieces, axis=0) + beam.hub_radius * np.outer(beam.d, beam.d)
+    root = beam.hub_radius * np.outer(beam.d, beam.d) if beam.H_root is None else beam.H_root
+    H[order] = np.cumsum(pieces, axis=0) + root
     return 0.5 * (H + H.transpose(0, 2, 1))
 
 
-def beam_shape(system: BeamSystem, phi, q, x) -> tuple[np.ndarray, np.ndarray]:
+def beam_shape(system: BeamSystem, phi, q, x, origin=None) -> tuple[np.ndarray, np.ndarray]:
     """Global coordinates (X, Y) [m] of the beam's centre line at the material points ``x`` [m].
 
-    r(x) = A(theta) rho(x) with rho(x) = (r_h + x - 1/2 q^T H(x) q, Psi(x) q) in the body frame
+    r(x) = R + A(theta) rho(x) with rho(x) = (r_h + x - 1/2 q^T H(x) q, Psi(x) q) in the body frame
     (``docs/formulation.md``), A the rotation by the body frame's angle theta = phi - d q (d = Psi'(0); zero in
-    the hub frame, where theta is the hub angle phi) and H from :func:`coupling_matrices`.
+    the hub frame, where theta is the hub angle phi) and H from :func:`coupling_matrices`; R = O = 0 on a joint, a
+    free beam's frame origin (its centre of mass: r_h = -L/2, docs/free-beam.md) given by ``origin``.
 
     Parameters
     ----------
@@ -69,6 +72,8 @@ def beam_shape(system: BeamSystem, phi, q, x) -> tuple[np.ndarray, np.ndarray]:
         Modal coordinates, shape (n,) or (m, n).
     x
         Material coordinates, shape (k,), 0 <= x <= L.
+    origin
+        The frame's origin R [m], shape (2,) or (m, 2) (default: O).
 
     Returns
     -------
@@ -87,6 +92,9 @@ def beam_shape(system: BeamSystem, phi, q, x) -> tuple[np.ndarray, np.ndarray]:
     rho_y = q @ beam.shapes(x, 0).T
     c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
     X, Y = c * rho_x - s * rho_y, s * rho_x + c * rho_y
+    if origin is not None:
+        R = np.asarray(origin, float).reshape(phi.size, 2)
+        X, Y = X + R[:, 0:1], Y + R[:, 1:2]
     return (X[0], Y[0]) if single else (X, Y)
 
 

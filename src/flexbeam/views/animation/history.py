@@ -27,7 +27,8 @@ class History:
 
     ``pair_force`` and ``pair_position`` (time x pair: each pair's contact force [N] and the material coordinate
     of its contact point [m]) are there when the result has per-pair arrays (several contact pairs or a contact
-    anywhere), else None; ``force`` is the first pair's force.
+    anywhere), else None; ``force`` is the first pair's force.  ``centre`` (time x 2) is a free beam's frame origin
+    (the result's ``centre_of_mass``), else None.
     """
 
     time: np.ndarray
@@ -40,6 +41,7 @@ class History:
     label: str
     pair_force: np.ndarray | None = None
     pair_position: np.ndarray | None = None
+    centre: np.ndarray | None = None
 
     @classmethod
     def from_solution(cls, sol: Solution, case: Case | None = None) -> History:
@@ -58,6 +60,7 @@ class History:
             f"{case.name} [{sol.method}]",
             _pair_array(pair_force, sol.time.size),
             _pair_array(pair_position, sol.time.size),
+            _pair_array(sol.arrays.get("centre_of_mass"), sol.time.size),
         )
 
     @classmethod
@@ -79,7 +82,7 @@ class History:
         n = ds["time"].size
         pair_arrays = [
             _pair_array(np.asarray(ds[name].values, float) if name in ds.variables else None, n)
-            for name in ("pair_contact_force", "pair_contact_position")
+            for name in ("pair_contact_force", "pair_contact_position", "centre_of_mass")
         ]
         return cls(
             np.asarray(ds["time"].values, float),
@@ -114,7 +117,7 @@ class History:
 
 
 def _pair_array(values: Any, samples: int) -> np.ndarray | None:
-    """A per-pair array as (time, pair) floats, or None when the result has none."""
+    """A per-pair (or per-axis) array as (time, pair) floats, or None when the result has none."""
     if values is None:
         return None
     return np.asarray(values, float).reshape(samples, -1)

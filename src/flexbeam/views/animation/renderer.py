@@ -183,9 +183,9 @@ def _fit_view(ax: Axes, scene: Scene, w_in: float, h_in: float) -> float:
     """
     system = scene.system
     L, rh = system.beam.length, system.beam.hub_radius
-    beam_pts = np.concatenate(
-        [scene.upper.reshape(-1, 2), scene.lower.reshape(-1, 2), np.array([[-rh, -rh], [rh, rh]])]
-    )
+    hub = np.array([[-rh, -rh], [rh, rh]]) if scene.origin is None else np.empty((0, 2))  # a free beam has none
+    beam_pts = np.concatenate([scene.upper.reshape(-1, 2), scene.lower.reshape(-1, 2), hub])
+    rh = abs(rh)
     lo, hi = beam_pts.min(axis=0), beam_pts.max(axis=0)
     beam_lo, beam_hi = lo, hi
     for j, ob in enumerate(system.contact.obstacles):
@@ -226,6 +226,8 @@ def _draw_obstacles(ax: Axes, scene: Scene, colours: list[str], span: float, mov
 def _draw_titles(fig: Figure, ax: Axes, scene: Scene, font: float) -> None:
     """The run's label above the figure and, above the beam, the reference line and the magnification."""
     how = "line O-P" if scene.reference == "contact" else "hub's radial line"
+    if scene.origin is not None:
+        how = "mean axis"
     fig.text(0.5, 0.965, scene.history.label, ha="center", va="center", fontsize=font * 1.1)
     ax.set_title(f"deflection from the {how} magnified x{scene.scale:.4g}", fontsize=font * 0.9, pad=2)
 
@@ -240,7 +242,8 @@ def _clock_decimals(times: np.ndarray, mult: float) -> int:
 @dataclass
 class _BeamArtists:
     """The beam's moving artists: a band of its thickness about the magnified centre line, the centre line, the
-    rigid reference line, each pair's contact point and the hub with its radial line."""
+    rigid reference line, each pair's contact point and the hub with its radial line (a free beam: a mark at its
+    centre of mass, no radial line)."""
 
     chord: Line2D
     band: Polygon
@@ -266,12 +269,13 @@ class _BeamArtists:
         (line,) = ax.plot([], [], color="navy", lw=0.5, zorder=4, animated=True)
         marks = [ax.plot([], [], "o", ms=max(1.5, font * 0.45), zorder=5, animated=True)[0] for _ in range(scene.pairs)]
         anywhere = [bool(pairs[k].anywhere) if k < len(pairs) else False for k in range(scene.pairs)]
-        hub_r = rh if rh > 0 else 0.015 * L
+        free = scene.origin is not None
+        hub_r = rh if rh > 0 and not free else 0.015 * L
         hub = ax.add_patch(
-            Circle((0.0, 0.0), hub_r, facecolor="white" if rh == 0 else "0.85", edgecolor="k", zorder=6, animated=True)
+            Circle((0.0, 0.0), hub_r, facecolor="white" if rh <= 0 else "0.85", edgecolor="k", zorder=6, animated=True)
         )
         (hub_line,) = ax.plot([], [], color="k", lw=1.0, zorder=7, animated=True)
-        reach = max(hub_r, 0.04 * L) if rh > 0 else hub_r
+        reach = 0.0 if free else (max(hub_r, 0.04 * L) if rh > 0 else hub_r)
         return cls(chord, band, line, marks, anywhere, hub, hub_line, reach)
 
     @property
@@ -292,7 +296,9 @@ class _BeamArtists:
                 mark.set_data([scene.pair_points[i, k, 0]], [scene.pair_points[i, k, 1]])
             mark.set_color(colours[k] if on else "0.2")
         a = scene.hub_angle[i]
-        self.hub_line.set_data([0.0, self.reach * math.cos(a)], [0.0, self.reach * math.sin(a)])
+        o = (0.0, 0.0) if scene.origin is None else tuple(scene.origin[i])
+        self.hub.set_center(o)
+        self.hub_line.set_data([o[0], o[0] + self.reach * math.cos(a)], [o[1], o[1] + self.reach * math.sin(a)])
 
 
 @dataclass

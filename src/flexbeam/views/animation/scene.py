@@ -51,6 +51,7 @@ class Scene:
     system: BeamSystem
     pair_points: np.ndarray | None = None  # (m, p, 2) each pair's contact point on the magnified band
     pair_force: np.ndarray | None = None  # (m, p) each pair's contact force at the frames
+    origin: np.ndarray | None = None  # (m, 2) a free beam's frame origin (its centre of mass); None: O, a joint
 
     def __post_init__(self) -> None:
         if self.pair_points is None:
@@ -91,10 +92,10 @@ class Scene:
         t = history.time
         if t.size < 2:
             raise ParameterError("result: fewer than two samples, nothing to animate")
-        if history.case.joint.kind != "revolute":
-            raise ModelError(
-                f"joint.kind: the animation draws a beam on a revolute joint, not {history.case.joint.kind!r} (a free "
-                "beam's animation is not implemented yet)"
+        free = history.case.joint.kind == "free"
+        if free and history.centre is None:
+            raise ParameterError(
+                "result: a free beam's result without centre_of_mass (written before flexbeam had it); run it again"
             )
         system = BeamSystem.from_case(history.case)
         beam = system.beam
@@ -110,7 +111,8 @@ class Scene:
         q = np.column_stack([np.interp(times, t, col) for col in bending.T]) if beam.n else np.zeros((frames, 0))
         x = np.union1d(np.linspace(0.0, beam.length, BEAM_POINTS), [p.position for p in system.contact.pairs])
         iP = int(np.searchsorted(x, system.contact.position))
-        band = _Band.magnified(system, phi, q, x, iP, reference, scale)
+        origin = np.column_stack([np.interp(times, t, col) for col in history.centre.T]) if free else None
+        band = _Band.magnified(system, phi, q, x, iP, reference, scale, origin)
         shift = _support_shift(history, system, times, frames)
         force = np.interp(times, t, history.force)
         pair_points, pair_force = _pairs_at_frames(history, system, times, x, band, shift)
@@ -131,6 +133,7 @@ class Scene:
             system,
             pair_points,
             pair_force,
+            origin,
         )
 
 
@@ -155,7 +158,7 @@ class _Band(NamedTuple):
     normal: np.ndarray  # (m, k, 2) its unit normal (e2 of the magnified line)
     upper: np.ndarray  # (m, k, 2) band edges, half-thickness c either side
     lower: np.ndarray
-    chord: np.ndarray  # (m, 2, 2) the rigid reference line from O to r_h + L
+    chord: np.ndarray  # (m, 2, 2) the rigid reference line from O to r_h + L (a free beam's: end to end)
     hub_angle: np.ndarray  # (m,) drawn hub angle
 
     @classmethod
@@ -168,19 +171,23 @@ class _Band(NamedTuple):
         iP: int,
         reference: str,
         scale: float | str,
+        origin: np.ndarray | None = None,
     ) -> _Band:
         """The centre line by :func:`~flexbeam.views.animation.geometry.beam_shape` at the points ``x`` (``x[iP]``:
         the contact point) for hub angles ``phi`` and modal coordinates ``q``, its deviation from the rigid line at
         :func:`~flexbeam.views.animation.geometry.reference_angle` magnified by ``scale`` (``"auto"``:
         :func:`~flexbeam.views.animation.geometry.auto_scale` of its largest norm), the band's edges offset by the
-        contact offset c along the magnified line's normal, the hub turned by the same magnification."""
+        contact offset c along the magnified line's normal, the hub turned by the same magnification.  A free beam
+        (its frame's ``origin`` per frame) is drawn about its frame's axis through the origin, whatever
+        ``reference``: its mean axis (docs/free-beam.md), from which its deflection is measured."""
         beam = system.beam
         xP, c, L, rh = system.contact.position, system.contact.offset, beam.length, beam.hub_radius
-        X, Y = beam_shape(system, phi, q, x)
+        X, Y = beam_shape(system, phi, q, x, origin)
         r = np.stack((X, Y), axis=-1)  # (m, k, 2)
-        alpha = reference_angle(reference, phi, r[:, iP], rh + xP, rh + L)
+        R = np.zeros((phi.size, 2)) if origin is None else origin
+        alpha = reference_angle(reference, phi, r[:, iP] - R, rh + xP, rh + L) if origin is None else phi.copy()
         e1 = np.stack((np.cos(alpha), np.sin(alpha)), axis=-1)
-        rigid = (rh + x)[None, :, None] * e1[:, None, :]
+        rigid = R[:, None, :] + (rh + x)[None, :, None] * e1[:, None, :]
         deviation = r - rigid
         k = auto_scale(float(np.max(np.linalg.norm(deviation, axis=-1))), L) if scale == "auto" else float(scale)
         centre = rigid + k * deviation
@@ -188,7 +195,7 @@ class _Band(NamedTuple):
         tangent /= np.maximum(np.linalg.norm(tangent, axis=-1, keepdims=True), 1e-300)
         normal = np.stack((-tangent[..., 1], tangent[..., 0]), axis=-1)  # e2 of the magnified line
         upper, lower = centre + c * normal, centre - c * normal
-        chord = np.stack((np.zeros_like(e1), (rh + L) * e1), axis=1)
+        chord = np.stack((R if origin is None else R + rh * e1, R + (rh + L) * e1), axis=1)
         hub_angle = alpha + k * (phi - alpha)
         return cls(k, centre, normal, upper, lower, chord, hub_angle)
 
