@@ -375,7 +375,7 @@ def test_a_free_beams_scene_is_its_outline_about_g(bar_drop_run):
     theta = float(np.interp(t, sol.time, sol["theta"]))
     assert_allclose(e1, [math.cos(theta), math.sin(theta)], rtol=0, atol=1e-12)
     q = np.array([np.interp(t, sol.time, c) for c in sol["q"].T])[: system.beam.n]
-    xs, lower, upper = outline(system.beam, system.contact.offset, theta, q, tuple(R))
+    xs, lower, upper = outline(system.beam, abs(system.case.beam.surface_offset), theta, q, tuple(R))
     x = np.union1d(np.linspace(0.0, L, 121), [p.position for p in system.contact.pairs])
     for edge, ref in ((scene.lower[i], lower), (scene.upper[i], upper)):
         drawn = np.column_stack([np.interp(xs, x, edge[:, k]) for k in range(2)])

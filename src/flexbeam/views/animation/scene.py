@@ -179,9 +179,12 @@ class _Band(NamedTuple):
         :func:`~flexbeam.views.animation.geometry.auto_scale` of its largest norm), the band's edges offset by the
         contact offset c along the magnified line's normal, the hub turned by the same magnification.  A free beam
         (its frame's ``origin`` per frame) is drawn about its frame's axis through the origin, whatever
-        ``reference``: its mean axis (docs/free-beam.md), from which its deflection is measured."""
+        ``reference``: its mean axis (docs/free-beam.md), from which its deflection is measured; its band is the
+        section's true thickness (its contact is often found anywhere on the centre line's capsule)."""
         beam = system.beam
         xP, c, L, rh = system.contact.position, system.contact.offset, beam.length, beam.hub_radius
+        if origin is not None:  # a free beam's pairs are often on its centre line (a capsule): its true thickness
+            c = abs(system.case.beam.surface_offset)
         X, Y = beam_shape(system, phi, q, x, origin)
         r = np.stack((X, Y), axis=-1)  # (m, k, 2)
         R = np.zeros((phi.size, 2)) if origin is None else origin
