@@ -58,11 +58,12 @@ def test_g_follows_the_parabola_of_free_flight(method, vibrating, t_end, tol):
 def test_the_dataset_and_file_hold_g_along_axis(tmp_path):
     """``centre_of_mass`` and its velocity have dims (time, axis), axis = [x, y], units m and m/s, and read back from
     result.nc as written (stored exactly, as theta: a rigid coordinate whose value has no scale); a beam on a
-    revolute joint has neither variable nor the axis."""
+    revolute joint has neither variable nor the axis; theta is named the mean axis's angle (a joint's: the hub's)."""
     sol = fb.simulate(tumbling_bar(), "ccfm")
     ds = sol.to_xarray()
     assert ds["centre_of_mass"].dims == ("time", "axis") and list(ds["axis"].values) == ["x", "y"]
     assert ds["centre_of_mass"].attrs["units"] == "m" and ds["centre_of_mass_velocity"].attrs["units"] == "m/s"
+    assert ds["theta"].attrs["long_name"] == "Angle of the free beam's mean axis"
     import xarray as xr
 
     with xr.open_dataset(sol.to_netcdf(tmp_path / "result.nc")) as back:
@@ -70,3 +71,4 @@ def test_the_dataset_and_file_hold_g_along_axis(tmp_path):
             np.testing.assert_array_equal(back[name].values, sol[name])
     seed = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 0.01}), "ccfm").to_xarray()
     assert "centre_of_mass" not in seed and "axis" not in seed.coords
+    assert seed["theta"].attrs["long_name"] == "Hub angle"

@@ -130,9 +130,18 @@ def variable_dims(name: str) -> tuple[str, ...]:
     return ("time",)
 
 
-def variable_attrs(name: str) -> dict[str, str]:
+#: the long names of a free beam's angle and its rate (its floating frame's: docs/free-beam.md), for the revolute
+#: joint's hub angle
+FREE_LONG_NAMES = {
+    "theta": "Angle of the free beam's mean axis",
+    "theta_rate": "Angular velocity of the free beam's mean axis",
+}
+
+
+def variable_attrs(name: str, free: bool = False) -> dict[str, str]:
+    """The units and long name of variable ``name`` (``free``: of a free beam's, :data:`FREE_LONG_NAMES`)."""
     units, long_name = VARIABLES[name]
-    return {"units": units, "long_name": long_name}
+    return {"units": units, "long_name": FREE_LONG_NAMES.get(name, long_name) if free else long_name}
 
 
 PHASE_ATTRS = {"long_name": "Phase of motion"}
@@ -204,8 +213,9 @@ def to_xarray(sol: Solution):
 
     n_modes = sol.arrays["q"].shape[1] if sol.arrays["q"].ndim == 2 else 0
     data_vars: dict[str, Any] = {}
+    free = CENTRE_VARIABLES[0] in sol.arrays
     for name, arr in sol.arrays.items():
-        data_vars[name] = (variable_dims(name), arr, variable_attrs(name))
+        data_vars[name] = (variable_dims(name), arr, variable_attrs(name, free))
     data_vars["phase"] = (("time",), sol.phase.astype(str), dict(PHASE_ATTRS))
     for name, (units, long_name, values) in contact_fields(sol).items():
         data_vars[name] = (("contact",), values, {"units": units, "long_name": long_name})

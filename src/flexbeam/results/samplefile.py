@@ -111,7 +111,7 @@ class SampleFile:
 
         data_vars: dict[str, Any] = {}
         for name, values in arrays.items():
-            attrs = export.variable_attrs(name)
+            attrs = export.variable_attrs(name, export.CENTRE_VARIABLES[0] in arrays)
             if self.nsb is not None and name in export.QUANTIZED:
                 attrs.update(export.quantization_attrs(self.nsb, self.rtol))
             data_vars[name] = (export.variable_dims(name), self._rounded(name, values), attrs)
