@@ -17,6 +17,11 @@
 
 #define FB_LAYOUT_VERSION 4
 #define FB_PI 3.14159265358979323846
+#if defined(_MSC_VER)
+#define FB_THREAD_LOCAL __declspec(thread)
+#else
+#define FB_THREAD_LOCAL __thread
+#endif
 #define FB_MAX_POINTS 64
 #define FB_MAX_OBSTACLES 8
 #define FB_MAX_PAIRS 8
@@ -80,6 +85,8 @@ typedef struct fb_model_s {
     const double *st_x, *st_phi, *st_dphi, *st_ddphi, *st_H, *st_maxphi, *st_maxdphi;
     const double *st_aphi, *st_daphi, *st_maxaphi;
     const double *Cd; /* the structural damping of the flexible coordinates, n x n (NULL: undamped) */
+    unsigned long long uid; /* this unpacking's number in its thread (fb_model_unpack; from 1): keys the contact
+                             * search's kept references (nearest_scan.c) to the buffers unpacked */
 } fb_model;
 
 /* How the contacts act during a phase, pair by pair: FB_MODE_NONE (free), FB_MODE_FORCE (the law
@@ -210,6 +217,7 @@ double fb_nearest_rate(const fb_model *m, const fb_obstacle *o, const fb_frame *
 double fb_anywhere_gamma(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
                          double s, double sd, int flat, double x, double gamma, const double *offsets, double *tgamma);
 void fb_anywhere_bound(const fb_model *m, const double *q, double *env);
+void fb_nearest_warm(int on); /* nearest_scan.c: the plane's warm scan on (default) or off (every scan full) */
 double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd);
 double fb_law_potential(const double *p, double d);
 int fb_solve(double *A, double *b, int n);

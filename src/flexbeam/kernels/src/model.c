@@ -24,6 +24,8 @@
  * H (nst x n x n), max |Psi| (n), max |Psi'| (n), with na > 0 Phi_a, Phi_a' (nst x na each), max |Phi_a| (na)]
  * (flexbeam.kernels.layout.pack_model writes it). */
 int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf) {
+    static FB_THREAD_LOCAL unsigned long long unpacked;
+    m->uid = ++unpacked;
     const double *ints = buf;
     size_t nints = 9;
     if (nbuf < nints || (int)ints[0] != FB_LAYOUT_VERSION) return -1;

@@ -20,15 +20,9 @@
  */
 #include <string.h>
 
-#include "flexbeam.h"
+#include "nearest_line.h"
 
 #define NEWTON_ITERS 60
-
-static double dot(const double *a, const double *b, int n) {
-    double acc = 0.0;
-    for (int i = 0; i < n; i++) acc += a[i] * b[i];
-    return acc;
-}
 
 /* Cubic Hermite basis on [0, 1] at s, its first and second derivatives (d/ds). */
 static void hermite(double s, double h[4], double d1[4], double d2[4]) {
@@ -38,52 +32,20 @@ static void hermite(double s, double h[4], double d1[4], double d2[4]) {
     d2[0] = 12 * s - 6, d2[1] = 6 * s - 4, d2[2] = -12 * s + 6, d2[3] = 6 * s - 2;
 }
 
-/* The centre line of a deformed beam, station data computed once per search. */
-typedef struct {
-    const fb_model *m;
-    const double *q; /* [q, p]: n bending modes, then the axial ones */
-    int n, M;
-    double rh, dx;
-    double *w, *w1, *w2, *u; /* per station: Psi q, Psi' q, Psi'' q, u_x (NAN until needed) */
-    double *s, *s1;          /* per station: Phi_a p, Phi_a' p (NAN until needed; NULL without axial modes) */
-} line_t;
-
 static double station_u(line_t *ln, int j) {
-    if (isnan(ln->u[j])) {
+    if (!line_known(ln, KNOWN_U, j)) {
         const double *H = ln->m->st_H + (size_t)j * ln->n * ln->n;
         ln->u[j] = -0.5 * fb_quad(H, ln->q, ln->n);
     }
     return ln->u[j];
 }
 
-/* Psi q at station j, computed on first use (a sphere's scan visits only the stations near it). */
-static double station_w(line_t *ln, int j) {
-    if (isnan(ln->w[j])) ln->w[j] = dot(ln->m->st_phi + (size_t)j * ln->n, ln->q, ln->n);
-    return ln->w[j];
-}
-
 /* Psi' q and Psi'' q at station j, computed on first use (the scan needs Psi q alone). */
 static void station_slopes(line_t *ln, int j) {
-    if (isnan(ln->w1[j])) {
-        ln->w1[j] = dot(ln->m->st_dphi + (size_t)j * ln->n, ln->q, ln->n);
-        ln->w2[j] = dot(ln->m->st_ddphi + (size_t)j * ln->n, ln->q, ln->n);
+    if (!line_known(ln, KNOWN_SLOPES, j)) {
+        ln->w1[j] = line_dot(ln->m->st_dphi + (size_t)j * ln->n, ln->q, ln->n);
+        ln->w2[j] = line_dot(ln->m->st_ddphi + (size_t)j * ln->n, ln->q, ln->n);
     }
-}
-
-/* The axial stretch Phi_a p at station j and its slope Phi_a' p in *s1 (0 without axial modes). */
-static double station_s(line_t *ln, int j, double *s1) {
-    if (!ln->s) {
-        *s1 = 0.0;
-        return 0.0;
-    }
-    if (isnan(ln->s[j])) {
-        int na = ln->m->na;
-        const double *p = ln->q + ln->n;
-        ln->s[j] = dot(ln->m->st_aphi + (size_t)j * na, p, na);
-        ln->s1[j] = dot(ln->m->st_daphi + (size_t)j * na, p, na);
-    }
-    *s1 = ln->s1[j];
-    return ln->s[j];
 }
 
 static int interval(const line_t *ln, double x, double *s) {
@@ -194,7 +156,7 @@ static void material_shapes(const line_t *ln, double x, fb_surface_point *out) {
  * of the true gap's second derivative, anywhere_gamma.c). */
 void fb_centre_point(const fb_model *m, double x, fb_surface_point *out) {
     int M = m->nst;
-    line_t ln = {m, NULL, fb_nb(m), M, m->hub_radius, m->st_x[M - 1] / (M - 1), NULL, NULL, NULL, NULL, NULL, NULL};
+    line_t ln = {m, NULL, fb_nb(m), M, m->hub_radius, m->st_x[M - 1] / (M - 1), NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     material_shapes(&ln, x, out);
     out->x = x;
     out->P.base = ln.rh + x;
@@ -231,17 +193,20 @@ static int obstacle_in_body(const fb_model *m, const fb_obstacle *o, const fb_fr
 }
 
 /* The search's line at q + e q' and the obstacle in the body frame with the frame advanced by e (theta', R', v_O)
- * and its support (s'), into ln (its station arrays in st, 6 M doubles) and c; returns whether it is a sphere. */
+ * and its support (s'), into ln (its station arrays in st, 6 M doubles, and known, LINE_KNOWN LINE_WORDS(M) words)
+ * and c; returns whether it is a sphere. */
 static int advanced(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
-                    double s, double sd, double e, double *qe, double *st, line_t *ln, double c[2]) {
+                    double s, double sd, double e, double *qe, double *st, unsigned long long *known, line_t *ln,
+                    double c[2]) {
     int n = fb_nb(m), na = m->na, M = m->nst;
     fb_frame g = *f;
     g.th += e * f->thd, g.R[0] += e * f->Rd[0], g.R[1] += e * f->Rd[1];
     g.rO[0] += e * f->vO[0], g.rO[1] += e * f->vO[1];
     for (int k = 0; k < n + na; k++) qe[k] = q[k] + e * qd[k];
     double *w = st, *w1 = st + M, *w2 = st + 2 * M, *u = st + 3 * M, *sx = st + 4 * M, *sx1 = st + 5 * M;
-    *ln = (line_t){m, qe, n, M, m->hub_radius, m->st_x[M - 1] / (M - 1), w, w1, w2, u, na ? sx : NULL, na ? sx1 : NULL};
-    for (int j = 0; j < 6 * M; j++) st[j] = NAN;
+    *ln = (line_t){m, qe, n, M, m->hub_radius, m->st_x[M - 1] / (M - 1), w, w1, w2, u, na ? sx : NULL, na ? sx1 : NULL,
+                   known};
+    memset(known, 0, sizeof(unsigned long long) * LINE_KNOWN * LINE_WORDS(M));
     return obstacle_in_body(m, o, &g, s + e * sd, c);
 }
 
@@ -257,17 +222,18 @@ static int advanced(const fb_model *m, const fb_obstacle *o, const fb_frame *f, 
 double fb_nearest_rate(const fb_model *m, const fb_obstacle *o, const fb_frame *f, const double *q, const double *qd,
                        double s, double sd, double x, int end, double *doff) {
     int M = m->nst;
+    unsigned long long known[LINE_KNOWN * LINE_WORDS(M)];
     double st[6 * M], qe[m->n], fe[2], fx = 0.0, c[2], df, r[2], r1[2], r2[2], dir[2], off[2][2];
     line_t ln;
     for (int side = 0; side < 2 && !end; side++) {
-        int sphere = advanced(m, o, f, q, qd, s, sd, side ? EPS_T : -EPS_T, qe, st, &ln, c);
+        int sphere = advanced(m, o, f, q, qd, s, sd, side ? EPS_T : -EPS_T, qe, st, known, &ln, c);
         fe[side] = objective_slope(&ln, sphere, c, x, &df);
         fx += 0.5 * df;
     }
     double xd = !end && fx != 0.0 ? -(fe[1] - fe[0]) / (2.0 * EPS_T) / fx : 0.0; /* an end's x* stays */
     for (int side = 0; side < 2; side++) {
         double e = side ? EPS_T : -EPS_T;
-        int sphere = advanced(m, o, f, q, qd, s, sd, e, qe, st, &ln, c);
+        int sphere = advanced(m, o, f, q, qd, s, sd, e, qe, st, known, &ln, c);
         centre_line(&ln, x + e * xd, r, r1, r2);
         obstacle_direction(sphere, c, r, dir);
         section_offsets(m->surface, dir, r1[1], off[side]); /* the section's angle: the slope Psi' q */
@@ -281,45 +247,12 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     int n = fb_nb(m), na = m->na, M = m->nst;
     double w[M], w1[M], w2[M], u[M], sx[na ? M : 1], sx1[na ? M : 1];
     double L = m->st_x[M - 1];
-    line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u, na ? sx : NULL, na ? sx1 : NULL};
-    for (int j = 0; j < M; j++) w[j] = w1[j] = w2[j] = u[j] = NAN;
-    for (int j = 0; na && j < M; j++) sx[j] = sx1[j] = NAN;
+    unsigned long long known[LINE_KNOWN * LINE_WORDS(M)];
+    memset(known, 0, sizeof known);
+    line_t ln = {m, q, n, M, m->hub_radius, L / (M - 1), w, w1, w2, u, na ? sx : NULL, na ? sx1 : NULL, known};
     double c[2];
     int sphere = obstacle_in_body(m, o, f, s, c);
-    int best = 0;
-    double best_val = INFINITY;
-    if (sphere) {
-        /* outwards from the station abreast of the centre: a station whose axial distance alone reaches the best
-         * squared distance so far cannot be nearer, nor can any beyond it (r_h + x_j + s_j is monotonic in j: the
-         * axial strain is far above -1) */
-        int j0 = (int)lround((c[0] - ln.rh) / ln.dx);
-        j0 = j0 < 0 ? 0 : (j0 > M - 1 ? M - 1 : j0);
-        int lo_open = 1, hi_open = 1;
-        for (int k = 0; lo_open || hi_open; k++) {
-            for (int side = 0; side < 2; side++) {
-                int j = side ? j0 + k : j0 - k;
-                if ((side ? !hi_open : !lo_open) || (k == 0 && side == 1)) continue;
-                if (j < 0 || j > M - 1) {
-                    if (side) hi_open = 0;
-                    else lo_open = 0;
-                    continue;
-                }
-                double slope, ex = ln.rh + m->st_x[j] + station_s(&ln, j, &slope) - c[0];
-                if (ex * ex >= best_val) {
-                    if (side) hi_open = 0;
-                    else lo_open = 0;
-                    continue;
-                }
-                double ey = station_w(&ln, j) - c[1], val = ex * ex + ey * ey;
-                if (val < best_val || (val == best_val && j < best)) best_val = val, best = j;
-            }
-        }
-    } else {
-        for (int j = 0; j < M; j++) {
-            double slope, val = c[0] * (ln.rh + m->st_x[j] + station_s(&ln, j, &slope)) + c[1] * station_w(&ln, j);
-            if (val < best_val) best_val = val, best = j;
-        }
-    }
+    int best = fb_nearest_station(&ln, sphere, c, (int)(o - m->obstacles));
     double a = m->st_x[best > 0 ? best - 1 : 0], b = m->st_x[best < M - 1 ? best + 1 : M - 1];
     double x = minimise(&ln, sphere, c, a, b);
     material_shapes(&ln, x, out);
@@ -327,7 +260,7 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     double r[2], r1[2], r2[2], dir[2], off[2];
     centre_line(&ln, x, r, r1, r2);
     obstacle_direction(sphere, c, r, dir);
-    double ang = dot(out->dphi, q, n), sa, ca, cs = m->surface;
+    double ang = line_dot(out->dphi, q, n), sa, ca, cs = m->surface;
     fb_sincos(ang, &sa, &ca);
     section_offsets(cs, dir, ang, off);
     out->x = x;
