@@ -218,6 +218,7 @@ double fb_anywhere_gamma(const fb_model *m, const fb_obstacle *o, const fb_frame
                          double s, double sd, int flat, double x, double gamma, const double *offsets, double *tgamma);
 void fb_anywhere_bound(const fb_model *m, const double *q, double *env);
 void fb_nearest_warm(int on); /* nearest_scan.c: the plane's warm scan on (default) or off (every scan full) */
+long fb_nearest_full_scans(void); /* nearest_scan.c: the plane's full scans so far in the calling thread */
 double fb_law_force(const double *p, double d, double dd, double *fk, double *dF_dd, double *dF_ddd);
 double fb_law_potential(const double *p, double d);
 int fb_solve(double *A, double *b, int n);

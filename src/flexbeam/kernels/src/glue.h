@@ -46,6 +46,7 @@ FB_GLUE PyObject *py_outputs(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_kinematics(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_gap(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_tangent(PyObject *self, PyObject *args);
+FB_GLUE PyObject *py_nearest_path(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_equations(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_law_force(PyObject *self, PyObject *args);
 

@@ -160,6 +160,46 @@ fail:
     return NULL;
 }
 
+/* nearest_path(model, pair, t, Y, warm, out) -> full scans: for each row y of Y (states, one model unpacking for all)
+ * the pair's gap and contact point, out rows [delta, x, nx, ny]; with warm = 0 every search scans all the stations
+ * (nearest_scan.c's warm scan off: the reference the warm one must reproduce); returns how many full scans of a
+ * half-plane's stations the searches made */
+PyObject *py_nearest_path(PyObject *self, PyObject *args) {
+    PyObject *om, *oY, *oout;
+    int pair, warm;
+    double t;
+    if (!PyArg_ParseTuple(args, "OidOiO", &om, &pair, &t, &oY, &warm, &oout)) return NULL;
+    buf_t b[3];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(oY, &b[1], 0, "Y") || get_buf(oout, &b[2], 1, "out") ||
+        model_from(&b[0], &m))
+        goto fail;
+    size_t S = (size_t)fb_state_size(&m), rows = LEN(b[1]) / (S ? S : 1);
+    if (pair < 0 || pair >= m.npairs || LEN(b[1]) != rows * S || LEN(b[2]) != 4 * rows) {
+        PyErr_SetString(PyExc_ValueError, "nearest_path: no such pair, or array sizes do not match");
+        goto fail;
+    }
+    int compliant = fb_compliant(&m), nb = 2 * fb_nz(&m);
+    fb_nearest_warm(warm);
+    long full = fb_nearest_full_scans();
+    for (size_t i = 0; i < rows; i++) {
+        fb_frame fr;
+        const double *q, *qd, *y = PTR(b[1]) + i * S;
+        fb_state_split(&m, t, y, &fr, &q, &qd);
+        fb_gap g = fb_pair_gap(&m, pair, &fr, q, qd, compliant ? y[nb] : 0.0, compliant ? y[nb + 1] : 0.0, 0, NULL);
+        double *o = PTR(b[2]) + 4 * i;
+        o[0] = g.delta, o[1] = g.x, o[2] = g.nx, o[3] = g.ny;
+    }
+    fb_nearest_warm(1);
+    full = fb_nearest_full_scans() - full;
+    release(b, 3);
+    return PyLong_FromLong(full);
+fail:
+    release(b, 3);
+    return NULL;
+}
+
 /* equations(model, t, y, M, Q, E): M (nfull x nfull), Q (nfull, with the applied torque), E = [T, Ve, Vg] */
 PyObject *py_equations(PyObject *self, PyObject *args) {
     PyObject *om, *oy, *oM, *oQ, *oE;

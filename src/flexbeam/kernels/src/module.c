@@ -8,6 +8,8 @@ static PyMethodDef methods[] = {
     {"kinematics", py_kinematics, METH_VARARGS, "kinematics(model, point, t, y, out)"},
     {"gap", py_gap, METH_VARARGS, "gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny, x)"},
     {"tangent", py_tangent, METH_VARARGS, "tangent(model, pair, t, y, J, Jt) -> (delta, rate, slip velocity, nx, ny)"},
+    {"nearest_path", py_nearest_path, METH_VARARGS,
+     "nearest_path(model, pair, t, Y, warm, out) -> full scans: rows [delta, x, nx, ny], the pair's gap and point"},
     {"equations", py_equations, METH_VARARGS, "equations(model, t, y, M, Q, E)"},
     {"law_force", py_law_force, METH_VARARGS, "law_force(p, d, dd) -> (F, Fk, dF/dd, dF/ddd)"},
     {"advance", py_advance, METH_VARARGS, "advance(model, basis, ctrl, state, t_end, records, info) -> (code, nrec)"},

@@ -40,9 +40,12 @@ typedef struct {
 } plane_ref;
 
 static FB_THREAD_LOCAL plane_ref refs[FB_MAX_OBSTACLES];
-static FB_THREAD_LOCAL int cold; /* fb_nearest_warm(0): every scan full, no reference kept */
+static FB_THREAD_LOCAL int cold;           /* fb_nearest_warm(0): every scan full, no reference kept */
+static FB_THREAD_LOCAL long full_scans; /* the plane's full scans so far in this thread */
 
 void fb_nearest_warm(int on) { cold = !on; }
+
+long fb_nearest_full_scans(void) { return full_scans; }
 
 static int sphere_station(line_t *ln, const double c[2]) {
     const fb_model *m = ln->m;
@@ -99,6 +102,7 @@ static void keep_least(plane_ref *r, double val, int j) {
 static int plane_full(line_t *ln, const double c[2], plane_ref *r) {
     int best = 0, finite = 1;
     double best_val = INFINITY;
+    full_scans++;
     if (r) r->uid = 0, r->kept = 0;
     for (int j = 0; j < ln->M; j++) {
         double val = plane_value(ln, c, j);
