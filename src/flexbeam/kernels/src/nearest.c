@@ -174,10 +174,8 @@ static void obstacle_direction(int sphere, const double c[2], const double r[2],
 }
 
 /* The surface point's offsets off = [-c u . n, c u . t] along the normal and tangent of the section at angle ang (u =
- * dir, c the surface offset). */
-static void section_offsets(double cs, const double dir[2], double ang, double off[2]) {
-    double sa, ca;
-    fb_sincos(ang, &sa, &ca);
+ * dir, c the surface offset; sa, ca: sin and cos of ang). */
+static void section_offsets(double cs, const double dir[2], double sa, double ca, double off[2]) {
     off[1] = cs * (dir[0] * ca + dir[1] * sa);  /* c u . t */
     off[0] = -cs * (-dir[0] * sa + dir[1] * ca); /* -c u . n */
 }
@@ -236,7 +234,9 @@ double fb_nearest_rate(const fb_model *m, const fb_obstacle *o, const fb_frame *
         int sphere = advanced(m, o, f, q, qd, s, sd, e, qe, st, known, &ln, c);
         centre_line(&ln, x + e * xd, r, r1, r2);
         obstacle_direction(sphere, c, r, dir);
-        section_offsets(m->surface, dir, r1[1], off[side]); /* the section's angle: the slope Psi' q */
+        double sa, ca;
+        fb_sincos(r1[1], &sa, &ca); /* the section's angle: the slope Psi' q */
+        section_offsets(m->surface, dir, sa, ca, off[side]);
     }
     for (int i = 0; i < 2; i++) doff[i] = (off[1][i] - off[0][i]) / (2.0 * EPS_T);
     return xd;
@@ -262,7 +262,7 @@ void fb_nearest_point(const fb_model *m, const fb_obstacle *o, const fb_frame *f
     obstacle_direction(sphere, c, r, dir);
     double ang = line_dot(out->dphi, q, n), sa, ca, cs = m->surface;
     fb_sincos(ang, &sa, &ca);
-    section_offsets(cs, dir, ang, off);
+    section_offsets(cs, dir, sa, ca, off);
     out->x = x;
     out->P.base = ln.rh + x;
     out->P.offset_t = off[1];
