@@ -122,32 +122,44 @@ static double minimise(line_t *ln, int sphere, const double c[2], double a, doub
     return x;
 }
 
-/* The material point at x: Psi, Psi', H and (with axial modes) Phi_a at x by the search's Hermite interpolation. */
+/* The material point at x: Psi, Psi', H and (with axial modes) Phi_a at x by the search's Hermite interpolation.  On
+ * a station (s = 0 or 1: an end cap's minimiser, or a point met exactly) the basis is (1, 0, 0, 0) or (0, 0, 1, 0) and
+ * the interpolant sums the station's value with zeros: that value itself, to the bit, unless it is a zero (whose sign
+ * the sum decides), so a nonzero one is copied and a zero summed as elsewhere. */
 static void material_shapes(const line_t *ln, double x, fb_surface_point *out) {
     const fb_model *m = ln->m;
     int n = ln->n, na = m->na;
     double sj, h[4], d1[4], d2[4];
-    int j = interval(ln, x, &sj);
+    int j = interval(ln, x, &sj), at = sj == 0.0 || sj == 1.0;
     hermite(sj, h, d1, d2);
     double D = ln->dx;
     const double *P0 = m->st_phi + (size_t)j * n, *P1 = P0 + n, *Q0 = m->st_dphi + (size_t)j * n, *Q1 = Q0 + n;
     const double *R0 = m->st_ddphi + (size_t)j * n, *R1 = R0 + n;
-    for (int k = 0; k < n; k++) {
-        out->phi[k] = h[0] * P0[k] + D * h[1] * Q0[k] + h[2] * P1[k] + D * h[3] * Q1[k];
-        out->dphi[k] = h[0] * Q0[k] + D * h[1] * R0[k] + h[2] * Q1[k] + D * h[3] * R1[k];
-    }
     const double *H0 = m->st_H + (size_t)j * n * n, *H1 = H0 + (size_t)n * n;
+    const double *Ps = sj == 0.0 ? P0 : P1, *Qs = sj == 0.0 ? Q0 : Q1, *Hs = sj == 0.0 ? H0 : H1;
+    for (int k = 0; k < n; k++) {
+        double p = at ? Ps[k] : 0.0, dp = at ? Qs[k] : 0.0;
+        out->phi[k] = p != 0.0 ? p : h[0] * P0[k] + D * h[1] * Q0[k] + h[2] * P1[k] + D * h[3] * Q1[k];
+        out->dphi[k] = dp != 0.0 ? dp : h[0] * Q0[k] + D * h[1] * R0[k] + h[2] * Q1[k] + D * h[3] * R1[k];
+    }
     for (int r = 0; r < n; r++)
-        for (int k = 0; k < n; k++)
-            out->H[r * n + k] = h[0] * H0[r * n + k] + h[2] * H1[r * n + k] +
-                                D * (h[1] * Q0[r] * Q0[k] + h[3] * Q1[r] * Q1[k]);
+        for (int k = 0; k < n; k++) {
+            double v = at ? Hs[r * n + k] : 0.0;
+            out->H[r * n + k] = v != 0.0 ? v
+                                         : h[0] * H0[r * n + k] + h[2] * H1[r * n + k] +
+                                               D * (h[1] * Q0[r] * Q0[k] + h[3] * Q1[r] * Q1[k]);
+        }
     out->P.phi = out->phi;
     out->P.dphi = out->dphi;
     out->P.H = out->H;
     out->P.aphi = NULL;
     if (na) { /* Phi_a at x by the same Hermite interpolation as the search's stretch */
         const double *A0 = m->st_aphi + (size_t)j * na, *A1 = A0 + na, *B0 = m->st_daphi + (size_t)j * na, *B1 = B0 + na;
-        for (int k = 0; k < na; k++) out->aphi[k] = h[0] * A0[k] + D * h[1] * B0[k] + h[2] * A1[k] + D * h[3] * B1[k];
+        const double *As = sj == 0.0 ? A0 : A1;
+        for (int k = 0; k < na; k++) {
+            double a = at ? As[k] : 0.0;
+            out->aphi[k] = a != 0.0 ? a : h[0] * A0[k] + D * h[1] * B0[k] + h[2] * A1[k] + D * h[3] * B1[k];
+        }
         out->P.aphi = out->aphi;
     }
 }
