@@ -6,20 +6,22 @@
  * frame), v_j = c . rho_j = c_x (r_h + x_j + s_j) + c_y w_j (s_j = Phi_a,j p, w_j = Psi_j q), over all M stations:
  * M dot products, most of the search's cost when it runs at every node and sample of a step.
  *
- * The plane's warm scan gives the full scan's station, bit for bit, from fewer of them.  The full scan's values
- * v_j^r at a reference (q_r, p_r, c_r) are kept (per thread, per model unpacking and obstacle).  At (q, p, c)
+ * The plane's warm scan gives the full scan's station, bit for bit, from fewer of them.  The WARM_KEEP + 1 least of
+ * the full scan's values v_j^r at a reference (q_r, p_r, c_r) are kept (per thread, per model unpacking and
+ * obstacle).  At (q, p, c)
  *     |v_j - v_j^r| <= D = |c_x - c_x^r| X + |c_x^r| dS + |c_y - c_y^r| W + |c_y^r| dW
  * for every j, with |r_h + x_j + s_j| <= X = |r_h| + max|x_j| + sum_k max_j|Phi_a,jk| |p_k| (the larger of now and
  * the reference), |w_j| <= W = sum_k max_j|Psi_jk| |q_k| (likewise), |s_j - s_j^r| <= dS = sum_k max|Phi_a,k|
- * |p_k - p_r,k| and |w_j - w_j^r| <= dW = sum_k max|Psi_k| |q_k - q_r,k| (the model's st_maxphi, st_maxaphi bound
- * the stations' values).  The computed values carry at most (n + n_a + 5) u (|c_x| X + |c_y| W) of rounding each
+ * |p_k - p_r,k| and |w_j - w_j^r| <= dW = sum_k max|Psi_k| |q_k - q_r,k| (the maxima over the stations' table values,
+ * taken once per model unpacking: exact).  The computed values carry at most (n + n_a + 5) u (|c_x| X + |c_y| W) of rounding each
  * (the dot products' gamma_n bound, Higham 2002 Sec. 3.1, and five more roundings); taken 8 (n + n_a + 4) u, and
  * the sum doubled against the rounding of the bound itself: B = 2 (D + 2 E).  A station with v_j^r > min_k v_k^r +
  * 2 B then has v_j > v_k0 (k0 the reference's minimiser) now: it can be neither the minimiser nor tied with it.  The
- * warm scan evaluates the other stations (the candidates, k0 among them) exactly as the full scan does, and takes
- * the first least of them: the full scan's station, its values' very bits.  Where more than M / WARM_SHARE + 2 are
- * candidates (the beam has turned or bent too far since the reference, or lies flat along the plane) the full scan
- * runs and becomes the new reference.
+ * warm scan evaluates the other stations (the candidates, k0 among them, all among the kept least: a station not
+ * kept has v_j^r >= the largest kept, which must exceed min + 2 B) exactly as the full scan does, and takes the first
+ * least of them: the full scan's station, its values' very bits.  Where more than WARM_KEEP are candidates (the beam
+ * has turned or bent too far since the reference, or lies flat along the plane) the full scan runs and becomes the
+ * new reference.
  */
 #include <float.h>
 
@@ -37,6 +39,8 @@ typedef struct {
     int kept;     /* stations kept: min(M, WARM_KEEP + 1) */
     int sj[WARM_KEEP + 1];
     double sv[WARM_KEEP + 1]; /* their values, ascending: every station not kept has v_j^r >= sv[WARM_KEEP] */
+    unsigned long long max_uid; /* the unpacking whose station maxima amax holds (0: none) */
+    double amax[64];            /* max_j |Psi_jk| per bending mode, then max_j |Phi_a,jk| per axial one */
 } plane_ref;
 
 static FB_THREAD_LOCAL plane_ref refs[FB_MAX_OBSTACLES];
@@ -118,17 +122,29 @@ static int plane_full(line_t *ln, const double c[2], plane_ref *r) {
     return best;
 }
 
+/* The largest |Psi_jk| and |Phi_a,jk| over the stations j, per mode k, into r->amax (once per model unpacking). */
+static void station_maxima(const line_t *ln, plane_ref *r) {
+    const fb_model *m = ln->m;
+    int n = ln->n, na = m->na;
+    for (int k = 0; k < n + na; k++) r->amax[k] = 0.0;
+    for (int j = 0; j < ln->M; j++) {
+        for (int k = 0; k < n; k++) r->amax[k] = fmax(r->amax[k], fabs(m->st_phi[(size_t)j * n + k]));
+        for (int k = 0; k < na; k++) r->amax[n + k] = fmax(r->amax[n + k], fabs(m->st_aphi[(size_t)j * na + k]));
+    }
+    r->max_uid = r->uid;
+}
+
 /* B (the header's) for the state of ln and the normal c against the reference r. */
 static double plane_drift(const line_t *ln, const double c[2], const plane_ref *r) {
     const fb_model *m = ln->m;
     int n = ln->n, na = m->na;
     double W = 0.0, Wr = 0.0, dW = 0.0, S = 0.0, Sr = 0.0, dS = 0.0;
     for (int k = 0; k < n; k++) {
-        double a = m->st_maxphi[k];
+        double a = r->amax[k];
         W += a * fabs(ln->q[k]), Wr += a * fabs(r->q[k]), dW += a * fabs(ln->q[k] - r->q[k]);
     }
     for (int k = n; k < n + na; k++) {
-        double a = m->st_maxaphi[k - n];
+        double a = r->amax[k];
         S += a * fabs(ln->q[k]), Sr += a * fabs(r->q[k]), dS += a * fabs(ln->q[k] - r->q[k]);
     }
     double X = fabs(ln->rh) + fmax(fabs(m->st_x[0]), fabs(m->st_x[ln->M - 1])) + fmax(S, Sr), Wm = fmax(W, Wr);
@@ -140,7 +156,8 @@ static double plane_drift(const line_t *ln, const double c[2], const plane_ref *
 
 /* The full scan's station from the candidates of the reference r (the header's), or -1 where more than WARM_KEEP
  * are candidates or the bound is not finite. */
-static int plane_warm(line_t *ln, const double c[2], const plane_ref *r) {
+static int plane_warm(line_t *ln, const double c[2], plane_ref *r) {
+    if (r->max_uid != r->uid) station_maxima(ln, r);
     double B = plane_drift(ln, c, r), top = r->sv[0] + 2.0 * B, best_val = INFINITY;
     if (!(top < INFINITY) || (r->kept == WARM_KEEP + 1 && r->sv[WARM_KEEP] <= top)) return -1;
     int best = -1;
