@@ -31,15 +31,14 @@ def breaking(phase: Phase, F: np.ndarray, Ft: np.ndarray, rtol: float) -> tuple[
     forces ``F`` and tangential multipliers ``Ft``: abs(lambda_t) beyond mu_s times its and its followers' normal
     forces by more than the band (UNSTICK_*) of the largest of them and of the phase's multipliers; with the event
     the kernel would end its stick on (UNSTICK_PLUS / _MINUS by the sign of lambda_t).  None if every stick holds."""
-    rows = phase.friction
-    holders = [k for k in range(len(F)) if rows[k, 1] == 1.0]
-    held = [abs(F[k]) for k, m in enumerate(phase.modes) if m == ContactMode.CONSTRAINT]
-    scale = max([abs(Ft[k]) for k in holders] + held, default=0.0)
+    held, mus = phase.friction[:, 1].tolist(), phase.friction[:, 2].tolist()
+    F, Ft = F.tolist(), Ft.tolist()
+    holders = [k for k, h in enumerate(held) if h == 1.0]
+    scale = max([abs(Ft[k]) for k in holders] + [abs(f) for f, m in zip(F, phase.modes) if m == ContactMode.CONSTRAINT])
+    band = max(UNSTICK_RTOL * rtol, UNSTICK_NOISE)
     for k in holders:
-        Fs = F[k] + sum(F[j] for j in range(len(F)) if rows[j, 1] == 2.0 + k)
-        mus = rows[k, 2]
-        noise = max(UNSTICK_RTOL * rtol, UNSTICK_NOISE) * max(scale, mus * Fs, abs(Ft[k]))
-        if mus * Fs - abs(Ft[k]) + noise < 0.0:
+        Fs = F[k] + sum(f for f, h in zip(F, held) if h == 2.0 + k)
+        if mus[k] * Fs - abs(Ft[k]) + band * max(scale, mus[k] * Fs, abs(Ft[k])) < 0.0:
             return k, EventKind.UNSTICK_PLUS if Ft[k] > 0.0 else EventKind.UNSTICK_MINUS
     return None
 
@@ -52,7 +51,7 @@ def holding(method, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.nd
     method (its system, case, :meth:`~flexbeam.methods.base.ImpactMethod.phase` and ``settled``)."""
     system, rtol = method.system, method.case.solver.fast_rtol
     phase, y = method.settled(phase, t, y)
-    while phase.friction is not None and (phase.friction[:, 1] == 1.0).any():
+    while phase.friction is not None and 1.0 in phase.friction[:, 1].tolist():
         forces = system.contact_forces(t, y, phase.buffer)
         broken = None if forces is None else breaking(phase, *forces, rtol)
         if broken is None:
