@@ -223,9 +223,9 @@ class BeamSystem:
         return fun
 
     def contact_forces(self, t: float, y: np.ndarray, contacts: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-        """(F, lambda_t) at (t, y) under the phase ``contacts`` with every pair's Coulomb friction (a law pair's too,
-        which :meth:`rhs` leaves out): the normal forces and the sticking holders' tangential multipliers, of their
-        rows J_t z'' = -gamma_t - 2 alpha v_t (``kernels/src/rhs.c`` fb_contact_forces); None if singular."""
+        """(F, lambda_t) at (t, y) under the phase ``contacts``, as :meth:`rhs` solves them: the normal forces and
+        the sticking holders' tangential multipliers, of their rows J_t z'' = -gamma_t - 2 alpha v_t
+        (``kernels/src/rhs.c`` fb_contact_forces); None if singular."""
         F, Ft = np.empty(self.pairs), np.empty(self.pairs)
         bad = core.contact_forces(self.kernel, float(t), np.ascontiguousarray(y, float), contacts, F, Ft)
         return None if bad else (F, Ft)
