@@ -18,7 +18,7 @@ from ..integrate.phases import FRICTION_EVENTS, PAINLEVE_EVENTS, ContactMode, Ev
 from ..model.system import BeamSystem
 from ..parameters.case import Case
 from ..results.records import ContactEvent
-from . import coulomb
+from . import coulomb, stick_start
 from .impulse import Jump, impulse_jump
 
 #: steps per (estimated) contact duration at least: a contact phase's step is bounded by t_c / CONTACT_STEPS
@@ -305,10 +305,12 @@ class ImpactMethod:
                    ) -> tuple[Phase, np.ndarray]:  # fmt: skip
         """A friction event of a pair (a stop, the end of a stick: :mod:`flexbeam.methods.coulomb`) switches its
         friction row; the others as :meth:`contact_transition`; with friction the sticking pairs are then sorted
-        into holders and followers again."""
+        into holders and followers again.  A stop's sticks that cannot hold there slip on at once
+        (:func:`~flexbeam.methods.stick_start.holding`)."""
         if event == EventKind.STOP:
-            friction = coulomb.stop(self.system, phase, t, y, pair)
-        elif event in FRICTION_EVENTS:
+            friction = coulomb.grouped(self.system, t, y, coulomb.stop(self.system, phase, t, y, pair))
+            return stick_start.holding(self, self.phase(phase.modes, phase.parameters, phase.records, friction), t, y)
+        if event in FRICTION_EVENTS:
             friction = coulomb.unstick(self.system, phase, event, pair, t, y)
         else:
             phase, y = self.contact_transition(phase, event, t, y, pair)
@@ -317,6 +319,12 @@ class ImpactMethod:
             friction = phase.friction
         friction = coulomb.grouped(self.system, t, y, friction)
         return self.phase(phase.modes, phase.parameters, phase.records, friction), y
+
+    def settled(self, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        """The phase and state after a friction switch at (t, y): as they are (CCFM's law pairs);
+        :class:`~flexbeam.methods.held_friction.HeldFriction` resolves its held pairs' Painlevé slips and frees the
+        pairs that leave."""
+        return phase, y
 
     def contact_transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
                            ) -> tuple[Phase, np.ndarray]:  # fmt: skip

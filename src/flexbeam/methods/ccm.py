@@ -19,8 +19,8 @@ the multiplier:
   phase -- the non-symmetric DAE [M, (J_n + sigma J_t)^T; J_n, 0] -- until v_t reaches zero (a located STOP);
 * **stick**: the tangential constraint v_t = 0 is held too, by a second multiplier lambda_t along J_t, until
   abs(lambda_t) reaches mu_s lambda_n (a located UNSTICK: it slips on in the direction the load pushes) or lambda_n
-  turns tensile (RELEASE).  A stop enters the stick, which ends at once (the slip reverses) if its ratio
-  abs(lambda_t) / lambda_n exceeds mu_s.
+  turns tensile (RELEASE).  A stop enters the stick unless its ratio abs(lambda_t) / lambda_n already exceeds
+  mu_s there; then the slip reverses at once (:mod:`flexbeam.methods.stick_start`).
 
 Friction dissipates -(sigma lambda_n + lambda_t) v_t >= 0, booked with ``dissipated_energy``.  **Painlevé**: a slip
 whose effective inverse mass a = W_nn + sigma W_nt is <= 0 -- at a slip phase's start, or reached during the slip

@@ -12,11 +12,12 @@ to the obstacle):
   interpolant, and the pair slips on with F_t = mu_k F sign(lambda_t) (Pfeiffer & Glocker, Multibody Dynamics with
   Unilateral Contacts, Wiley 1996, Ch. 5; Glocker & Pfeiffer, Nonlinear Dynamics 7 (1995) 471-497).
 
-A stop always enters the stick: if the multiplier that would hold it already exceeds mu_s F the stick ends at once
-and the slip reverses (the direction of lambda_t is the only one the force can sustain).  A contact whose onset
-slip speed is below :data:`REST_SPEED` starts sticking if the stick's ratio lambda_t / F = -W_tn / W_tt of its
-inverse mass matrix [J_t; J] M^-1 [J_t; J]^T is within mu_s (Stronge's stick condition at the onset of an impact),
-else slips in the direction the normal force drives it (:func:`onset_row`).
+A stop enters the stick only if the multiplier that would hold it is within mu_s F there; else the pair slips on at
+once against lambda_t (the direction of lambda_t is the only one the force can sustain), decided at the stop by
+:mod:`flexbeam.methods.stick_start` as the unstick event would have ended the stick before its first step.  A
+contact whose onset slip speed is below :data:`REST_SPEED` starts sticking if the stick's ratio lambda_t / F =
+-W_tn / W_tt of its inverse mass matrix [J_t; J] M^-1 [J_t; J]^T is within mu_s (Stronge's stick condition at the
+onset of an impact), else slips in the direction the normal force drives it (:func:`onset_row`).
 
 Each row of :attr:`~flexbeam.integrate.phases.Phase.friction` is [sigma, stick, mu_s, v_rest, s] with s = sign(v_t)
 the slip's direction (0 unless slipping), sigma = -mu_k s and v_rest the residual slip speed a slip starting from a

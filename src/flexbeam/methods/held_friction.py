@@ -65,10 +65,16 @@ class HeldFriction(ImpactMethod):
     def transition(self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
                    ) -> tuple[Phase, np.ndarray]:  # fmt: skip
         """As every method's (:meth:`ImpactMethod.transition`); with friction a PAINLEVE event, or a slip starting
-        with a <= 0, is resolved by a tangential impact (:meth:`resolved`)."""
+        with a <= 0, is resolved by a tangential impact, and the pairs that leave are freed (:meth:`settled`; a
+        stop's phase is settled already, before its sticks are tested)."""
         if event == EventKind.PAINLEVE:
             return self.resolved(phase, t, y, pair)
         phase, y = super().transition(phase, event, t, y, pair)
+        return (phase, y) if event == EventKind.STOP else self.settled(phase, t, y)
+
+    def settled(self, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
+        """``phase`` at (t, y) with its Painlevé slips resolved (:meth:`resolved`) and the pairs that leave freed
+        (:meth:`leaving`); as it is without friction."""
         if phase.friction is None:
             return phase, y
         phase, y = self.resolved(phase, t, y)

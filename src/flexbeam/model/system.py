@@ -222,6 +222,14 @@ class BeamSystem:
 
         return fun
 
+    def contact_forces(self, t: float, y: np.ndarray, contacts: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+        """(F, lambda_t) at (t, y) under the phase ``contacts``, as :meth:`rhs` solves them: the normal forces and
+        the sticking holders' tangential multipliers, of their rows J_t z'' = -gamma_t - 2 alpha v_t
+        (``kernels/src/rhs.c`` fb_contact_forces); None if singular."""
+        F, Ft = np.empty(self.pairs), np.empty(self.pairs)
+        bad = core.contact_forces(self.kernel, float(t), np.ascontiguousarray(y, float), contacts, F, Ft)
+        return None if bad else (F, Ft)
+
     def joint_torque(self, t: float, y: np.ndarray, contacts: np.ndarray | None = None) -> float:
         """Joint torque: applied tau (free/torque) or the reaction needed for theta(t)."""
         return float(self.rhs(t, y, contacts)[2])

@@ -224,6 +224,7 @@ double fb_law_potential(const double *p, double d);
 int fb_solve(double *A, double *b, int n);
 int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, double *dy, double *F,
            double *torque);
+int fb_contact_forces(const fb_model *m, double t, const double *y, const fb_contacts *c, double *F, double *Ft);
 /* The output column tip_deflection: the tip's distance from the hub's radial line, measured from the frame's origin
  * (fb_tip_deflection_at: with the hub angle's sine and cosine already known). */
 double fb_tip_deflection(const fb_model *m, const fb_frame *f, const double *q, const double *qd);

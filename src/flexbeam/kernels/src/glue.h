@@ -42,6 +42,7 @@ FB_GLUE int basis_from(buf_t *b, fb_basis *bs);
 
 /* glue_model.c */
 FB_GLUE PyObject *py_rhs(PyObject *self, PyObject *args);
+FB_GLUE PyObject *py_contact_forces(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_outputs(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_kinematics(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_gap(PyObject *self, PyObject *args);

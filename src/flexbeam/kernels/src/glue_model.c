@@ -28,6 +28,32 @@ fail:
     return NULL;
 }
 
+/* contact_forces(model, t, y, contacts, F, Ft) -> status: the normal forces and the sticking pairs' tangential
+ * multipliers with every pair's friction (rhs.c fb_contact_forces) */
+PyObject *py_contact_forces(PyObject *self, PyObject *args) {
+    PyObject *om, *oy, *oc, *oF, *oFt;
+    double t;
+    if (!PyArg_ParseTuple(args, "OdOOOO", &om, &t, &oy, &oc, &oF, &oFt)) return NULL;
+    buf_t b[5];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    fb_contacts c;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oc, &b[2], 0, "contacts") ||
+        get_buf(oF, &b[3], 1, "F") || get_buf(oFt, &b[4], 1, "Ft") || model_from(&b[0], &m) ||
+        contacts_from(&b[2], &m, &c))
+        goto fail;
+    if (LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[3]) != (size_t)m.npairs || LEN(b[4]) != (size_t)m.npairs) {
+        PyErr_SetString(PyExc_ValueError, "contact_forces: y must have the state size, F and Ft one entry per pair");
+        goto fail;
+    }
+    int status = fb_contact_forces(&m, t, PTR(b[1]), &c, PTR(b[3]), PTR(b[4]));
+    release(b, 5);
+    return PyLong_FromLong(status);
+fail:
+    release(b, 5);
+    return NULL;
+}
+
 /* outputs(model, times, Y, contacts, cols, mv, pcols) */
 PyObject *py_outputs(PyObject *self, PyObject *args) {
     PyObject *om, *ot, *oY, *oc, *ocols, *omv, *opc;

@@ -4,6 +4,8 @@
 
 static PyMethodDef methods[] = {
     {"rhs", py_rhs, METH_VARARGS, "rhs(model, t, y, contacts, dy, F) -> torque"},
+    {"contact_forces", py_contact_forces, METH_VARARGS,
+     "contact_forces(model, t, y, contacts, F, Ft) -> status: normal forces, sticking pairs' tangential multipliers"},
     {"outputs", py_outputs, METH_VARARGS, "outputs(model, times, Y, contacts, cols, mv, pcols)"},
     {"kinematics", py_kinematics, METH_VARARGS, "kinematics(model, point, t, y, out)"},
     {"gap", py_gap, METH_VARARGS, "gap(model, pair, t, y, J) -> (delta, rate, gamma, nx, ny, x)"},

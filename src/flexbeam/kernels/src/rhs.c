@@ -252,6 +252,18 @@ static int accelerations(rhs_eval *e, double tau, const double *y, double *dy, d
     return 0;
 }
 
+/* The state's equations and the contact forces at (t, y) into e (assemble, pair_forces, constraint_forces), the
+ * drive's torque in *tau.  -1 for a non-finite state or a singular system. */
+static int contact_state(rhs_eval *e, const fb_model *m, double t, const double *y, const fb_contacts *c,
+                         double *tau) {
+    for (int i = 0; i < fb_state_size(m); i++)
+        if (!isfinite(y[i])) return -1;
+    *tau = assemble(e, m, c, t, y);
+    pair_forces(e);
+    if (m->Cd) e->diss += e->damping;
+    return (e->ncon || e->nstick) && constraint_forces(e) ? -1 : 0;
+}
+
 /* Right-hand side dy/dt of the reference-layout state with the contacts c (see flexbeam.kernels.rhs), pair k:
  * FB_MODE_FORCE: the law force F_k(d_k, d_k') of p_k acts as J_k^T F_k;
  * FB_MODE_CONSTRAINT: the multipliers of [M J_c^T; J_c 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
@@ -262,13 +274,9 @@ static int accelerations(rhs_eval *e, double tau, const double *y, double *dy, d
 int fb_rhs(const fb_model *m, double t, const double *y, const fb_contacts *c, double *dy, double *F_out,
            double *torque_out) {
     int size = fb_state_size(m), nb = 2 * fb_nz(m), S = m->npairs;
-    for (int i = 0; i < size; i++)
-        if (!isfinite(y[i])) goto fail;
     rhs_eval e;
-    double tau = assemble(&e, m, c, t, y), torque;
-    pair_forces(&e);
-    if (m->Cd) e.diss += e.damping;
-    if ((e.ncon || e.nstick) && constraint_forces(&e)) goto fail;
+    double tau, torque;
+    if (contact_state(&e, m, t, y, c, &tau)) goto fail;
     if (e.compliant) {
         dy[nb] = e.sd;
         dy[nb + 1] = e.Fsup / e.o->ms;
@@ -287,6 +295,21 @@ fail:
         for (int k = 0; k < S; k++) F_out[k] = NAN;
     if (torque_out) *torque_out = NAN;
     return -1;
+}
+
+/* The contact forces at (t, y) under the contacts c, as fb_rhs solves them: F (npairs) the normal forces -- a law
+ * pair's force, a held pair's multiplier -- and Ft (npairs) the sticking pairs' tangential multipliers lambda_t, of
+ * their rows Jt z'' = -gamma_t - 2 alpha v_t (0 for the other pairs): the multipliers a stick phase starts with at
+ * (t, y) (methods/stick_start.py).  Returns 0, or -1 for a non-finite state or a singular system. */
+int fb_contact_forces(const fb_model *m, double t, const double *y, const fb_contacts *c, double *F, double *Ft) {
+    rhs_eval e;
+    double tau;
+    if (contact_state(&e, m, t, y, c, &tau)) return -1;
+    for (int k = 0; k < m->npairs; k++) {
+        F[k] = e.F[k];
+        Ft[k] = c->friction && c->stick[k] && c->mode[k] != FB_MODE_NONE ? e.Ft[k] : 0.0;
+    }
+    return 0;
 }
 
 double fb_tip_deflection_at(const fb_model *m, const fb_frame *f, const double *q, const double *qd, double sphi,
