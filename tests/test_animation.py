@@ -351,6 +351,11 @@ def test_beam_shape_of_a_free_beam_is_the_kernels_tip():
         X, Y = beam_shape(system, th, q, [L], origin=R)
         assert_allclose([X[0], Y[0]], system.point_state(0.0, y, 1)[0], rtol=0, atol=1e-12)
         assert abs(float(system.beam.shapes(np.array([L]), 0)[0] @ q)) > 1e-3  # a deflection that counts
+    # one origin for several frames (shape (2,)) is every frame's
+    phis, qs = np.array([0.1, -0.7]), np.zeros((2, system.n))
+    X, Y = beam_shape(system, phis, qs, [0.0, L], origin=R)
+    assert_allclose(X, R[0] + (np.array([0.0, L]) - 0.5 * L) * np.cos(phis)[:, None], rtol=0, atol=1e-15)
+    assert_allclose(Y, R[1] + (np.array([0.0, L]) - 0.5 * L) * np.sin(phis)[:, None], rtol=0, atol=1e-15)
 
 
 def test_a_free_beams_scene_is_its_outline_about_g(bar_drop_run):

@@ -213,7 +213,7 @@ def to_xarray(sol: Solution):
 
     n_modes = sol.arrays["q"].shape[1] if sol.arrays["q"].ndim == 2 else 0
     data_vars: dict[str, Any] = {}
-    free = CENTRE_VARIABLES[0] in sol.arrays
+    free = CENTRE_VARIABLES[0] in sol.arrays  # a free beam: its angle's names, G's axis
     for name, arr in sol.arrays.items():
         data_vars[name] = (variable_dims(name), arr, variable_attrs(name, free))
     data_vars["phase"] = (("time",), sol.phase.astype(str), dict(PHASE_ATTRS))
@@ -221,8 +221,7 @@ def to_xarray(sol: Solution):
         data_vars[name] = (("contact",), values, {"units": units, "long_name": long_name})
     pairs = sol.pair_labels if any(name.startswith("pair_") for name in sol.arrays) else None
     coords: dict[str, Any] = {"time": ("time", sol.time, dict(TIME_ATTRS))}
-    axes = CENTRE_VARIABLES[0] in sol.arrays
-    specs = coordinate_specs(n_modes, sol.measuring_points, len(sol.contacts), pairs, axes)
+    specs = coordinate_specs(n_modes, sol.measuring_points, len(sol.contacts), pairs, free)
     for name, (values, attrs) in specs.items():
         coords[name] = (name, values, attrs)
     return xr.Dataset(data_vars, coords=coords, attrs=global_attrs(sol))

@@ -110,14 +110,14 @@ class SampleFile:
         import xarray as xr
 
         data_vars: dict[str, Any] = {}
+        free = export.CENTRE_VARIABLES[0] in arrays  # a free beam: its angle's names, G's axis
         for name, values in arrays.items():
-            attrs = export.variable_attrs(name, export.CENTRE_VARIABLES[0] in arrays)
+            attrs = export.variable_attrs(name, free)
             if self.nsb is not None and name in export.QUANTIZED:
                 attrs.update(export.quantization_attrs(self.nsb, self.rtol))
             data_vars[name] = (export.variable_dims(name), self._rounded(name, values), attrs)
         coords: dict[str, Any] = {"time": ("time", t, dict(export.TIME_ATTRS))}
-        axes = export.CENTRE_VARIABLES[0] in arrays
-        specs = export.coordinate_specs(self.n_modes, self.points, 0, self.pair_labels, axes)
+        specs = export.coordinate_specs(self.n_modes, self.points, 0, self.pair_labels, free)
         for name, (values, attrs) in specs.items():
             if name != "contact":  # its size is known at the end
                 coords[name] = (name, values, attrs)

@@ -36,7 +36,7 @@ from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
 from ..model.system import SUPPORT_COLUMNS, BeamSystem
 from ..parameters.case import Case
 from . import export
-from .arrays import RunSource, centre_columns, sample_grid, total_energy
+from .arrays import RunSource, sample_grid, total_energy
 from .friction import friction_columns
 from .long_contact import LongContact
 from .records import FRICTION_VARIABLES, ContactEvent
@@ -214,7 +214,6 @@ class RunStream:
         if self.rough:
             for name, value in zip(FRICTION_VARIABLES, friction_columns(sysm, seg, t, Y, pc[:, :, 2])):
                 out[name] = np.ascontiguousarray(value)
-        out.update(centre_columns(sysm, Y))
         return out
 
     def _tally(self, seg: Segment) -> None:

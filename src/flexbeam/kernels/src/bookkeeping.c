@@ -126,8 +126,7 @@ void fb_start_guess(const fb_phase *ph, double t, const double *eta, const doubl
         F0[k] = Ft0[k] = 0.0;
         if (ph->c.mode[k] == FB_MODE_FORCE)
             F0[k] = fb_law_force(ph->c.p[k], -nd.gap[k].delta, -nd.gap[k].rate, NULL, NULL, NULL);
-        if (fb_tangential_unknown(&ph->c, k) && !ph->c.stick[k])
-            Ft0[k] = fb_slip_coefficient(&ph->c, k, nd.vt[k]) * fmax(F0[k], 0.0);
+        Ft0[k] = fb_regularised_force(ph, &nd, k, F0[k]);
         for (int j = 0; j < FB_P; j++) F[k][j] = F0[k], F[S + k][j] = Ft0[k];
     }
     for (int j = 0; j < FB_P; j++)

@@ -264,8 +264,7 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
         } else if (ph->c.mode[l] == FB_MODE_CONSTRAINT) {
             for (int j = 0; j < FB_P; j++) Fe[l] += fb_lagrange(j, 1.0) * w->F[l][j];
         }
-        if (fb_tangential_unknown(&ph->c, l) && !ph->c.stick[l]) /* the regularised law's force at the end */
-            Fte[l] = fb_slip_coefficient(&ph->c, l, end->vt[l]) * fmax(Fe[l], 0.0);
+        if (!ph->c.stick[l]) Fte[l] = fb_regularised_force(ph, end, l, Fe[l]); /* the regularised law's at the end */
     }
     double e2 = 0.0, lim0 = h * h / ((FB_P + 1.0) * (FB_P + 2.0));
     for (int k = 0; k < N; k++) {

@@ -126,6 +126,7 @@ static inline int fb_tangential_unknown(const fb_contacts *c, int k) {
 double fb_slip_coefficient(const fb_contacts *c, int k, double vt);
 double fb_slip_slope(const fb_contacts *c, int k, double vt);
 
+
 /* Contacts buffer (flexbeam.kernels.layout.pack_contacts): [npairs, alpha, beta, (mode, p0, p1, p2, p3) per pair],
  * with friction [npairs, alpha, beta, (mode, p0, p1, p2, p3, sigma, stick, mu_s, v_rest, sign(v_t)) per pair]. */
 int fb_contacts_unpack(fb_contacts *c, const fb_model *m, const double *buf, size_t nbuf);

@@ -79,6 +79,11 @@ double fb_slip_coefficient(const fb_contacts *c, int k, double vt) {
     return vt > 0.0 ? s : (vt < 0.0 ? -s : 0.0);
 }
 
+double fb_regularised_force(const fb_phase *ph, const fb_node *nd, int k, double F) {
+    const fb_contacts *c = &ph->c;
+    return fb_tangential_unknown(c, k) && !c->stick[k] ? fb_slip_coefficient(c, k, nd->vt[k]) * fmax(F, 0.0) : 0.0;
+}
+
 /* d sigma / d v_t of fb_slip_coefficient: -3 mu_k / v_0 exp(-3 |v_t| / v_0) under the regularised law (the same from
  * either side of v_t = 0), 0 for a slipping pair's constant sigma. */
 double fb_slip_slope(const fb_contacts *c, int k, double vt) {

@@ -148,5 +148,8 @@ double fb_find_stop(const fb_dense *d);
 double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *kind);
 double fb_find_unstick(const fb_phase *ph, int k, const double *F, const double *Ft, double scale, int *kind);
 double fb_friction_rate(const fb_phase *ph, const fb_node *nd, int k, double F, double Ft);
+/* The regularised law's tangential force sigma(v_t) max(F, 0) of pair k at an evaluated node (its nodal unknown's
+ * value there, normal force F); 0 for any other pair (friction.c). */
+double fb_regularised_force(const fb_phase *ph, const fb_node *nd, int k, double F);
 
 #endif

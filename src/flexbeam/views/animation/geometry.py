@@ -93,7 +93,7 @@ def beam_shape(system: BeamSystem, phi, q, x, origin=None) -> tuple[np.ndarray, 
     c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
     X, Y = c * rho_x - s * rho_y, s * rho_x + c * rho_y
     if origin is not None:
-        R = np.asarray(origin, float).reshape(phi.size, 2)
+        R = np.broadcast_to(np.asarray(origin, float).reshape(-1, 2), (phi.size, 2))
         X, Y = X + R[:, 0:1], Y + R[:, 1:2]
     return (X[0], Y[0]) if single else (X, Y)
 
