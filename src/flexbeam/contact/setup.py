@@ -136,8 +136,7 @@ class ContactSetup:
             v0 = case.contact.friction_velocity if pc.friction_velocity is None else pc.friction_velocity
             pairs.append(ContactPair(float(x), float(SIDES[side] * c), i + 1, law, e, f"obstacles[{i}]", anywhere,
                                      float(static), float(kinetic), model, float(v0)))  # fmt: skip
-        r_O = case.base.motion(0.0)[0]
-        check_overlaps([o.seen_from(r_O) for o in obstacles])
+        check_overlaps(obstacles, case.base.motion(0.0)[0], pairs)
         return cls(tuple(pairs), tuple(obstacles))
 
     def seen_from(self, r_O) -> tuple[ObstacleGeometry, ...]:
@@ -149,27 +148,65 @@ def _name(i: int) -> str:
     return "obstacle" if i == 0 else f"obstacles[{i - 1}]"
 
 
-def check_overlaps(obstacles) -> None:
+def same_surface(a: ObstacleGeometry, b: ObstacleGeometry) -> bool:
+    """Are ``a`` and ``b`` one rigid surface: the same kind, centre, radius and normal, in the same frame (the ground or
+    the base), neither on a compliant support?  Several pairs touch one obstacle by repeating it (each its own
+    ``[[obstacles]]`` entry and contact point)."""
+    return (
+        a.kind == b.kind
+        and a.ground == b.ground
+        and not (a.compliant or b.compliant)
+        and a.radius == b.radius
+        and np.array_equal(a.centre, b.centre)
+        and np.array_equal(a.normal, b.normal)
+    )
+
+
+def check_overlaps(obstacles, r_O, pairs=()) -> None:
     """Obstacles may not overlap: two spheres closer than their radii, a sphere reaching through a plane, or two
     planes that are not parallel (their half-spaces intersect); raises a one-line ParameterError naming the later
-    one."""
+    one.  ``obstacles`` as set up (:class:`ObstacleGeometry`), seen from the joint at ``r_O`` for the check.  An
+    obstacle repeated exactly (:func:`same_surface`) is one surface that several pairs touch: each of them at a
+    fixed material point (contact anywhere finds one point per surface, which another pair's may be)."""
     for j, b in enumerate(obstacles):
         for i, a in enumerate(obstacles[:j]):
-            if a.kind == OBSTACLE_SPHERE and b.kind == OBSTACLE_SPHERE:
-                dist = nm.hypot(*(a.centre - b.centre))
-                bad = dist < a.radius + b.radius
-                what = f"its sphere is {dist:g} m from {_name(i)}'s, closer than the radii {a.radius + b.radius:g} m"
-            elif a.kind == OBSTACLE_PLANE and b.kind == OBSTACLE_PLANE:
-                cross = a.normal[0] * b.normal[1] - a.normal[1] * b.normal[0]
-                bad = abs(cross) > 1e-12 or a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] > 0.0
-                what = f"its half-plane intersects {_name(i)}'s (not parallel and facing each other)"
-            else:
-                sph, pl = (a, b) if a.kind == OBSTACLE_SPHERE else (b, a)
-                depth = nm.dot(pl.normal, sph.centre - pl.centre)
-                bad = depth < sph.radius
-                what = f"the sphere reaches {sph.radius - depth:g} m into the half-plane ({_name(i)} and it)"
-            if bad:
-                raise ParameterError(f"{_name(j)}.centre: overlaps {_name(i)} -- {what}")
+            if same_surface(a, b):
+                for k in (i, j):
+                    if pairs and pairs[k].anywhere:
+                        field = "contact" if k == 0 else f"obstacles[{k - 1}].contact"
+                        raise ParameterError(
+                            f"{field}.anywhere: {_name(j)} repeats {_name(i)} (one surface that several pairs touch), "
+                            "so each of its pairs must be at a fixed point (contact anywhere finds one point per "
+                            "surface, which another pair's may be)"
+                        )
+                if pairs and (pairs[i].position, pairs[i].offset) == (pairs[j].position, pairs[j].offset):
+                    field = "contact" if j == 0 else f"obstacles[{j - 1}].contact"
+                    raise ParameterError(
+                        f"{field}.position: {_name(j)} repeats {_name(i)} and its pair's point (x = "
+                        f"{pairs[j].position:g} m, the same side): one contact counted twice; move it or drop it"
+                    )
+                continue
+            _check_overlap(a.seen_from(r_O), b.seen_from(r_O), i, j)
+
+
+def _check_overlap(a: ObstacleGeometry, b: ObstacleGeometry, i: int, j: int) -> None:
+    """One pair of distinct obstacles (:func:`check_overlaps`), seen from the joint."""
+    if a.kind == OBSTACLE_SPHERE and b.kind == OBSTACLE_SPHERE:
+        dist = nm.hypot(*(a.centre - b.centre))
+        bad = dist < a.radius + b.radius
+        what = f"its sphere is {dist:g} m from {_name(i)}'s, closer than the radii {a.radius + b.radius:g} m"
+    elif a.kind == OBSTACLE_PLANE and b.kind == OBSTACLE_PLANE:
+        cross = a.normal[0] * b.normal[1] - a.normal[1] * b.normal[0]
+        bad = abs(cross) > 1e-12 or a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] > 0.0
+        what = f"its half-plane intersects {_name(i)}'s (not parallel and facing each other)"
+    else:
+        sph, pl = (a, b) if a.kind == OBSTACLE_SPHERE else (b, a)
+        depth = nm.dot(pl.normal, sph.centre - pl.centre)
+        bad = depth < sph.radius
+        what = f"the sphere reaches {sph.radius - depth:g} m into the half-plane ({_name(i)} and it)"
+    if bad:
+        hint = "" if a.kind != b.kind else "; to touch one obstacle at several points, repeat it exactly"
+        raise ParameterError(f"{_name(j)}.centre: overlaps {_name(i)} -- {what}{hint}")
 
 
 def contact_law(case: Case, obstacle: Obstacle | None = None, pair: PairContact | None = None) -> ContactLaw:
