@@ -141,3 +141,67 @@ def test_a_floor_not_repeated_exactly_still_overlaps():
     case["obstacles"][0]["centre"] = [0.0, 0.001]
     with pytest.raises(fb.ParameterError, match=r"obstacles\[0\]\.centre: overlaps obstacle .*repeat it exactly"):
         fb.simulate(fb.load_case(case), "ccfm")
+
+
+def sliding_case(v0: float, mu: float, t_end: float, *, alpha: float = 0.0, mu_s: float | None = None,
+                 modes: int = 0) -> dict:  # fmt: skip
+    """The bar lying on a floor inclined at ``alpha`` (its normal (-sin a, cos a)), both ends' undersides on it, G
+    moving along it at ``v0``; Coulomb friction mu_k = ``mu`` (mu_s = ``mu_s``) at both pairs."""
+    n = [-math.sin(alpha), math.cos(alpha)]
+    floor = {"kind": "half-plane", "centre": [0.0, 0.0], "normal": n}
+    case = floor_case({"kind": "state", "position": [C * n[0], C * n[1]], "angle": alpha,
+                       "velocity": [v0 * math.cos(alpha), v0 * math.sin(alpha)], "rate": 0.0},
+                      t_end=t_end, modes=modes)  # fmt: skip
+    case["obstacle"] = dict(floor)
+    case["obstacles"] = [{**floor, "contact": {"position": L}}]
+    case["contact"]["friction"] = mu
+    if mu_s is not None:
+        case["contact"]["friction_static"] = mu_s
+    case["output"] = {"interval": 1e-4}
+    return case
+
+
+@pytest.mark.parametrize("modes", [0, 4])
+def test_a_bar_sliding_flat_on_the_ground_slows_at_the_closed_form(modes):
+    """Both ends slide on the floor at v0 = 0.1 m/s, mu_k = 0.3.  The floor's normal is fixed, so G's momentum
+    balances are exact for the flexible bar too while both ends slip forward: m v_Gx' = -mu_k (F_0 + F_1) and
+    m v_Gy' = F_0 + F_1 - m g give v_Gx(t) = v0 - mu_k g t - mu_k (v_Gy(t) - v_Gy(0)), within 1e-10 v0 up to the
+    first stop (measured 1e-14 v0: the kinetic force is mu_k F at the nodes, and G's momentum is linear in it).  The
+    rigid bar's ends stop together where v_Gx = 0 (its rocking's C theta' aside), at T = (v0 / mu_k - (v_Gy(T) -
+    v_Gy(0))) / g within 1e-6 of it (measured 5.5e-9), then stick to t_end; the flexible bar's ringing ends stick and
+    slip on after their stops (undamped modes)."""
+    v0, mu = 0.1, 0.3
+    sol = fb.simulate(fb.load_case(sliding_case(v0, mu, 1.5 * v0 / (mu * G), modes=modes)), "ccfm")
+    assert sol.status == "success", sol.message
+    segs = [s for s in sol.source.run.segments if s.phase.friction is not None]
+
+    def forward(s) -> bool:  # every end in contact slips in +x (sigma = +mu_k); one off the floor carries nothing
+        return all(f > 0.0 or m == 0 for f, m in zip(s.phase.friction[:, 0], s.phase.modes))
+
+    first_stop = next(s.t0 for s in segs if not forward(s))
+    ds = sol.to_xarray()
+    t, v = ds["time"].values, ds["centre_of_mass_velocity"].values
+    slip = t <= first_stop
+    closed = v0 - mu * G * t[slip] - mu * (v[slip, 1] - v[0, 1])
+    assert np.max(np.abs(v[slip, 0] - closed)) <= 1e-10 * v0
+    if modes == 0:
+        vy_T = np.interp(first_stop, t, v[:, 1])
+        T = (v0 / mu - (vy_T - v[0, 1])) / G
+        assert abs(first_stop - T) <= 1e-6 * T
+        assert all((s.phase.friction[:, 1] != 0.0).all() for s in segs if s.t0 >= first_stop)
+
+
+def test_a_bar_on_an_inclined_floor_below_the_friction_angle_stays_put():
+    """tan(alpha) = 0.1 < mu_s = 0.3: set down on the incline at rest, G creeps less than 1e-9 m along it over 1 s
+    once the normal forces have settled (from 0.2 s; the rigid bar: G's displacement is the contact points'; measured
+    7e-18 m: the stick holds)."""
+    alpha = math.atan(0.1)
+    case = sliding_case(0.0, 0.2, 1.2, alpha=alpha, mu_s=0.3)
+    case["output"] = {"interval": 1e-3}
+    sol = fb.simulate(fb.load_case(case), "ccfm")
+    assert sol.status == "success", sol.message
+    ds = sol.to_xarray()
+    t, G_ = ds["time"].values, ds["centre_of_mass"].values
+    along = G_ @ np.array([math.cos(alpha), math.sin(alpha)])
+    settled = t >= 0.2
+    assert np.ptp(along[settled]) < 1e-9
