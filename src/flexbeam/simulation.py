@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .contact.setup import OBSTACLE_PLANE
 from .errors import ModelError, ParameterError
 from .integrate.loop import PhaseMethod, RunResult, Stop, run_phases
 from .integrate.modal import ModalStepper
@@ -160,7 +161,34 @@ def simulate(
     if stream is not None:
         return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
     run = run_phases(impact, stepper, y0, case.solver.t_end, progress)
+    if run.status == "failed":
+        run.message += lying_flat_advice(system, run)
     return collect(run, impact, system, case, info, stepper)
+
+
+#: a free beam's mean axis within this angle [rad] of a half-plane's surface lies flat on it (lying_flat_advice)
+FLAT_ANGLE = 0.01
+
+
+def lying_flat_advice(system: BeamSystem, run) -> str:
+    """What a failed run's message adds when a free beam ended lying along a half-plane that a pair anywhere alone
+    touches: that pair holds one point per surface, which jumps between the beam's ends (docs/free-beam.md, *A bar
+    that comes to rest on a floor*); else ""."""
+    if system.case.joint.kind != "free" or not run.segments:
+        return ""
+    seg = run.segments[-1]
+    theta = system.joint.frame(run.t_final, seg.y1, system.n)[0]
+    axis = np.array([np.cos(theta), np.sin(theta)])
+    obstacles = system.contact.obstacles
+    for pair in system.contact.pairs:  # (a pair anywhere is its surface's only one: setup.check_overlaps)
+        ob = obstacles[pair.obstacle]
+        if pair.anywhere and ob.kind == OBSTACLE_PLANE and abs(float(axis @ ob.normal)) < FLAT_ANGLE:
+            return (
+                f"; the beam lies flat on {pair.label}, whose one pair anywhere holds one point, jumping between the "
+                f"ends: repeat {pair.label} in [[obstacles]] with a fixed contact point at each end (docs: a bar that "
+                "comes to rest on a floor)"
+            )
+    return ""
 
 
 def _continued(system: BeamSystem, state: np.ndarray) -> np.ndarray:

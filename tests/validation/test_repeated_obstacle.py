@@ -14,6 +14,7 @@ delta_s = (m g / (2 K))^(1/n) (Hertz's static contact).
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -24,6 +25,7 @@ from flexbeam.validation.bars import STEEL_BAR, STIFFNESS
 L, C = STEEL_BAR["length"], STEEL_BAR["radius"]
 MASS = STEEL_BAR["density"] * math.pi * C**2 * L
 G = 9.81
+DATA = Path(__file__).parent / "data"
 FLOOR = {"kind": "half-plane", "centre": [0.0, 0.0], "normal": [0.0, 1.0]}
 
 
@@ -82,6 +84,18 @@ def test_a_bar_dropped_at_an_angle_comes_to_rest_on_both_ends():
     assert abs(float(ds["theta"].values[-1])) < 1e-6  # flat: the ends' heights differ by < 0.2 um
     np.testing.assert_allclose(ds["pair_contact_force"].values[-1], [0.5 * MASS * G] * 2, rtol=1e-3)
     assert {r.pair for r in sol.contacts} == {0, 1}  # both ends struck
+
+
+@pytest.mark.parametrize("method", ["ccfm", "ccm"])
+def test_a_single_pair_anywhere_fails_where_the_bar_lies_flat_and_says_why(method):
+    """The limit the repeated floor lifts: the free-bar drop with a dissipative law (one pair anywhere on the floor),
+    run to 1 s, fails once the bar settles flat (CCFM: a step-size underflow at ~0.84 s; CCM: no progress at ~0.67
+    s), and its message names the cause and the remedy.  When a pair anywhere can hold both ends, this test changes."""
+    overrides = {"contact.law": "lankarani_nikravesh", "contact.restitution": 0.5, "solver.t_end": 1.0,
+                 "output.interval": 1e-3}  # fmt: skip
+    sol = fb.simulate(fb.load_case(DATA / "free-bar-drop.toml", overrides), method)
+    assert sol.status == "failed"
+    assert "lies flat on obstacle" in sol.message and "[[obstacles]]" in sol.message
 
 
 @pytest.mark.parametrize("method", ["imm", "ccm"])
