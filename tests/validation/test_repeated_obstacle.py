@@ -86,6 +86,29 @@ def test_a_bar_dropped_at_an_angle_comes_to_rest_on_both_ends():
     assert {r.pair for r in sol.contacts} == {0, 1}  # both ends struck
 
 
+def test_a_bar_on_three_points_of_a_floor_shares_its_weight_as_beam_theory_says():
+    """The floor touched at the bar's ends and middle: the bar sags under its weight between its ends by
+    5 w L^4 / (384 EI) = 0.8 um, more than the ends' Hertz penetration (0.19 um), so its middle rests on the floor too.
+    Euler-Bernoulli statics (the span L simply supported, its uniform weight w and the middle's reaction R) with the
+    Hertz penetrations d(F) = (F / K)^(2/3) give R by compatibility: 5 w L^4 / (384 EI) - R L^3 / (48 EI) =
+    d(R) - d((m g - R) / 2).  With 12 free-free modes, at rest, the middle's and each end's force within 5e-4 of
+    that solution (measured 3.5e-5 and 6e-5; 8 modes 1e-4, 4 modes 7e-4: the modal truncation)."""
+    from scipy.optimize import brentq
+
+    EI = STEEL_BAR["youngs_modulus"] * math.pi * C**4 / 4.0
+    W, w = MASS * G, MASS * G / L
+    d = lambda F: (F / STIFFNESS) ** (2.0 / 3.0)  # noqa: E731
+    R = brentq(lambda R: 5 * w * L**4 / (384 * EI) - R * L**3 / (48 * EI) - (d(R) - d((W - R) / 2)), 0.0, W)
+    case = floor_case({"kind": "state", "position": [0.0, C + 1e-5], "velocity": [0.0, 0.0], "angle": 0.0,
+                       "rate": 0.0}, t_end=1.0, modes=12)  # fmt: skip
+    case["obstacles"].append({**FLOOR, "contact": {"position": 0.5 * L}})
+    case["output"] = {"interval": 1e-3}
+    sol = fb.simulate(fb.load_case(case), "ccfm")
+    assert sol.status == "success", sol.message
+    force = sol.to_xarray()["pair_contact_force"].values[-1]
+    np.testing.assert_allclose(force, [(W - R) / 2, (W - R) / 2, R], rtol=5e-4)
+
+
 @pytest.mark.parametrize("method", ["ccfm", "ccm"])
 def test_a_single_pair_anywhere_fails_where_the_bar_lies_flat_and_says_why(method):
     """The limit the repeated floor lifts: the free-bar drop with a dissipative law (one pair anywhere on the floor),
