@@ -68,6 +68,7 @@ typedef struct {
     double Fk[FB_MAX_PAIRS][FB_P]; /* its elastic part (FORCE) */
     double Ft[FB_MAX_PAIRS][FB_P]; /* a sticking pair's tangential multiplier lambda_t (friction.c) */
     double lambda_scale;           /* the largest multiplier of the phase so far (CONSTRAINT) */
+    double stick_h;                /* the step a stick's residual slip decays over (nodal.c; 0: the step's own) */
     int iterations;
 } fb_work;
 

@@ -4,7 +4,10 @@
 
 #define NEWTON_MAX 30 /* Newton iterations for the nodal contact forces */
 /* A sticking pair's slip velocity decays from its value at the step's start (the stick's residual: the located stop's
- * and each step end's collocation error) at the rate max(kappa, STICK_DECAY / h): to 2 % of it at the step's end */
+ * and each step end's collocation error) at the rate max(kappa, STICK_DECAY / h0): to 2 % of it at the end of the
+ * step first tried, h0 (w->stick_h, phase.c).  Its retries after a rejection decay it at that same rate: a rate
+ * steepened by each cut of h made the multiplier (~ STICK_DECAY m_eff v_t / h) grow as 1 / h and its error estimate
+ * reject again, down to a step-size underflow (the seed experiment with mu = 0.3 at 0.46 s). */
 #define STICK_DECAY 4.0
 
 /* The contact unknowns of a step: (pair, node) for the pairs in contact, pair-major, then the tangential unknowns
@@ -55,12 +58,13 @@ static void contact_response(const fb_phase *ph, const fb_work *w, const fb_unkn
 /* The contact unknowns, each gap and rate linear in them through (A, B): a FORCE pair's F = law(-delta(F),
  * -rate(F)) and a CONSTRAINT pair's multiplier keeping g = delta' + kappa delta on g(t0) exp(-kappa (t - t0)) at
  * the nodes, by Newton's method (one linear solve when no pair is under a law); a sticking pair's tangential
- * multiplier keeps its slip velocity on g0t exp(-max(kappa, STICK_DECAY / h) (t - t0)) (friction.c). */
+ * multiplier keeps its slip velocity on g0t exp(-max(kappa, STICK_DECAY / h0) (t - t0)) (friction.c). */
 static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u, const double *A, const double *B,
                            double h, const double *g0, const double *g0t) {
     const fb_tables *tb = fb_gauss();
     int U = u->count;
     double kappa = ph->c.alpha, F0[MAXU], F[MAXU], d0[MAXU], r0[MAXU];
+    double hd = w->stick_h > 0.0 ? w->stick_h : h; /* h0: the step first tried (phase.c), else this one */
     for (int a = 0; a < U; a++) {
         int k = u->pair[a], i = u->node[a];
         F0[a] = F[a] = u->row[a] ? w->Ft[k][i] : w->F[k][i];
@@ -80,7 +84,7 @@ static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u,
         for (int a = 0; a < U; a++) {
             int k = u->pair[a], i = u->node[a];
             if (u->row[a]) { /* a sticking pair's slip velocity (CCM with friction) */
-                rhs[a] = g0t[k] * fb_exp(-fmax(kappa, STICK_DECAY / h) * tb->c[i] * h) - r0[a];
+                rhs[a] = g0t[k] * fb_exp(-fmax(kappa, STICK_DECAY / hd) * tb->c[i] * h) - r0[a];
                 for (int c = 0; c < U; c++) {
                     M[a * U + c] = B[a * U + c];
                     rhs[a] += M[a * U + c] * F0[c];
@@ -121,7 +125,7 @@ static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u,
                 if (pos) Jac[a * U + n] -= s;
                 big = fmax(big, fabs(F[a]));
             } else if (u->row[a]) {
-                res[a] = g0t[k] * fb_exp(-fmax(kappa, STICK_DECAY / h) * tb->c[i] * h) - r;
+                res[a] = g0t[k] * fb_exp(-fmax(kappa, STICK_DECAY / hd) * tb->c[i] * h) - r;
                 for (int c = 0; c < U; c++) Jac[a * U + c] = B[a * U + c];
                 big = fmax(big, fabs(F[a]));
             } else if (ph->c.mode[k] == FB_MODE_FORCE) {

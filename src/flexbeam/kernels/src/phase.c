@@ -276,6 +276,7 @@ static fb_work *begin_call(const fb_phase *ph, double *state, double t, const do
     fb_work *w = malloc(sizeof(fb_work));
     if (!w) return NULL;
     w->h = -1.0;
+    w->stick_h = 0.0;
     if (state[4] == 0.0) { /* the phase starts */
         fb_start_guess(ph, t, eta, v, f, F);
         info[FB_INFO_T0] = t;
@@ -315,6 +316,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             code = stop;
             break;
         }
+        if (!retry) w->stick_h = h; /* a stick's residual decays over the step first tried, its retries' too */
         int tried = collocate_step(&ph, w, t, &h, eta, v, f, F, trial, &st, info);
         if (tried == ADV_NONFINITE) {
             code = ADV_NONFINITE;
