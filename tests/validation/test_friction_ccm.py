@@ -102,15 +102,17 @@ def test_a_bar_sliding_on_two_stops_stops_after_v0_squared_over_2_mu_g(mu):
 
 def test_a_bar_on_an_incline_below_the_friction_angle_stays_put():
     """tan(alpha) = 0.1 < mu_s = 0.3: the contact points creep less than 1e-9 m over 1 s (Simpson's rule on 20001
-    samples of the slip velocity on the dense output); friction power <= 0; energy balance to 1e-12 J (measured
-    2e-13 J)."""
+    samples of the slip velocity on the dense output); friction power <= 0; energy balance to 1e-7 m g L (3.9e-8 J;
+    measured 5.7e-9 J at fast_rtol 1e-6, 3.8e-10 J at 1e-8: the held gaps' end-point error, which the stabilisation's
+    work lambda delta', booked since 2026-11-26, now shows -- unbooked, the two cancelled to 2e-13 J, the former
+    bound 1e-12 J)."""
     case = bar_on_stops(0.2, 0.0, 1.2, alpha=math.atan(0.1), mu_s=0.3)
     sol = run(case)
     system = BeamSystem.from_case(case)
     assert max(abs(c) for c in creep(sol, system, 0.2, 1.2)) < 1e-9
     assert np.all(sol["pair_friction_state"] == 2.0)
     assert max(p - a for p, a, _ in friction_power(sol, system)) <= 0.0
-    assert energy_drift(sol) <= 1e-12
+    assert energy_drift(sol) <= 1e-7 * MASS * G * STEEL["length"]
 
 
 def test_a_bar_on_an_incline_above_the_friction_angle_slides_at_the_closed_form():

@@ -1,8 +1,9 @@
 /* Bookkeeping of a run: the energy it dissipates and the work its joint receives, at the nodes, over a step and on
  * the dense output; the mechanical energy of an evaluated state.
  *
- *   E_d = int sum_k (F_k - F_k,elastic)(-delta_k') + c_s s'^2 dt over the pairs under a law (Gauss quadrature of
- *   the nodal rates); the work W of a constant applied torque is tau (phi1 - phi0), exact (phi the angle it works
+ *   E_d = int sum_k (F_k - F_k,elastic)(-delta_k') + c_s s'^2 dt over the pairs under a law and the held ones (CCM's
+ *   multiplier, no elastic part: the work of its Baumgarte stabilisation, delta' = -kappa delta while a drift
+ *   decays), with friction's -F_t v_t (Gauss quadrature of the nodal rates); the work W of a constant applied torque is tau (phi1 - phi0), exact (phi the angle it works
  *   on, the joint's work_angle: the hub angle); for the coordinates g a joint gives as functions of time (theta(t)
  *   prescribed) W = int tau_g theta_g' dt, the joint's reaction tau_g = M_gg a_g + M_gr a_r - Q_g - J_g F, with its
  *   modal-acceleration part M_gr q'' theta_g' integrated by parts (its rapidly oscillating integrand is not
@@ -25,8 +26,9 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
         if (ph->c.mode[k] == FB_MODE_FORCE) {
             *ed += (F[k][j] - Fk[k][j]) * (-nd->gap[k].rate);
             if (ph->c.friction) *ed += fb_friction_rate(ph, nd, k, F[k][j], Ft[k][j]);
-        } else if (ph->c.mode[k] == FB_MODE_CONSTRAINT && ph->c.friction) { /* CCM: the held gap does no work */
-            *ed += fb_friction_rate(ph, nd, k, F[k][j], Ft[k][j]);
+        } else if (ph->c.mode[k] == FB_MODE_CONSTRAINT) { /* CCM: the held gap's stabilisation's work */
+            *ed += F[k][j] * (-nd->gap[k].rate);
+            if (ph->c.friction) *ed += fb_friction_rate(ph, nd, k, F[k][j], Ft[k][j]);
         }
     if (fb_compliant(m)) {
         double sd = nd->zd[ph->b->N - 1];
