@@ -6,9 +6,11 @@
  * sampled at m points of the exact dense output, stays clear of zero by twice the bound B on the modes
  * too fast for m samples, B = sum_k |j_k| (free amplitude_k + (max|f_k| + |f_k(0)| + V(f_k)) / w_k^2) over
  * w_k h / m > pi/4 (the forced response's bound by parts, forcing_bound.c).
- * Otherwise the sampling is refined (m x 4, twice); when every mode that can reach the obstacle is resolved,
- * sign changes, excursions from zero and dips predicted by the cubic Hermite interpolant through (gap, rate)
- * are located by Brent's method; and when they are not, the step is too long to decide and is shortened.
+ * Otherwise the sampling is refined (m x 4, twice), each finer level starting where the coarser one's samples
+ * stop proving the step free from its start (both ends of an interval clear by B and the curvature term); when
+ * every mode that can reach the obstacle is resolved, sign changes, excursions from zero and dips predicted by the
+ * cubic Hermite interpolant through (gap, rate) are located by Brent's method (the samples end at the first sign
+ * change); and when they are not, the step is too long to decide and is shortened to the first sample beyond.
  */
 #include <string.h>
 
