@@ -6,9 +6,11 @@
  * sampled at m points of the exact dense output, stays clear of zero by twice the bound B on the modes
  * too fast for m samples, B = sum_k |j_k| (free amplitude_k + (max|f_k| + |f_k(0)| + V(f_k)) / w_k^2) over
  * w_k h / m > pi/4 (the forced response's bound by parts, forcing_bound.c).
- * Otherwise the sampling is refined (m x 4, twice); when every mode that can reach the obstacle is resolved,
- * sign changes, excursions from zero and dips predicted by the cubic Hermite interpolant through (gap, rate)
- * are located by Brent's method; and when they are not, the step is too long to decide and is shortened.
+ * Otherwise the sampling is refined (m x 4, twice), each finer level starting where the coarser one's samples
+ * stop proving the step free from its start (both ends of an interval clear by B and the curvature term); when
+ * every mode that can reach the obstacle is resolved, sign changes, excursions from zero and dips predicted by the
+ * cubic Hermite interpolant through (gap, rate) are located by Brent's method (the samples end at the first sign
+ * change); and when they are not, the step is too long to decide and is shortened to the first sample beyond.
  */
 #include <string.h>
 
@@ -247,40 +249,56 @@ static double fast_part(const fb_dense *d, const double *jm, const double *eta, 
  * or B = 0 (the scan).  With B != 0 a single sample that fails the first test, with the curvature term at its
  * least (curve0: no velocity-product acceleration, the bound rounds monotonically in it), settles that the level
  * cannot end the search: its further samples are not needed, but at the last level for the first sample beyond
- * the surface (where the step is cut).  NULL: sample every point. */
+ * the surface (where the step is cut).  With B = 0 the scan ends at the first sign change at the latest: the
+ * samples after it are not needed either. */
 typedef struct {
     double sign, B, curve0;
     int leaving, need_beyond;
 } hopeless_test;
 
-static int hopeless_at(const hopeless_test *ht, const fb_gap *g, const double *fast, int i, int *fail, int *beyond) {
+static int hopeless_at(const hopeless_test *ht, const fb_gap *g, const double *fast, int i, int s, int *fail,
+                       int *beyond) {
+    if (ht->B == 0.0) return i > s && crosses(g[i - 1].delta, g[i].delta, ht->sign);
     if (!*fail && (-ht->sign * (g[i].delta - fast[i]) - ht->B) - ht->curve0 <= 0.0) *fail = 1;
     if (i > 0 && !*beyond && -ht->sign * g[i].delta <= 0.0) *beyond = 1;
     return *fail && (*beyond || !ht->need_beyond);
 }
 
-/* The gap at the points i / m of the step by exact hops between consecutive points, and the fast modes' part of
- * it at each (``fast``, for samples spaced by h / m).  Returns the last point sampled: m, or fewer when ``ht``
- * says the rest cannot change the search's outcome. */
-static int sample_hops(const fb_dense *d, const double *A, const double *jm, int m, double *x, fb_gap *g,
+/* The gap at the points i / m, i = s..m, of the step by exact hops between consecutive points (from the start:
+ * the points before s only hopped over, not evaluated; point 0 is the caller's), and the fast modes' part of it at
+ * each (``fast``, for samples spaced by h / m).  Returns the last point sampled: m, or fewer when ``ht`` says the
+ * rest cannot change the search's outcome. */
+static int sample_hops(const fb_dense *d, const double *A, const double *jm, int m, int s, double *x, fb_gap *g,
                        double *fast, const hopeless_test *ht) {
     const fb_basis *b = d->ph->b;
-    int N = b->N, fail = ht && !ht->leaving, beyond = 0;
+    int N = b->N, fail = !ht->leaving, beyond = 0;
     fb_hops H;
     fb_hops_fill(b, d->h / m, &H);
     double eta[FB_MAXN], v[FB_MAXN];
     memcpy(eta, d->eta0, sizeof(double) * N);
     memcpy(v, d->v0, sizeof(double) * N);
-    fast[0] = fast_part(d, jm, eta, d->h / m);
-    if (ht && hopeless_at(ht, g, fast, 0, &fail, &beyond)) return 0;
-    for (int i = 1; i <= m; i++) {
+    for (int i = 1; i <= s; i++) fb_hop_advance(b, &H, A, (double)(i - 1) / m, 1.0 / m, eta, v);
+    x[s] = (double)s / m;
+    if (s > 0) g[s] = fb_gap_at(d->ph, d->pair, d->t0 + x[s] * d->h, eta, v);
+    fast[s] = fast_part(d, jm, eta, d->h / m);
+    if (hopeless_at(ht, g, fast, s, s, &fail, &beyond)) return s;
+    for (int i = s + 1; i <= m; i++) {
         fb_hop_advance(b, &H, A, (double)(i - 1) / m, 1.0 / m, eta, v);
         x[i] = (double)i / m;
         g[i] = fb_gap_at(d->ph, d->pair, d->t0 + x[i] * d->h, eta, v);
         fast[i] = fast_part(d, jm, eta, d->h / m);
-        if (ht && hopeless_at(ht, g, fast, i, &fail, &beyond)) return i;
+        if (hopeless_at(ht, g, fast, i, s, &fail, &beyond)) return i;
     }
     return m;
+}
+
+/* The end of the free stretch the points s..last prove: the last of the points from s on that are all clear of
+ * zero by B + curve (so is every interval between them), or ``xa`` if there is no interval among them. */
+static double proven_to(const double *x, const fb_gap *g, const double *fast, int s, int last, double sign,
+                        double margin, double xa) {
+    int p = s - 1;
+    while (p < last && -sign * (g[p + 1].delta - fast[p + 1]) - margin > 0.0) p++;
+    return p > s ? x[p] : xa;
 }
 
 /* First crossing of the gap in ``direction`` (-1: closing, +1: opening) inside the step, as a fraction of it:
@@ -290,8 +308,10 @@ static int sample_hops(const fb_dense *d, const double *A, const double *jm, int
  * ``jm``: the modal gap Jacobian near the start (at the first
  * node).  The gap splits into the part of the modes resolved by the samples, bounded between samples by its
  * curvature, and that of the faster modes, bounded by their amplitude B; the step is free if the resolved part
- * stays clear of zero by B.  When undecided, ``*beyond`` is the first sampled fraction found beyond the surface
- * (1 if none): an event lies before it, so the caller may shorten the step to there. */
+ * stays clear of zero by B.  A level's samples prove free each interval whose ends are both clear by that much:
+ * the stretch [0, xa] they prove from the start is not sampled again by the finer levels, which start at xa.
+ * When undecided, ``*beyond`` is the first sampled fraction found beyond the surface (1 if none): an event lies
+ * before it, so the caller may shorten the step to there. */
 double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known,
                          const double *eta_known, const double *jm, const double *jb, double *beyond) {
     double sign = direction < 0 ? -1.0 : 1.0;
@@ -304,33 +324,35 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
     double A[FB_P * FB_MAXN];
     fb_gap g[16 * SAMPLES + 1];
     int m = FB_P + 1, level = 0, have_A = 0;
-    double dx = 0.0;
+    double dx = 0.0, xa = 0.0; /* [0, xa]: proven free by a coarser level */
     for (int i = 0; i <= m; i++) {
         x[i] = kx[i];
         g[i] = known[i];
         if (i) dx = fmax(dx, x[i] - x[i - 1]);
     }
     for (int i = 0; i <= m; i++) fast[i] = fast_part(d, jm, eta_known + (size_t)i * N, dx * d->h);
-    int last = m, hopeless = 0; /* the last point sampled; the level cannot end the search (sample_hops) */
+    int s = 0, last = m, hopeless = 0; /* the level's points s..last sampled; it cannot end the search */
     for (;;) {
+        double gam = 0.0;
+        for (int i = s; i <= last; i++) gam = fmax(gam, fabs(g[i].gamma));
+        double B, curve = fb_dense_bounds(d, jb, gam, dx, &B), safe = safe_spacing(d, g + s, last - s + 1);
         if (!hopeless) {
-            double worst = INFINITY, gam = 0.0;
-            for (int i = 0; i <= m; i++) {
+            double worst = INFINITY;
+            for (int i = s; i <= last; i++) {
                 gv[i] = g[i].delta;
                 r[i] = g[i].rate * d->h;
-                gam = fmax(gam, fabs(g[i].gamma));
-                if (i) worst = fmin(worst, fmin(-sign * (gv[i - 1] - fast[i - 1]), -sign * (gv[i] - fast[i])));
+                worst = fmin(worst, -sign * (gv[i] - fast[i]));
             }
-            double B, curve = fb_dense_bounds(d, jb, gam, dx, &B), safe = safe_spacing(d, g, m + 1);
             if (dx <= safe) {
                 if (leaving && worst - B - curve > 0.0) return FB_NO_EVENT;
-                if (B == 0.0) return scan(d, jb, gam, x, gv, r, m, sign);
+                if (B == 0.0) return scan(d, jb, gam, x + s, gv + s, r + s, last - s, sign);
             }
             while (level < 3 && 1.0 / levels[level] > fmin(dx, safe) * (1.0 - 1e-12) && levels[level] <= m) level++;
         }
+        if (dx <= safe) xa = proven_to(x, g, fast, s, last, sign, B + curve, xa);
         if (level == 3) {
             *beyond = 1.0;
-            for (int i = 1; i <= last; i++)
+            for (int i = s + 1; i <= last; i++)
                 if (-sign * g[i].delta <= 0.0) {
                     *beyond = x[i];
                     break;
@@ -340,11 +362,12 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
         if (!have_A) fb_monomial(d->f, N, A), have_A = 1;
         m = levels[level++];
         dx = 1.0 / m;
+        s = (int)fmin(floor(xa * m), m - 1);
         x[0] = 0.0;
         g[0] = known[0];
         hopeless_test ht = {sign, 0.0, 0.0, leaving, level == 3};
         ht.curve0 = fb_dense_bounds(d, jb, 0.0, dx, &ht.B);
-        last = sample_hops(d, A, jm, m, x, g, fast, ht.B != 0.0 ? &ht : NULL);
-        hopeless = last < m;
+        last = sample_hops(d, A, jm, m, s, x, g, fast, &ht);
+        hopeless = last < m && ht.B != 0.0;
     }
 }
