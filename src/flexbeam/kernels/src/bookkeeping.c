@@ -3,11 +3,11 @@
  *
  *   E_d = int sum_k (F_k - F_k,elastic)(-delta_k') + c_s s'^2 dt over the pairs under a law and the held ones (CCM's
  *   multiplier, no elastic part: the work of its Baumgarte stabilisation, delta' = -kappa delta while a drift
- *   decays), with friction's -F_t v_t (Gauss quadrature of the nodal rates); the work W of a constant applied torque is tau (phi1 - phi0), exact (phi the angle it works
- *   on, the joint's work_angle: the hub angle); for the coordinates g a joint gives as functions of time (theta(t)
- *   prescribed) W = int tau_g theta_g' dt, the joint's reaction tau_g = M_gg a_g + M_gr a_r - Q_g - J_g F, with its
- *   modal-acceleration part M_gr q'' theta_g' integrated by parts (its rapidly oscillating integrand is not
- *   quadrature material):
+ *   decays), with friction's -F_t v_t (Gauss quadrature of the nodal rates); the work W of a constant applied
+ *   torque is tau (phi1 - phi0), exact (phi the angle it works on, the joint's work_angle: the hub angle); for the
+ *   coordinates g a joint gives as functions of time (theta(t) prescribed) W = int tau_g theta_g' dt, the joint's
+ *   reaction tau_g = M_gg a_g + M_gr a_r - Q_g - J_g F, with its modal-acceleration part M_gr q'' theta_g'
+ *   integrated by parts (its rapidly oscillating integrand is not quadrature material):
  *     W(t) = W0 + int [(M_gg a_g - Q_g - sum_k J_k,g F_k) theta_g' - M_gr q' a_g] dt + [M_gr q' theta_g']_t0^t.
  */
 #include <string.h>
