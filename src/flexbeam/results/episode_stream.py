@@ -1,0 +1,239 @@
+"""A free beam's collision episodes found while a streamed run goes on (:mod:`flexbeam.results.stream`), the same as
+:func:`~flexbeam.results.episodes.find_episodes` finds on the run held in memory.
+
+The records are grouped as :func:`~flexbeam.results.episodes.group_episodes` groups them, each as soon as it is
+logged: a record joins the open episode when its onset is less than the gap after the latest end of the episode's
+records (an open record's end counts as infinite: it will end after the new onset), else the open episode closes --
+no later record can join it -- and a new one opens.  What an episode needs of the run is read while the stream still
+keeps it:
+
+* the values at instants -- G's velocity and the spin before (the first onset) and after (the end t_1), the striking
+  point's normal and lever arm frozen at the onset, each record's contact point (the one-point test) and a jump's
+  normal velocities on either side -- once the stream has moved past the instant (every segment holding it is
+  there); the stream keeps the segments from the earliest instant still to be read (:meth:`EpisodeStream.cut`), so
+  at most the segment that holds it and the one after;
+* the impulses and works of compression and restitution (:class:`~flexbeam.results.restitution.Phases`), from each
+  segment as it leaves the stream, or at the episode's close, in the order in which the run held in memory sums them
+  (record by record, each record's segments in time order): a long contact -- a bar resting on a floor -- is one
+  open episode whose segments are summed and dropped as they go.
+
+An episode's numbers are those of the run held in memory, bit for bit, but where a phase reaches the stream in parts
+(:data:`~flexbeam.integrate.modal.BLOCK_RECORDS` steps each): the sums of its parts' impulses and works, each
+correctly rounded, equal the whole phase's to round-off (~1e-16 relative), as the stream's contact records' impulses
+(:mod:`flexbeam.results.long_contact`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .episodes import STREAMED, default_gap, same_point
+from .parts import as_whole, holding
+from .restitution import Phases, RigidMotion, _SegmentPiece, restitution_record
+
+if TYPE_CHECKING:
+    from ..integrate.loop import Segment
+    from .stream import RunStream
+
+
+class WindowMotion(RigidMotion):
+    """:class:`~flexbeam.results.restitution.RigidMotion` on the segments the stream keeps, a phase handed on in
+    parts evaluated as the whole phase is (:func:`~flexbeam.results.parts.holding`)."""
+
+    def segment(self, t: float, after: bool) -> Segment:
+        return holding(self.source.segments, t, after)
+
+
+@dataclass
+class OpenEpisode:
+    """An episode while the run goes on: its records (indices) and what has been read of it."""
+
+    records: list[int]
+    pair: int
+    onset: float
+    strike: tuple[np.ndarray, float] | None = None  #: the frozen normal and lever arm
+    before: np.ndarray | None = None  #: (v_Gx, v_Gy, Omega) before the onset
+    v_before: float = math.nan
+    acc: Phases | None = None
+    positions: dict[int, float] = field(default_factory=dict)
+    jumps: dict[int, tuple[float, float]] = field(default_factory=dict)
+    #: the jumps added to ``acc``: record -> (its impulse then, compressing then)
+    applied: dict[int, tuple[float, bool]] = field(default_factory=dict)
+    end: float = math.nan  #: t_1 when ``after`` was read
+    after: tuple[np.ndarray, float] | None = None  #: (v_Gx, v_Gy, Omega) and v at t_1
+    next: int = 0  #: the number of the next segment to sum
+
+
+class EpisodeStream:
+    """The collision episodes of a streamed free beam's run (see the module docstring): :meth:`update` after each
+    segment (the records completed that ended before it), :meth:`cut` for the stream's trim, :meth:`absorb` for each
+    segment it drops, :meth:`finish` at the end."""
+
+    def __init__(self, stream: RunStream) -> None:
+        self.stream = stream
+        self.gap = default_gap(stream.system.beam)
+        self.seen = 0  # the records grouped so far
+        self.open: OpenEpisode | None = None
+        self.found: list[dict[str, Any]] = []
+
+    def _motion(self, ep: OpenEpisode, t_final: float = math.nan) -> WindowMotion:
+        motion = WindowMotion(self.stream.source([s for _, s in self.stream.window], t_final))
+        if ep.strike is not None:
+            motion.normal, motion.lever, motion.t0 = ep.strike[0], ep.strike[1], ep.onset
+        return motion
+
+    def _latest(self, ep: OpenEpisode) -> float:
+        """The latest end of ``ep``'s records (an open one's: inf), as :func:`group_episodes` takes it."""
+        latest = -math.inf
+        for i in ep.records:
+            ev = self.stream.contacts[i]
+            latest = max(latest, ev.end if math.isfinite(ev.end) else math.inf, ev.onset)
+        return latest
+
+    def _end(self, ep: OpenEpisode, t_final: float) -> float:
+        """t_1 as :func:`find_episodes` takes it (an open record's end: ``t_final``; NaN when not known yet)."""
+        evs = [self.stream.contacts[i] for i in ep.records]
+        ends = [ev.end if math.isfinite(ev.end) else t_final for ev in evs]
+        return max(max(ends), evs[-1].onset)
+
+    # ----------------------------------------------------------------- as the run goes on
+    def update(self, now: float, t_final: float | None = None) -> None:
+        """Group the records logged since the last call; read what the stream has moved past (before ``now``; all of
+        it at the end, ``t_final``)."""
+        contacts = self.stream.contacts
+        while self.seen < len(contacts):
+            ev = contacts[self.seen]
+            ep = self.open
+            if ep is not None and ev.onset - self._latest(ep) < self.gap:
+                ep.records.append(self.seen)
+            else:
+                if ep is not None:
+                    self._close(ep, now, math.nan)
+                self.open = OpenEpisode([self.seen], ev.pair, ev.onset)
+            self.seen += 1
+        if self.open is not None:
+            self._read(self.open, now, t_final)
+
+    def _read(self, ep: OpenEpisode, now: float, t_final: float | None) -> None:
+        """Read the instants of ``ep`` the stream has moved past (as :func:`apparent_restitution` and
+        :func:`find_episodes` read them)."""
+        final = t_final is not None
+        passed = (lambda t: True) if final else (lambda t: t < now)  # noqa: E731
+        motion = self._motion(ep, math.nan if t_final is None else t_final)
+        if ep.strike is None:
+            if not passed(ep.onset):
+                return
+            motion.strike(ep.onset, ep.pair)
+            ep.strike = (motion.normal, motion.lever)
+            ep.v_before = motion.at(ep.onset, after=False)
+            ep.before = motion.state(ep.onset, after=False)
+            ep.acc = Phases(ep.v_before < 0.0, ep.onset)
+        for i in ep.records:
+            ev = self.stream.contacts[i]
+            if i not in ep.positions and passed(ev.onset):
+                ep.positions[i] = motion.contact_position(ev.onset, ev.pair)
+            jumped = ev.pair == ep.pair and not math.isnan(ev.jump_impulse)
+            if jumped and i not in ep.jumps and passed(ev.onset):
+                ep.jumps[i] = (motion.at(ev.onset, after=False), motion.at(ev.onset, after=True))
+        ended = final or all(math.isfinite(self.stream.contacts[i].end) for i in ep.records)
+        t1 = self._end(ep, math.nan if t_final is None else t_final) if ended else math.nan
+        if ended and t1 != ep.end and passed(t1):
+            ep.end, ep.after = t1, (motion.state(t1, after=True), motion.at(t1, after=True))
+
+    def cut(self) -> float:
+        """The earliest instant of the open episode still to be read (inf: none): the stream keeps the segments from
+        there on."""
+        ep = self.open
+        if ep is None:
+            return math.inf
+        contacts = self.stream.contacts
+        times = [ep.onset] if ep.strike is None else []
+        for i in ep.records:
+            ev = contacts[i]
+            jumped = ev.pair == ep.pair and not math.isnan(ev.jump_impulse)
+            if i not in ep.positions or (jumped and i not in ep.jumps):
+                times.append(ev.onset)
+        if all(math.isfinite(contacts[i].end) for i in ep.records):
+            t1 = self._end(ep, math.nan)
+            if t1 != ep.end:
+                times.append(t1)
+        return min(times, default=math.inf)
+
+    def absorb(self, number: int, seg: Segment, t_final: float = math.nan) -> None:
+        """Add segment ``number`` (each once, in order) to the open episode's impulses and works: its jumps and the
+        striking pair's force over each of its records (as :func:`apparent_restitution` sums them)."""
+        ep = self.open
+        if ep is None or number < ep.next:
+            return
+        ep.next = number + 1
+        if ep.acc is None:  # a segment before the onset
+            return
+        motion = self._motion(ep, t_final)
+        for i in ep.records:
+            ev = self.stream.contacts[i]
+            if ev.pair != ep.pair:
+                continue
+            if i in ep.jumps and i not in ep.applied and ev.onset <= seg.t1:
+                ep.applied[i] = (ev.jump_impulse, ep.acc.compressing)
+                ep.acc.jump(ev.onset, ev.jump_impulse, *ep.jumps[i])
+            end = ev.end if math.isfinite(ev.end) else (t_final if math.isfinite(t_final) else math.inf)
+            if end > ev.onset and seg.phase.modes[ep.pair] != 0 and seg.t1 > seg.t0:
+                if seg.t1 >= ev.onset and seg.t0 <= end:
+                    piece = _SegmentPiece(motion, as_whole(seg), ep.pair)
+                    ep.acc.steps(piece, max(ev.onset, seg.t0), min(end, seg.t1))
+
+    def _close(self, ep: OpenEpisode, now: float, t_final: float) -> None:
+        """Sum the kept segments into ``ep`` and keep its numbers (its records are completed: they ended before
+        ``now``, or the run did)."""
+        self._read(ep, now, None if math.isnan(t_final) else t_final)
+        for number, seg in self.stream.window:
+            self.absorb(number, seg, t_final)
+        self._held_impulses(ep)
+        assert ep.acc is not None and ep.before is not None and ep.after is not None, "an episode read whole"
+        evs = [self.stream.contacts[i] for i in ep.records]
+        same = all(ev.pair == ep.pair for ev in evs) and same_point(
+            [ep.positions[i] for i in ep.records], self.stream.system.beam.length
+        )
+        after, v_after = ep.after
+        coeffs = restitution_record(ep.acc, evs, ep.pair, ep.v_before, v_after, same)
+        self.found.append(
+            {
+                "records": tuple(ep.records),
+                "pair": ep.pair,
+                "onset": ep.onset,
+                "end": ep.end,
+                "before": ep.before,
+                "after": after,
+                "coeffs": coeffs,
+            }
+        )
+        self.open = None
+
+    def _held_impulses(self, ep: OpenEpisode) -> None:
+        """Add what a record's jump impulse gained after its jump was summed -- a pair held in a resting contact takes
+        a share of every later impact's impulse (:meth:`~flexbeam.methods.base.ImpactMethod.held_impact`), which the
+        run held in memory sums at the record's onset --: the jump's impulse and work are linear in it, so the sum
+        is that of the whole impulse to round-off (only a long contact's jump is summed before its end)."""
+        assert ep.acc is not None
+        for i, (J, compressing) in ep.applied.items():
+            ev = self.stream.contacts[i]
+            if ev.jump_impulse != J:
+                more = Phases(compressing, ev.onset)
+                more.jump(ev.onset, ev.jump_impulse - J, *ep.jumps[i])
+                for phase in (0, 1):
+                    ep.acc.add(phase, more.P[phase], more.W[phase])
+
+    def finish(self, t_final: float) -> tuple[float, list[dict[str, Any]]]:
+        """Close the open episode at the run's end (every record completed); the episodes found, as
+        :data:`~flexbeam.results.episodes.STREAMED` holds them."""
+        self.update(math.inf, t_final)
+        if self.open is not None:
+            self._close(self.open, math.inf, t_final)
+        return self.gap, self.found
+
+
+__all__ = ["STREAMED", "EpisodeStream", "OpenEpisode", "WindowMotion"]
