@@ -61,8 +61,12 @@ class OpenEpisode:
     acc: Phases | None = None
     positions: dict[int, float] = field(default_factory=dict)
     jumps: dict[int, tuple[float, float]] = field(default_factory=dict)
-    #: the jumps added to ``acc``: record -> (its impulse then, compressing then)
+    #: the jumps added to ``acc``: record -> (its impulse then, 0 for none, compressing then)
     applied: dict[int, tuple[float, bool]] = field(default_factory=dict)
+    unread: int = 0  #: the records before this one (in ``records``) are read
+    running: list[int] = field(default_factory=list)  #: the records not known to have ended
+    live: int = 0  #: the records before this one are summed whole
+    closed: float = -math.inf  #: the latest onset or end of the records that have ended
     end: float = math.nan  #: t_1 when ``after`` was read
     after: tuple[np.ndarray, float] | None = None  #: (v_Gx, v_Gy, Omega) and v at t_1
     next: int = 0  #: the number of the next segment to sum
@@ -88,14 +92,10 @@ class EpisodeStream:
 
     def _latest(self, ep: OpenEpisode) -> float:
         """The latest end of ``ep``'s records (an open one's: inf), as :func:`group_episodes` takes it."""
-        latest = -math.inf
-        for i in ep.records:
-            ev = self.stream.contacts[i]
-            latest = max(latest, ev.end if math.isfinite(ev.end) else math.inf, ev.onset)
-        return latest
+        return math.inf if not self._ended(ep) else ep.closed
 
     def _end(self, ep: OpenEpisode, t_final: float) -> float:
-        """t_1 as :func:`find_episodes` takes it (an open record's end: ``t_final``; NaN when not known yet)."""
+        """t_1 as :func:`find_episodes` takes it at the run's end (an open record's end: ``t_final``)."""
         evs = [self.stream.contacts[i] for i in ep.records]
         ends = [ev.end if math.isfinite(ev.end) else t_final for ev in evs]
         return max(max(ends), evs[-1].onset)
@@ -110,39 +110,54 @@ class EpisodeStream:
             ep = self.open
             if ep is not None and ev.onset - self._latest(ep) < self.gap:
                 ep.records.append(self.seen)
+                ep.running.append(self.seen)
             else:
                 if ep is not None:
                     self._close(ep, now, math.nan)
-                self.open = OpenEpisode([self.seen], ev.pair, ev.onset)
+                self.open = OpenEpisode([self.seen], ev.pair, ev.onset, running=[self.seen])
             self.seen += 1
         if self.open is not None:
             self._read(self.open, now, t_final)
 
     def _read(self, ep: OpenEpisode, now: float, t_final: float | None) -> None:
         """Read the instants of ``ep`` the stream has moved past (as :func:`apparent_restitution` and
-        :func:`find_episodes` read them)."""
+        :func:`find_episodes` read them): the strike, each record's contact point and, on the striking pair, the
+        normal velocities on either side of its onset (for a jump there, which a held pair may take later), t_1."""
         final = t_final is not None
-        passed = (lambda t: True) if final else (lambda t: t < now)  # noqa: E731
         motion = self._motion(ep, math.nan if t_final is None else t_final)
         if ep.strike is None:
-            if not passed(ep.onset):
+            if not (final or ep.onset < now):
                 return
             motion.strike(ep.onset, ep.pair)
             ep.strike = (motion.normal, motion.lever)
             ep.v_before = motion.at(ep.onset, after=False)
             ep.before = motion.state(ep.onset, after=False)
             ep.acc = Phases(ep.v_before < 0.0, ep.onset)
-        for i in ep.records:
+        while ep.unread < len(ep.records):  # in the order of their onsets
+            i = ep.records[ep.unread]
             ev = self.stream.contacts[i]
-            if i not in ep.positions and passed(ev.onset):
-                ep.positions[i] = motion.contact_position(ev.onset, ev.pair)
-            jumped = ev.pair == ep.pair and not math.isnan(ev.jump_impulse)
-            if jumped and i not in ep.jumps and passed(ev.onset):
+            if not (final or ev.onset < now):
+                break
+            ep.positions[i] = motion.contact_position(ev.onset, ev.pair)
+            if ev.pair == ep.pair:
                 ep.jumps[i] = (motion.at(ev.onset, after=False), motion.at(ev.onset, after=True))
-        ended = final or all(math.isfinite(self.stream.contacts[i].end) for i in ep.records)
-        t1 = self._end(ep, math.nan if t_final is None else t_final) if ended else math.nan
-        if ended and t1 != ep.end and passed(t1):
+            ep.unread += 1
+        t1 = self._end(ep, t_final) if final else (ep.closed if self._ended(ep) else math.nan)
+        if math.isfinite(t1) and t1 != ep.end and (final or t1 < now):
             ep.end, ep.after = t1, (motion.state(t1, after=True), motion.at(t1, after=True))
+
+    def _ended(self, ep: OpenEpisode) -> bool:
+        """Have all of ``ep``'s records ended?  (``ep.closed``: the latest onset or end of those that have.)"""
+        contacts = self.stream.contacts
+        running = []
+        for i in ep.running:
+            ev = contacts[i]
+            if math.isfinite(ev.end):
+                ep.closed = max(ep.closed, ev.end, ev.onset)
+            else:
+                running.append(i)
+        ep.running = running
+        return not running
 
     def cut(self) -> float:
         """The earliest instant of the open episode still to be read (inf: none): the stream keeps the segments from
@@ -150,17 +165,11 @@ class EpisodeStream:
         ep = self.open
         if ep is None:
             return math.inf
-        contacts = self.stream.contacts
         times = [ep.onset] if ep.strike is None else []
-        for i in ep.records:
-            ev = contacts[i]
-            jumped = ev.pair == ep.pair and not math.isnan(ev.jump_impulse)
-            if i not in ep.positions or (jumped and i not in ep.jumps):
-                times.append(ev.onset)
-        if all(math.isfinite(contacts[i].end) for i in ep.records):
-            t1 = self._end(ep, math.nan)
-            if t1 != ep.end:
-                times.append(t1)
+        if ep.unread < len(ep.records):
+            times.append(self.stream.contacts[ep.records[ep.unread]].onset)
+        if self._ended(ep) and ep.closed != ep.end:  # t_1
+            times.append(ep.closed)
         return min(times, default=math.inf)
 
     def absorb(self, number: int, seg: Segment, t_final: float = math.nan) -> None:
@@ -173,18 +182,29 @@ class EpisodeStream:
         if ep.acc is None:  # a segment before the onset
             return
         motion = self._motion(ep, t_final)
-        for i in ep.records:
-            ev = self.stream.contacts[i]
+        contacts = self.stream.contacts
+        while ep.live < len(ep.records) and self._past(ep, ep.records[ep.live], seg.t0):
+            ep.live += 1
+        for i in ep.records[ep.live :]:
+            ev = contacts[i]
+            if ev.onset > seg.t1:  # nor any later record
+                break
             if ev.pair != ep.pair:
                 continue
-            if i in ep.jumps and i not in ep.applied and ev.onset <= seg.t1:
-                ep.applied[i] = (ev.jump_impulse, ep.acc.compressing)
-                ep.acc.jump(ev.onset, ev.jump_impulse, *ep.jumps[i])
+            if i not in ep.applied:
+                J = 0.0 if math.isnan(ev.jump_impulse) else ev.jump_impulse
+                ep.applied[i] = (J, ep.acc.compressing)
+                if not math.isnan(ev.jump_impulse):
+                    ep.acc.jump(ev.onset, J, *ep.jumps[i])
             end = ev.end if math.isfinite(ev.end) else (t_final if math.isfinite(t_final) else math.inf)
-            if end > ev.onset and seg.phase.modes[ep.pair] != 0 and seg.t1 > seg.t0:
-                if seg.t1 >= ev.onset and seg.t0 <= end:
-                    piece = _SegmentPiece(motion, as_whole(seg), ep.pair)
-                    ep.acc.steps(piece, max(ev.onset, seg.t0), min(end, seg.t1))
+            if end > ev.onset and seg.phase.modes[ep.pair] != 0 and seg.t1 > seg.t0 and seg.t0 <= end:
+                piece = _SegmentPiece(motion, as_whole(seg), ep.pair)
+                ep.acc.steps(piece, max(ev.onset, seg.t0), min(end, seg.t1))
+
+    def _past(self, ep: OpenEpisode, i: int, t: float) -> bool:
+        """Is record ``i`` summed whole before t (ended before it, its jump summed)?"""
+        ev = self.stream.contacts[i]
+        return math.isfinite(ev.end) and ev.end < t and (ev.pair != ep.pair or i in ep.applied)
 
     def _close(self, ep: OpenEpisode, now: float, t_final: float) -> None:
         """Sum the kept segments into ``ep`` and keep its numbers (its records are completed: they ended before
@@ -221,9 +241,10 @@ class EpisodeStream:
         assert ep.acc is not None
         for i, (J, compressing) in ep.applied.items():
             ev = self.stream.contacts[i]
-            if ev.jump_impulse != J:
+            J_now = 0.0 if math.isnan(ev.jump_impulse) else ev.jump_impulse
+            if J_now != J:
                 more = Phases(compressing, ev.onset)
-                more.jump(ev.onset, ev.jump_impulse - J, *ep.jumps[i])
+                more.jump(ev.onset, J_now - J, *ep.jumps[i])
                 for phase in (0, 1):
                     ep.acc.add(phase, more.P[phase], more.W[phase])
 
