@@ -17,10 +17,13 @@ keeps it:
   (record by record, each record's segments in time order): a long contact -- a bar resting on a floor -- is one
   open episode whose segments are summed and dropped as they go.
 
-An episode's numbers are those of the run held in memory, bit for bit, but where a phase reaches the stream in parts
-(:data:`~flexbeam.integrate.modal.BLOCK_RECORDS` steps each): the sums of its parts' impulses and works, each
-correctly rounded, equal the whole phase's to round-off (~1e-16 relative), as the stream's contact records' impulses
-(:mod:`flexbeam.results.long_contact`).
+An episode's numbers are those of the run held in memory, bit for bit, but where a contact outlasts the steps the
+stream keeps (:data:`~flexbeam.results.stream.WINDOW_RECORDS`) or a phase reaches it in parts
+(:data:`~flexbeam.integrate.modal.BLOCK_RECORDS` steps each): then the records' impulses are summed part by part
+(:mod:`flexbeam.results.long_contact`), and a jump at a long record's onset is summed with the impulse it has then --
+a pair held in a resting contact takes a share of each later impact's impulse, which the run held in memory sums at
+the record's onset -- and the rest added when the episode closes (the jump's impulse and work are linear in it): equal
+to round-off (measured 2e-16 relative, ``tests/test_stream_free.py``).
 """
 
 from __future__ import annotations
@@ -61,7 +64,7 @@ class OpenEpisode:
     acc: Phases | None = None
     positions: dict[int, float] = field(default_factory=dict)
     jumps: dict[int, tuple[float, float]] = field(default_factory=dict)
-    #: the jumps added to ``acc``: record -> (its impulse then, 0 for none, compressing then)
+    #: the jumps added to ``acc``: record -> (its jump impulse then, 0 for none; compressing then)
     applied: dict[int, tuple[float, bool]] = field(default_factory=dict)
     unread: int = 0  #: the records before this one (in ``records``) are read
     running: list[int] = field(default_factory=list)  #: the records not known to have ended
