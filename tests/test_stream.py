@@ -185,16 +185,6 @@ def test_the_finite_element_reference_is_not_streamed(tmp_path):
     assert not any(tmp_path.iterdir())
 
 
-def test_a_free_beam_is_not_streamed(tmp_path):
-    """Its collision episodes need the whole dense output: refused in one line, nothing written."""
-    from pathlib import Path
-
-    case = fb.load_case(str(Path(__file__).parent / "validation" / "data" / "free-bar-drop.toml"))
-    with pytest.raises(fb.ParameterError, match=r"^--stream: a free beam's collision episodes"):
-        fb.simulate(case, stream=tmp_path / "r.nc")
-    assert not any(tmp_path.iterdir())
-
-
 def test_an_interrupted_streamed_run_leaves_no_file(tmp_path, monkeypatch):
     def stop(self, seg):
         raise KeyboardInterrupt

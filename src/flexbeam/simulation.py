@@ -120,11 +120,6 @@ def simulate(
     finite-element reference (``method = "fem"``).
     """
     check_method(method)  # an unknown method is named before anything else
-    if stream is not None and case.joint.kind == "free":
-        raise ParameterError(
-            "--stream: a free beam's collision episodes are found on the run's whole dense output; run it "
-            "without streaming (a bar drop is short), or stream a revolute case"
-        )
     if stream is not None and method == "fem":
         raise ParameterError(
             "--stream: the finite-element reference (method 'fem') keeps its outputs in memory; run it without "

@@ -134,23 +134,36 @@ class Episode:
 
 
 def is_free(sol: Solution) -> bool:
-    """Is the run's beam a free one (a run with a dense output and ``joint.kind = "free"``, or a Solution given
-    its rigid-body motion: the finite-element reference's free beam)?"""
+    """Is the run's beam a free one (a run with a dense output and ``joint.kind = "free"``, a streamed one whose
+    episodes were found as it went, or a Solution given its rigid-body motion: the finite-element reference's free
+    beam)?"""
     if sol.source is not None:
         return sol.source.system.joint.kind == "free"
-    return sol.motion is not None
+    return sol.motion is not None or STREAMED in sol.summaries
+
+
+#: the key of a streamed run's episodes in :attr:`Solution.summaries` (:mod:`flexbeam.results.episode_stream`):
+#: ``(gap, [found, ...])``, each found episode the keyword arguments of :func:`make_episode` but ``index`` and
+#: ``counts``
+STREAMED = "episodes"
 
 
 def rigid_motion(sol: Solution) -> Motion | None:
     """The rigid-body motion of a free beam's Solution (:func:`is_free`), else None."""
-    if not is_free(sol):
+    if not is_free(sol) or (sol.source is None and sol.motion is None):
         return None
     return RigidMotion(sol.source) if sol.source is not None else sol.motion
 
 
 def find_episodes(sol: Solution, counts: ContactCounts, gap: float | None = None) -> list[Episode]:
     """The collision episodes of a free beam's run (:func:`group_episodes` with ``gap``, default
-    :func:`default_gap`) with their rigid-body velocities and apparent restitution; [] for any other run."""
+    :func:`default_gap`) with their rigid-body velocities and apparent restitution; [] for any other run.  A streamed
+    run's were found as it went, with the default gap (another gap: a ValueError)."""
+    if sol.source is None and STREAMED in sol.summaries:
+        found_gap, found = sol.summaries[STREAMED]
+        if gap is not None and float(gap) != found_gap:
+            raise ValueError(f"episodes: a streamed run's episodes were found with gap = {found_gap:g} s only")
+        return [make_episode(k, counts, **one) for k, one in enumerate(found)]
     motion = rigid_motion(sol)
     if motion is None:
         return []
@@ -165,24 +178,39 @@ def find_episodes(sol: Solution, counts: ContactCounts, gap: float | None = None
         same = _one_point(motion, [records[i] for i in group])
         coeffs = apparent_restitution(motion, [records[i] for i in group], first.pair, first.onset, t1, same)
         before, after = motion.state(first.onset, after=False), motion.state(t1, after=True)
-        micro = sum(counts.micro[i] for i in group)
-        out.append(
-            Episode(
-                index=k,
-                records=tuple(group),
-                pair=first.pair,
-                onset=first.onset,
-                end=t1,
-                contacts=len(group) - micro,
-                micro_impacts=micro,
-                velocity_before=(float(before[0]), float(before[1])),
-                velocity_after=(float(after[0]), float(after[1])),
-                spin_before=float(before[2]),
-                spin_after=float(after[2]),
-                **coeffs,
-            )
-        )
+        out.append(make_episode(k, counts, tuple(group), first.pair, first.onset, t1, before, after, coeffs))
     return out
+
+
+def make_episode(
+    index: int,
+    counts: ContactCounts,
+    records: tuple[int, ...],
+    pair: int,
+    onset: float,
+    end: float,
+    before: Sequence[float],
+    after: Sequence[float],
+    coeffs: dict[str, Any],
+) -> Episode:
+    """Episode ``index`` of ``records`` (indices), striking ``pair`` from ``onset`` to ``end``, with G's velocity
+    and the spin ``before`` and ``after`` ((v_Gx, v_Gy, Omega)), the counts of the run's records and the apparent
+    restitution ``coeffs`` (:func:`~flexbeam.results.restitution.apparent_restitution`)."""
+    micro = sum(counts.micro[i] for i in records)
+    return Episode(
+        index=index,
+        records=tuple(records),
+        pair=pair,
+        onset=onset,
+        end=end,
+        contacts=len(records) - micro,
+        micro_impacts=micro,
+        velocity_before=(float(before[0]), float(before[1])),
+        velocity_after=(float(after[0]), float(after[1])),
+        spin_before=float(before[2]),
+        spin_after=float(after[2]),
+        **coeffs,
+    )
 
 
 def _one_point(motion: Motion, records: list[ContactEvent]) -> bool:
@@ -190,5 +218,10 @@ def _one_point(motion: Motion, records: list[ContactEvent]) -> bool:
     pair = records[0].pair
     if any(ev.pair != pair for ev in records):
         return False
-    xs = [motion.contact_position(ev.onset, pair) for ev in records]
-    return all(abs(x - xs[0]) <= SAME_POINT * motion.length for x in xs)
+    return same_point([motion.contact_position(ev.onset, pair) for ev in records], motion.length)
+
+
+def same_point(xs: Sequence[float], length: float) -> bool:
+    """Are the contact points ``xs`` (material coordinates [m], on one pair) within :data:`SAME_POINT` ``length`` of
+    the first?"""
+    return all(abs(x - xs[0]) <= SAME_POINT * length for x in xs)

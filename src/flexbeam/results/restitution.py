@@ -192,7 +192,7 @@ class _SegmentPiece(Piece):
         return self.motion.velocity(times, self.seg.states(times))
 
 
-class _Phases:
+class Phases:
     """Impulse and work of the normal force in compression and restitution, accumulated piece by piece."""
 
     def __init__(self, compressing: bool, t0: float) -> None:
@@ -272,7 +272,7 @@ def apparent_restitution(
     ``one_point`` (every record strikes at the first one's point)."""
     motion.strike(t0, pair)
     v_before, v_after = motion.at(t0, after=False), motion.at(t1, after=True)
-    acc = _Phases(v_before < 0.0, t0)
+    acc = Phases(v_before < 0.0, t0)
     for ev in records:
         if ev.pair != pair:
             continue
@@ -282,6 +282,14 @@ def apparent_restitution(
         if end > ev.onset:
             for piece, lo, hi in motion.pieces(ev.onset, end, pair):
                 acc.steps(piece, lo, hi)
+    return restitution_record(acc, records, pair, v_before, v_after, one_point)
+
+
+def restitution_record(
+    acc: Phases, records: list[ContactEvent], pair: int, v_before: float, v_after: float, one_point: bool
+) -> dict[str, Any]:
+    """What :func:`apparent_restitution` gives from the impulses and works accumulated over an episode (``acc``),
+    its records (their impulses completed) and the rigid-body normal velocities before and after."""
     (Pc, _), (Wc, Wr) = acc.P, acc.W
     Pr = math.fsum(ev.impulse for ev in records if ev.pair == pair) - Pc  # the records' impulses: exact quadrature
     ok = one_point and v_before < 0.0

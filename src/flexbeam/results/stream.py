@@ -36,9 +36,11 @@ from ..kernels import OUTPUT_COLUMNS, PAIR_COLUMNS
 from ..model.system import SUPPORT_COLUMNS, BeamSystem
 from ..parameters.case import Case
 from . import export
-from .arrays import RunSource, sample_grid, total_energy
+from .arrays import RunSource, centre_columns, sample_grid, total_energy
+from .episode_stream import STREAMED, EpisodeStream
 from .friction import friction_columns
 from .long_contact import LongContact
+from .parts import part_states
 from .records import FRICTION_VARIABLES, ContactEvent
 from .samplefile import SampleFile
 from .solution import Solution
@@ -88,22 +90,6 @@ def sample_times(seg: Segment, step: float, batch: int | None = None):
     tail = [*head, np.array([t1])] if seg.closes else head
     if tail:
         yield np.concatenate(tail)
-
-
-def part_states(seg: Segment, times: np.ndarray) -> np.ndarray:
-    """States at ``times``: :meth:`Segment.states` for a whole phase; for a part, the dense output everywhere but at
-    the phase's own ends (its ends inside the phase are evaluated as the whole phase's dense output evaluates them)."""
-    if seg.opens and seg.closes:
-        return seg.states(times)
-    out = np.empty((times.size, seg.y0.size))
-    first = (times <= seg.t0) if seg.opens else np.zeros(times.size, bool)
-    last = (times >= seg.t1) & ~first if seg.closes else np.zeros(times.size, bool)
-    inner = ~first & ~last
-    if inner.any():
-        out[inner] = seg.dense(times[inner])
-    out[first] = seg.y0
-    out[last] = seg.y1
-    return out
 
 
 class RunStream:
@@ -163,6 +149,8 @@ class RunStream:
         self.energy = EnergyTally()
         self.tip = [math.inf, -math.inf]
         self.sensor = SensorPulse(contacts) if system.compliant else None
+        #: a free beam's collision episodes, found as the run goes on
+        self.episodes = EpisodeStream(self) if system.joint.kind == "free" else None
 
     # ----------------------------------------------------------------- a segment
     def __call__(self, seg: Segment) -> None:
@@ -214,6 +202,7 @@ class RunStream:
         if self.rough:
             for name, value in zip(FRICTION_VARIABLES, friction_columns(sysm, seg, t, Y, pc[:, :, 2])):
                 out[name] = np.ascontiguousarray(value)
+        out.update(centre_columns(sysm, Y))
         return out
 
     def _tally(self, seg: Segment) -> None:
@@ -240,6 +229,8 @@ class RunStream:
             if t_final is not None or (math.isfinite(ev.end) and ev.end < now):
                 self._complete(i, math.nan if t_final is None else t_final)
         if t_final is None:
+            if self.episodes is not None:
+                self.episodes.update(now)
             self._trim(now)
 
     def _complete(self, i: int, t_final: float) -> None:
@@ -261,10 +252,14 @@ class RunStream:
         while True:
             waiting = [i for i in range(len(self.contacts)) if i not in self.completed and i not in self.long]
             cut = min([now, *(self.contacts[i].onset for i in waiting)])
+            if self.episodes is not None:  # the instants of the open episode still to be read
+                cut = min(cut, self.episodes.cut())
             k = 0
             while k < len(self.window) and self.window[k][1].t1 < cut:
                 k += 1
             if k:
+                for number, seg in self.window[:k] if self.episodes is not None else ():
+                    self.episodes.absorb(number, seg)
                 if self.long:
                     context = self.source([s for _, s in self.window])
                     for number, seg in self.window[:k]:
@@ -293,6 +288,8 @@ class RunStream:
         }
         if self.sensor is not None:
             summaries["sensor_pulse"] = self.sensor.result()
+        if self.episodes is not None:
+            summaries[STREAMED] = self.episodes.finish(run.t_final)
         sol = Solution(
             contacts=self.contacts,
             status=run.status,
