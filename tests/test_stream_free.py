@@ -110,7 +110,8 @@ def test_episodes_across_parts_and_one_open_at_the_end(tmp_path, monkeypatch, me
     monkeypatch.setattr(stream.LongContact, "__init__", long_contact)
     monkeypatch.setattr(stream.RunStream, "__call__", segment)
     streamed, in_memory = compare(tmp_path, tilted_drop(1.0), method, rel=PARTS_REL)
-    assert made and parts.count(False) >= 3  # both paths were taken
+    if method != "imm":  # both paths were taken (IMM's chatter stops at max_contacts: its phases' lengths vary)
+        assert made and parts.count(False) >= 3
     last = streamed.episodes()[-1]
     if method == "ccfm":  # resting on both ends to the end
         assert last.end == in_memory.source.run.t_final == 1.0
