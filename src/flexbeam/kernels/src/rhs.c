@@ -2,9 +2,7 @@
  * from the equations of model.c (docs/formulation.md). */
 #include <string.h>
 
-#include "flexbeam.h"
-
-#define MAXZ 66 /* n <= 64 modes, theta, and a support coordinate */
+#include "rhs.h"
 
 /* sum over the given coordinates g of M[row][g] acc[g]: the force the given accelerations ask of a row. */
 static double given_force(const double *M, int N, int ng, int row, const double *acc) {
@@ -12,36 +10,6 @@ static double given_force(const double *M, int N, int ng, int row, const double 
     for (int g = 0; g < ng; g++) f += M[row * N + g] * acc[g];
     return f;
 }
-
-/* One evaluation of the right-hand side, shared by its pieces: the state, the equations M z'' = Q of the full
- * coordinates z, the pairs' gaps, Jacobians and forces, the force on the support's mass and the dissipated power. */
-typedef struct {
-    const fb_model *m;
-    const fb_contacts *c;
-    const fb_joint_ops *jt;
-    const fb_obstacle *o; /* the support (obstacle 0), or NULL */
-    fb_frame fr;
-    const double *q, *qd;
-    int N, ng, compliant;
-    double s, sd;                   /* the support's coordinate and rate (0 without a compliant support) */
-    double ga[FB_MAX_JOINT_PARAMS]; /* the given coordinates' accelerations */
-    double M[MAXZ * MAXZ], Q[MAXZ], J[FB_MAX_PAIRS][MAXZ];
-    fb_gap gp[FB_MAX_PAIRS];
-    double F[FB_MAX_PAIRS], Fsup, diss, damping;
-    int con[FB_MAX_PAIRS], ncon;     /* the constrained pairs */
-    int stick[FB_MAX_PAIRS], nstick; /* the law pairs (CCFM) sticking: their tangential multipliers */
-    /* a pair with Coulomb friction: its tangent Jacobian, slip velocity, force direction J + sigma Jt (a constrained
-     * pair's slip) and tangential multiplier (stick) */
-    double Jt[FB_MAX_PAIRS][MAXZ], vt[FB_MAX_PAIRS], D[FB_MAX_PAIRS][MAXZ], Ft[FB_MAX_PAIRS];
-} rhs_eval;
-
-/* One row of the constrained pairs' system: the pair, normal (0) or tangential (1), the constraint's row and the
- * force's column over the full coordinates, their support entries, and the row's target acceleration. */
-typedef struct {
-    int pair, tangential;
-    const double *row, *col;
-    double row_s, col_s, target;
-} fb_row;
 
 /* A (nn x nn, nn = N - off) = the rows and columns of M from off on: the block of the coordinates solved for. */
 static void free_block(const double *M, int N, int off, double *A) {
@@ -76,28 +44,6 @@ static double assemble(rhs_eval *e, const fb_model *m, const fb_contacts *c, dou
 }
 
 
-/* d v_t / d s' of pair k: its slip velocity's share of the compliant support's rate (fb_node_friction). */
-static double tangent_support(const rhs_eval *e, int k) {
-    const fb_gap *g = &e->gp[k];
-    const fb_obstacle *o = &e->m->obstacles[e->m->pairs[k].obstacle];
-    return o->ms > 0.0 ? -(-g->ny * o->ux + g->nx * o->uy) : 0.0;
-}
-
-/* Coulomb friction of a law pair k (CCFM, friction.c): slipping (or under the regularised law) its force sigma F
- * acts along Jt and dissipates -sigma F v_t; sticking, its tangential multiplier is solved with the constrained
- * pairs' (constraint_forces). */
-static void law_friction(rhs_eval *e, int k) {
-    e->Ft[k] = 0.0;
-    if (e->c->stick[k]) {
-        e->stick[e->nstick++] = k;
-        return;
-    }
-    double f = fb_slip_coefficient(e->c, k, e->vt[k]) * e->F[k];
-    for (int i = 0; i < e->N; i++) e->Q[i] += e->Jt[k][i] * f;
-    e->Fsup += tangent_support(e, k) * f;
-    e->diss -= f * e->vt[k];
-}
-
 /* The pairs in contact: their gaps and Jacobians; the law force of each FB_MODE_FORCE pair acts as J_k^T F_k (and
  * Js_k F_k on the support), its damping dissipates, its friction acts (law_friction); the FB_MODE_CONSTRAINT pairs
  * are listed for the solve. */
@@ -123,46 +69,8 @@ static void pair_forces(rhs_eval *e) {
         e->diss += (e->F[k] - fk) * (-g->rate);
         for (int i = 0; i < N; i++) e->Q[i] += e->J[k][i] * e->F[k];
         e->Fsup += g->Js * e->F[k];
-        if (fb_rough(c, k)) law_friction(e, k);
+        if (fb_rough(c, k)) rhs_law_friction(e, k);
     }
-}
-
-/* The rows of the constrained pairs with friction (CCM, friction.c): a slipping pair's force column J + sigma Jt
- * (sigma = fb_slip_coefficient), a sticking pair's tangential row Jt z'' = -gamma_t - 2 alpha v_t (its multiplier
- * along Jt; the Baumgarte term damps the slip velocity's drift).  Returns the number of rows. */
-static int rough_rows(rhs_eval *e, fb_row *rows) {
-    const fb_contacts *c = e->c;
-    int n = e->ncon, N = e->N;
-    for (int ia = 0; ia < e->ncon; ia++) {
-        int k = e->con[ia];
-        e->Ft[k] = 0.0;
-        if (!fb_rough(c, k)) continue;
-        const fb_gap *g = &e->gp[k];
-        double sigma = fb_slip_coefficient(c, k, e->vt[k]), Jts = tangent_support(e, k);
-        if (sigma != 0.0) {
-            for (int i = 0; i < N; i++) e->D[k][i] = e->J[k][i] + sigma * e->Jt[k][i];
-            rows[ia].col = e->D[k];
-            rows[ia].col_s = g->Js + sigma * Jts;
-        }
-        if (c->stick[k])
-            rows[n++] = (fb_row){k, 1, e->Jt[k], e->Jt[k], Jts, Jts, -g->tgamma - 2.0 * c->alpha * e->vt[k]};
-    }
-    for (int j = 0; j < e->nstick; j++) { /* the sticking law pairs' tangential rows */
-        int k = e->stick[j];
-        double Jts = tangent_support(e, k);
-        rows[n++] = (fb_row){k, 1, e->Jt[k], e->Jt[k], Jts, Jts, -e->gp[k].tgamma - 2.0 * c->alpha * e->vt[k]};
-    }
-    return n;
-}
-
-/* Friction's dissipation -(sigma F + lambda_t) v_t of the constrained pairs (CCM) and -lambda_t v_t of the sticking
- * law pairs, added to the dissipated power. */
-static void rough_dissipation(rhs_eval *e) {
-    for (int ia = 0; ia < e->ncon; ia++) {
-        int k = e->con[ia];
-        if (fb_rough(e->c, k)) e->diss -= (fb_slip_coefficient(e->c, k, e->vt[k]) * e->F[k] + e->Ft[k]) * e->vt[k];
-    }
-    for (int j = 0; j < e->nstick; j++) e->diss -= e->Ft[e->stick[j]] * e->vt[e->stick[j]];
 }
 
 /* The constrained pairs' multipliers: [M D^T; J_c 0][z''; -lambda] = [Q; -gamma - 2 alpha delta' - beta^2 delta]
@@ -184,7 +92,7 @@ static int constraint_forces(rhs_eval *e) {
         rows[ia] = (fb_row){k, 0, e->J[k], e->J[k], g->Js, g->Js,
                             -g->gamma - 2.0 * c->alpha * g->rate - c->beta * c->beta * g->delta};
     }
-    if (c->friction) nr = rough_rows(e, rows);
+    if (c->friction) nr = rhs_rough_rows(e, rows);
     for (int i = 0; i < nn; i++) a[i] = e->Q[i + off] - given_force(M, N, ng, i + off, ga);
     free_block(M, N, off, A);
     if (nn > 0 && fb_solve(A, a, nn)) return -1;
@@ -214,7 +122,7 @@ static int constraint_forces(rhs_eval *e) {
         for (int i = 0; i < N; i++) e->Q[i] += rows[ia].col[i] * r[ia];
         e->Fsup += rows[ia].col_s * r[ia];
     }
-    if (c->friction) rough_dissipation(e);
+    if (c->friction) rhs_rough_dissipation(e);
     return 0;
 }
 
