@@ -108,11 +108,10 @@ def test_a_streamed_run_writes_what_the_run_in_memory_writes(tmp_path, name, met
     np.testing.assert_allclose(streamed["contact_force"], in_memory["contact_force"], rtol=2**-24, atol=0.0)
 
 
-def test_long_phases_in_parts_and_a_long_contact_stretch_by_stretch(tmp_path, monkeypatch):
-    """1.2 s of the seed case: the beam rests on its stop from 0.71 s, one contact record to the end.  With blocks
-    of 256 steps and 1024 steps kept, that phase is handed on in parts and the open record completed stretch by
-    stretch: the same samples, records and metrics as in memory (taking the same steps: the block size is the
-    stepper's in both), but for the open record's impulse, summed part by part (~1e-16 relative)."""
+def in_parts(monkeypatch) -> tuple[list[int], list[bool]]:
+    """Blocks of 256 steps and 1024 kept, so that long phases reach the stream in parts and long contacts are
+    completed stretch by stretch; returns the lists the run fills: the records completed as long contacts and each
+    segment's ``closes`` (False: a part of a phase)."""
     monkeypatch.setattr(modal, "BLOCK_RECORDS", 256)
     monkeypatch.setattr(stream, "WINDOW_RECORDS", 1024)
     made, parts = [], []
@@ -128,6 +127,15 @@ def test_long_phases_in_parts_and_a_long_contact_stretch_by_stretch(tmp_path, mo
 
     monkeypatch.setattr(stream.LongContact, "__init__", long_contact)
     monkeypatch.setattr(stream.RunStream, "__call__", segment)
+    return made, parts
+
+
+def test_long_phases_in_parts_and_a_long_contact_stretch_by_stretch(tmp_path, monkeypatch):
+    """1.2 s of the seed case: the beam rests on its stop from 0.71 s, one contact record to the end.  With blocks
+    of 256 steps and 1024 steps kept, that phase is handed on in parts and the open record completed stretch by
+    stretch: the same samples, records and metrics as in memory (taking the same steps: the block size is the
+    stepper's in both), but for the open record's impulse, summed part by part (~1e-16 relative)."""
+    made, parts = in_parts(monkeypatch)
     case = seed(solver__t_end=1.2, output__interval=1e-4)
     in_memory = fb.simulate(case)
     metrics = in_memory.metrics()

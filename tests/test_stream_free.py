@@ -23,7 +23,7 @@ import flexbeam as fb
 from flexbeam.integrate import modal
 from flexbeam.results import stream
 from flexbeam.results.files import jsonable
-from tests.test_stream import assert_same_files, assert_same_metrics, assert_same_records, read
+from tests.test_stream import assert_same_files, assert_same_metrics, assert_same_records, in_parts, read
 from tests.validation.test_repeated_obstacle import C, floor_case
 
 DROP = Path(__file__).parent / "validation" / "data" / "free-bar-drop.toml"
@@ -94,21 +94,7 @@ def test_episodes_across_parts_and_one_open_at_the_end(tmp_path, monkeypatch, me
     reach the stream in parts and the contacts that last are completed stretch by stretch; the bar's last episode --
     resting on its ends, its records open -- ends at the run's end.  The same as in memory, the impulses and works to
     round-off."""
-    monkeypatch.setattr(modal, "BLOCK_RECORDS", 256)
-    monkeypatch.setattr(stream, "WINDOW_RECORDS", 1024)
-    made, parts = [], []
-    init, call = stream.LongContact.__init__, stream.RunStream.__call__
-
-    def long_contact(self, s, i, src):
-        made.append(i)
-        init(self, s, i, src)
-
-    def segment(self, seg):
-        parts.append(seg.closes)
-        call(self, seg)
-
-    monkeypatch.setattr(stream.LongContact, "__init__", long_contact)
-    monkeypatch.setattr(stream.RunStream, "__call__", segment)
+    made, parts = in_parts(monkeypatch)
     streamed, in_memory = compare(tmp_path, tilted_drop(1.0), method, rel=PARTS_REL)
     if method != "imm":  # both paths were taken (IMM's chatter stops at max_contacts: its phases' lengths vary)
         assert made and parts.count(False) >= 3

@@ -148,6 +148,11 @@ def _name(i: int) -> str:
     return "obstacle" if i == 0 else f"obstacles[{i - 1}]"
 
 
+def _contact_field(k: int) -> str:
+    """The section of pair k's contact: ``contact`` (pair 0) or ``obstacles[k - 1].contact``."""
+    return "contact" if k == 0 else f"obstacles[{k - 1}].contact"
+
+
 def same_surface(a: ObstacleGeometry, b: ObstacleGeometry) -> bool:
     """Are ``a`` and ``b`` one rigid surface: the same kind, centre, radius and normal, in the same frame (the ground or
     the base), neither on a compliant support?  Several pairs touch one obstacle by repeating it (each its own
@@ -173,16 +178,14 @@ def check_overlaps(obstacles, r_O, pairs=()) -> None:
             if same_surface(a, b):
                 for k in (i, j):
                     if pairs and pairs[k].anywhere:
-                        field = "contact" if k == 0 else f"obstacles[{k - 1}].contact"
                         raise ParameterError(
-                            f"{field}.anywhere: {_name(j)} repeats {_name(i)} (one surface that several pairs touch), "
-                            "so each of its pairs must be at a fixed point (contact anywhere finds one point per "
-                            "surface, which another pair's may be)"
+                            f"{_contact_field(k)}.anywhere: {_name(j)} repeats {_name(i)} (one surface that several "
+                            "pairs touch), so each of its pairs must be at a fixed point (contact anywhere finds one "
+                            "point per surface, which another pair's may be)"
                         )
                 if pairs and (pairs[i].position, pairs[i].offset) == (pairs[j].position, pairs[j].offset):
-                    field = "contact" if j == 0 else f"obstacles[{j - 1}].contact"
                     raise ParameterError(
-                        f"{field}.position: {_name(j)} repeats {_name(i)} and its pair's point (x = "
+                        f"{_contact_field(j)}.position: {_name(j)} repeats {_name(i)} and its pair's point (x = "
                         f"{pairs[j].position:g} m, the same side): one contact counted twice; move it or drop it"
                     )
                 continue

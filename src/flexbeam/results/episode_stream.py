@@ -36,7 +36,7 @@ import numpy as np
 
 from .episodes import STREAMED, default_gap, same_point
 from .parts import as_whole, holding
-from .restitution import Phases, RigidMotion, _SegmentPiece, restitution_record
+from .restitution import Phases, RigidMotion, SegmentPiece, restitution_record
 
 if TYPE_CHECKING:
     from ..integrate.loop import Segment
@@ -201,7 +201,7 @@ class EpisodeStream:
                     ep.acc.jump(ev.onset, J, *ep.jumps[i])
             end = ev.end if math.isfinite(ev.end) else (t_final if math.isfinite(t_final) else math.inf)
             if end > ev.onset and seg.phase.modes[ep.pair] != 0 and seg.t1 > seg.t0 and seg.t0 <= end:
-                piece = _SegmentPiece(motion, as_whole(seg), ep.pair)
+                piece = SegmentPiece(motion, as_whole(seg), ep.pair)
                 ep.acc.steps(piece, max(ev.onset, seg.t0), min(end, seg.t1))
 
     def _past(self, ep: OpenEpisode, i: int, t: float) -> bool:

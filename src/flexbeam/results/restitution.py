@@ -169,14 +169,14 @@ class RigidMotion(Motion):
 
     def pieces(self, t0: float, t1: float, pair: int) -> Iterator[tuple[Piece, float, float]]:
         for seg in self.source._contact_segments(t0, t1, pair):
-            yield _SegmentPiece(self, seg, pair), max(t0, seg.t0), min(t1, seg.t1)
+            yield SegmentPiece(self, seg, pair), max(t0, seg.t0), min(t1, seg.t1)
 
     def contact_position(self, t: float, pair: int) -> float:
         seg = self.segment(t, after=True)
         return float(self.source.evaluate_pairs(seg, np.array([t]))[2][0, pair, 3])
 
 
-class _SegmentPiece(Piece):
+class SegmentPiece(Piece):
     """A segment of a run's dense output."""
 
     def __init__(self, motion: RigidMotion, seg: Segment, pair: int) -> None:
