@@ -18,6 +18,10 @@
 #define BALANCE_SHARE 0.1
 #define BALANCE_ROUNDOFF 1e-13 /* the residual's round-off, relative to its terms (a few hundred ulps) */
 #define H_MIN_REL 1e-14 /* step-size underflow below this fraction of max(t, 1 s) */
+/* A law's kink less than this fraction of max(t, 1 s) past a step's start is at its start: retaken to it, the step
+ * would be a few underflow limits long, and the next step, grown by at most 5x from it, would fall below the limit
+ * (a kink located just short of the raw law's zero is seen again at the next step's start, 1e-15 s on) */
+#define KINK_MIN_REL 1e-12
 /* Bounded effort: a phase that cannot make progress -- its step size collapsing, or its steps rejected again and
  * again, as when the forcing and the energy it is checked against disagree -- ends (ADV_STALLED) once its step
  * attempts, accepted and rejected, reach EFFORT_BASE + EFFORT_RATE r (t - t0): t0 the phase's start, r its
@@ -120,7 +124,8 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
         for (int j = 0; j < FB_P; j++) known[j + 1] = w->node[j].gap[k];
         fb_dense dd = {ph, t, h, eta, v, f, k};
         double xk = fb_find_kink(&dd, kx, known, FB_P + 2);
-        if (xk > 1e-6 && xk < 1.0 - 1e-6 && xk < x && xk < *kink) *kink = xk;
+        if (xk > 1e-6 && xk * h > KINK_MIN_REL * fmax(fabs(t), 1.0) && xk < 1.0 - 1e-6 && xk < x && xk < *kink)
+            *kink = xk;
     }
     return x;
 }
