@@ -15,6 +15,7 @@ axis, where the cylinder is straight) and 1/R'' = 1/R_s + 1/R_c.
 
 from __future__ import annotations
 
+import functools
 import math
 
 from .. import numerics as nm
@@ -54,6 +55,12 @@ def rigid_hertz_impact(mass: float, speed: float, K: float, n: float = 1.5) -> t
     delta_max, F_max, t_c
     """
     dmax = nm.pow((n + 1.0) * mass * speed * speed / (2.0 * K), 1.0 / (n + 1.0))
+    return dmax, K * nm.pow(dmax, n), 2.0 * _duration_factor(n) * dmax / speed
+
+
+@functools.lru_cache(maxsize=16)
+def _duration_factor(n: float) -> float:
+    """int_0^1 (1 - s^(n+1))^(-1/2) ds = sqrt(pi) Gamma(1 + a) / Gamma(1/2 + a), a = 1/(n+1) (rigid_hertz_impact;
+    a law's exponent n takes a few values in a run: each contact's onset reads it here)."""
     a = 1.0 / (n + 1.0)
-    factor = math.sqrt(math.pi) * nm.gamma(1.0 + a) / nm.gamma(0.5 + a)
-    return dmax, K * nm.pow(dmax, n), 2.0 * factor * dmax / speed
+    return math.sqrt(math.pi) * nm.gamma(1.0 + a) / nm.gamma(0.5 + a)

@@ -131,7 +131,7 @@ def pack_contacts(
     them too."""
     S = len(modes)
     fric = None if friction is None else np.asarray(friction, float).reshape(S, 5)
-    width = 5 if fric is None or not fric.any() else 10
+    width = 5 if fric is None or not np.count_nonzero(fric) else 10  # (count_nonzero: no ufunc reduction)
     out = np.empty(3 + width * S)
     out[:3] = S, alpha, beta
     rows = out[3:].reshape(S, width)
@@ -148,7 +148,10 @@ def pack_controls(
     """The control buffer of a phase (``fb_ctrl`` in ``src/``): the step control's tolerances and step bound, the
     rigid rotation's frequency scale for the error norm, the events the phase ends on (bits) and the contacts
     buffer of :func:`pack_contacts`."""
-    return np.concatenate(([rtol, atol, max_step, omega_rigid, float(event_bits)], contacts))
+    out = np.empty(5 + contacts.size)
+    out[:5] = rtol, atol, max_step, omega_rigid, event_bits
+    out[5:] = contacts
+    return out
 
 
 def pack_basis(

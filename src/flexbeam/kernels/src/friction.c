@@ -116,11 +116,11 @@ static double reversed_x(const fb_dense *d, double x) { return slip_x(d, x) + re
  * slip that started at rest, where it runs backwards beyond VT_NOISE or the stick's residual v_rest it started from
  * (the pair's vrest); FB_NO_EVENT if neither.  The slip velocity is sampled at STOP_SAMPLES points by exact hops
  * between them (one set of propagation weights for all, as the gap's samples in events.c); a sign change seen there
- * is located on the step's dense output. */
-double fb_find_stop(const fb_dense *d) {
+ * is located on the step's dense output.  start: slip_state at the step's start (the caller has it). */
+static double fb_find_stop(const fb_dense *d, double start) {
     const fb_basis *b = d->ph->b;
     int N = b->N;
-    double start = slip_x(d, 0.0), noise = rest_noise(d), prev = start;
+    double noise = rest_noise(d), prev = start;
     int forward = start > 0.0;
     if (start < -noise) return 0.0;
     fb_hops H;
@@ -203,13 +203,13 @@ static double slip_stop(const fb_dense *d, const fb_work *w, int *kind) {
     *kind = FB_EVENT_STOP;
     double sg = ph->c.sdir[k] > 0.0 ? 1.0 : -1.0, vt, lo, hi;
     fb_tangent_at(ph, k, d->t0, d->eta0, d->v0, &vt);
-    lo = hi = sg * vt;
+    lo = hi = sg * vt; /* slip_state at the step's start (x = 0: the dense output's state is eta0, v0) */
     for (int j = 0; j <= FB_P; j++) {
         double f = sg * (j < FB_P ? w->node[j].vt[k] : w->end.vt[k]);
         lo = fmin(lo, f), hi = fmax(hi, f);
     }
     if (lo > STOP_CLEAR * (hi - lo)) return FB_NO_EVENT;
-    return fb_find_stop(d);
+    return fb_find_stop(d, sg * vt);
 }
 
 /* a - PAINLEVE_SHARE W_nn, a = W_nn + sigma W_nt, of a held slipping pair at an evaluated node: a = jm . b (b holds

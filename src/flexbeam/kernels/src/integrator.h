@@ -145,7 +145,6 @@ double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, in
 /* Coulomb friction (friction.c) */
 fb_gap fb_tangent_at(const fb_phase *ph, int pair, double t, const double *eta, const double *v, double *vt);
 void fb_node_friction(const fb_phase *ph, int k, const double *Jt, double vt, const fb_update *up, fb_node *out);
-double fb_find_stop(const fb_dense *d);
 double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *kind);
 double fb_find_unstick(const fb_phase *ph, int k, const double *F, const double *Ft, double scale, int *kind);
 double fb_friction_rate(const fb_phase *ph, const fb_node *nd, int k, double F, double Ft);
