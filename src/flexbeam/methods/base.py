@@ -106,8 +106,10 @@ class ImpactMethod:
         until = max((r.onset + RESTING_DURATIONS * r.time_scale for r in young), default=math.inf)
         rough = friction is not None and np.count_nonzero(friction) > 0  # (np.any costs 5 us a phase)
         events = ALL_EVENTS + FRICTION_EVENTS if rough else ALL_EVENTS
-        if rough and ContactMode.CONSTRAINT in modes and any(
-            m == ContactMode.CONSTRAINT and f[0] != 0.0 for m, f in zip(modes, friction)
+        if (
+            rough
+            and ContactMode.CONSTRAINT in modes
+            and any(m == ContactMode.CONSTRAINT and f[0] != 0.0 for m, f in zip(modes, friction))
         ):
             events += PAINLEVE_EVENTS  # a held pair slips (CCM): its a = W_nn + sigma W_nt is watched
         out = Phase(name, modes, events, sample, np.asarray(parameters, float), tuple(records), self.baumgarte,
