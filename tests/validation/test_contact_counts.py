@@ -58,3 +58,18 @@ def test_seed_imm_counts_add_up():
     (pair,) = m["pairs"]
     for key in ("contacts", "contact_records", "micro_impacts", "chatter_episodes"):
         assert pair[key] == m[key]
+
+
+@pytest.mark.parametrize(("method", "friction"), [("imm", 0.0), ("ccm", 0.3)])
+def test_a_beam_settling_on_a_stop_chatters_under_imm_and_ccm_and_the_stop_says_what_carries_it_on(method, friction):
+    """tip-wall to 0.3 s with the guard at 200 contacts: as the beam settles on the wall, IMM's impulses (the struck
+    point thrown back by the modes they excite) and CCM's held contact with friction (released by the undamped modes'
+    ringing) pile up contacts -- the 200th comes at 0.19 s and 0.17 s (measured), over a tenth of a second before
+    t_end -- and the run stops with a message naming CCFM and solver.max_contacts.  CCFM, whose law damps the
+    contact, carries the same case to t_end with 65-69 contacts (a third of the guard)."""
+    rough = {"contact.friction": friction} if friction else {}
+    case = fb.load_case("tip-wall", {"solver.t_end": 0.3, "solver.max_contacts": 200, **rough})
+    sol = fb.simulate(case, method)
+    assert sol.status == "max-contacts"
+    assert "CCFM carries a contact that comes to rest" in sol.message and "raise solver.max_contacts" in sol.message
+    assert fb.simulate(case, "ccfm").status == "success"

@@ -62,6 +62,9 @@ class ImpactMethod:
     #: them no frictional pair can be held: CCM's friction is refused before the run, IMM's run stops where a
     #: frictional pair would come to rest (:meth:`~flexbeam.methods.held_friction.HeldFriction.held_phase`)
     locates_friction = True
+    #: what the message of a run stopped by ``solver.max_contacts`` adds (:meth:`new_contact`): IMM and CCM name why a
+    #: beam settling on a stop chatters under them, and what carries it on
+    chatter_advice = ""
 
     def __post_init__(self) -> None:
         w = self.case.solver.baumgarte_frequency
@@ -210,7 +213,7 @@ class ImpactMethod:
             raise Stop(
                 "max-contacts",
                 f"stopped at t = {t:.9g} s after {len(self.contacts)} contacts "
-                f"(solver.max_contacts); the contacts accumulate (Zeno-like)",
+                f"(solver.max_contacts); the contacts accumulate (Zeno-like){self.chatter_advice}",
             )
         if velocity_before is None:
             velocity_before = self.gap_event(t, y, pair)[1]
