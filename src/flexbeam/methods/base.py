@@ -297,6 +297,10 @@ class ImpactMethod:
         if rec is not None:
             rec.end = t
             rec.velocity_after = self.gap_event(t, y, pair)[1]
+        return self.without(phase, pair)
+
+    def without(self, phase: Phase, pair: int) -> Phase:
+        """``phase`` with pair ``pair`` free (its record left as it is)."""
         modes = list(phase.modes)
         modes[pair] = ContactMode.NONE
         records = list(phase.records)

@@ -70,7 +70,18 @@ class HeldFriction(ImpactMethod):
         if event == EventKind.PAINLEVE:
             return self.resolved(phase, t, y, pair)
         phase, y = super().transition(phase, event, t, y, pair)
-        return (phase, y) if event == EventKind.STOP else self.settled(phase, t, y)
+        if event == EventKind.STOP:
+            return phase, y
+        phase, y = self.settled(phase, t, y)
+        if event in (EventKind.UNSTICK_PLUS, EventKind.UNSTICK_MINUS) and self.sticks(phase, pair):
+            phase = self.lifted(phase, t, y, pair, event)
+        return phase, y
+
+    @staticmethod
+    def sticks(phase: Phase, pair: int) -> bool:
+        """Is ``pair`` held and sticking in ``phase``?"""
+        held = phase.modes[pair] == ContactMode.CONSTRAINT
+        return held and phase.friction is not None and phase.friction[pair, 1] > 0.0
 
     def settled(self, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         """``phase`` at (t, y) with its Painlevé slips resolved (:meth:`resolved`) and the pairs that leave freed
@@ -106,6 +117,24 @@ class HeldFriction(ImpactMethod):
             return phase, y
         friction = coulomb.grouped(self.system, t, y, friction)
         return self.leaving(self.phase(phase.modes, phase.parameters, phase.records, friction), t, y), y
+
+    def lifted(self, phase: Phase, t: float, y: np.ndarray, pair: int, event: EventKind) -> Phase:
+        """``phase`` after the stick of ``pair`` ended at (t, y) (``event``, the kernel's UNSTICK) and the slip it
+        began, a Painlevé slip (a <= SHARE W_nn the way the load drives it), was stuck again by its tangential impact:
+        the pair lifts off where its free normal acceleration separates it (a warning), and the run stops where it
+        presses it in (:mod:`flexbeam.methods.painleve`, *Neither stick nor slip*); as it is when the slip was not a
+        Painlevé one.  (Before, the kernel ended such a stick at once and the slip's resolution stuck it again, until
+        "events keep recurring without progress".)"""
+        direction = -1.0 if event == EventKind.UNSTICK_PLUS else 1.0
+        mu_k = self.system.contact.pairs[pair].friction
+        a, wnn = painleve.slip_inverse_mass(self.system, t, y, pair, -mu_k * direction)
+        if a > painleve.SHARE * wnn:
+            return phase
+        bn = self.gap_acceleration(t, y, pair, self.without(phase, pair).buffer)
+        if bn <= 0.0:
+            raise Stop("failed", painleve.inconsistent(t, pair, a, bn))
+        painleve.warn_lift(t, pair, bn)
+        return self.end_contact(phase, pair, t, y)
 
     def leaving(self, phase: Phase, t: float, y: np.ndarray) -> Phase:
         """``phase`` without the held pairs that leave the obstacle at (t, y): those moving off it (delta' above

@@ -24,6 +24,17 @@ pair then sticks or slips per mu_s (:func:`flexbeam.methods.coulomb.onset_row`; 
 a = W_nn - sigma W_nt > 0), or leaves the obstacle if it moves off it or its multiplier would pull
 (:meth:`flexbeam.methods.held_friction.HeldFriction.leaving`); a :class:`~flexbeam.errors.FlexbeamWarning` names
 Painlevé, the time and the pair.  IMM's resting contact slips the same way (the same code).
+
+**Neither stick nor slip.**  A slip that starts from a stick whose multiplier has left the cone has v_t ~ 0: its
+tangential impact stops nothing, and the pair may stick again where the stick still cannot hold -- neither sticking
+nor the slip the load drives (a <= SHARE W_nn) is consistent.  Where the pair's free normal acceleration delta''
+(under the other pairs' forces) separates it, Painlevé's indeterminate case, the rigid problem admits both that
+slip and lift-off, and a compliant contact resolves it by an impact without collision or by lift-off (Hogan &
+Kristiansen, Proc. R. Soc. A 473 (2017) 20160773, who give the criterion between them; Champneys & Várkonyi,
+IMA J. Appl. Math. 81 (2016) 538, a review): flexbeam lifts the pair off, the solution that needs no contact force
+(no impulse, no change of energy), with a second warning, without evaluating that criterion.  Where delta'' presses
+the pair in, no contact force is consistent (the inconsistent case) and the run stops with a message naming
+Painlevé (:meth:`~flexbeam.methods.held_friction.HeldFriction.lifted`).
 """
 
 from __future__ import annotations
@@ -79,4 +90,26 @@ def warn(t: float, pair: int, a: float) -> None:
         "tangential impact stopping the slip",
         FlexbeamWarning,
         stacklevel=4,
+    )
+
+
+def warn_lift(t: float, pair: int, bn: float) -> None:
+    """The FlexbeamWarning of a pair that leaves its obstacle after its tangential impact: it can neither stick nor
+    slip, and its free normal acceleration ``bn`` [m/s^2] separates it (Painlevé's indeterminate case)."""
+    warnings.warn(
+        f"contact.friction: Painlevé's paradox at t = {t:.9g} s, pair {pair}: after the tangential impact the pair "
+        f"can neither stick nor slip; its free normal acceleration {bn:.3g} m/s^2 lifts it off the obstacle",
+        FlexbeamWarning,
+        stacklevel=4,
+    )
+
+
+def inconsistent(t: float, pair: int, a: float, bn: float) -> str:
+    """The message of a run stopped where no contact force of ``pair`` is consistent (Painlevé's inconsistent case:
+    no stick, the slip's a <= 0, the free normal acceleration ``bn`` <= 0 pressing it in)."""
+    return (
+        f"contact.friction: Painlevé's paradox at t = {t:.9g} s, pair {pair}: no contact force is consistent there "
+        f"(the stick cannot hold, the slip's W_nn - mu_k s W_nt = {a:.3g} 1/kg, the free normal acceleration "
+        f"{bn:.3g} m/s^2 presses it in); a smaller contact.friction, or CCFM (a compliant contact), carries such a "
+        "case on"
     )
