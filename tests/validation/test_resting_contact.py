@@ -126,3 +126,20 @@ def test_rest_then_lift_off_separates_on_time():
     w_P = b.density * A * c.model.gravity * x**2 * (6 * L**2 - 4 * L * x + x**2) / (24.0 * b.youngs_modulus * inertia)
     t_sep = (w_P / x - 1e-4) / 1e-4
     assert ends[0] == pytest.approx(t_sep, rel=2e-2)
+
+
+def test_the_bound_stays_lifted_in_a_phase_a_friction_event_starts_later():
+    """The seed beam under the stiff linear Kelvin-Voigt law (t_c = 14.5 us at its last onset, the bound t_c / 8 =
+    1.8 us) with mu = 0.3: its last contact starts at 0.248 s and rests; its stick, entered at 0.297 s (a friction
+    event: a new phase of the same contact, well past the 20 t_c at which the bound lifted), used to take the bound
+    again to t_end -- 552 000 steps per second.  Its steps are now the error control's: median >= 4x the bound
+    (measured 8.5x)."""
+    case = fb.load_case(
+        "seed-experiment",
+        {"solver.t_end": 0.5, "contact.law": "kelvin_voigt", "contact.restitution": 0.6, "contact.friction": 0.3},
+    )
+    sol = fb.simulate(case, "ccfm")
+    assert sol.status == "success", sol.message
+    last = sol.source.run.segments[-1]
+    assert last.phase.friction is not None and last.t0 > last.phase.max_step_until
+    assert np.median(last.dense.records[:, 1]) >= 4.0 * last.phase.max_step

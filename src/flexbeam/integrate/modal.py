@@ -214,11 +214,15 @@ class ModalStepper:
         self._modes = phase.modes
         state[:5] = t, h, y[-2], y[-1], 0.0
         # the phase's step bound holds up to phase.max_step_until (an impact's force pulse); the rest of the phase
-        # continues from the same state buffer (its nodal forcing the guess) under the stepper's own bound alone
+        # continues from the same state buffer (its nodal forcing the guess) under the stepper's own bound alone -- all
+        # of a phase that starts past it (a friction event's, or another pair's separation, in an old contact)
         until = phase.max_step_until
-        legs = [(min(self.max_step, phase.max_step), min(until, t_end) if t < until < t_end else t_end)]
-        if legs[0][1] < t_end:
-            legs.append((self.max_step, t_end))
+        if t < until:
+            legs = [(min(self.max_step, phase.max_step), min(until, t_end))]
+            if until < t_end:
+                legs.append((self.max_step, t_end))
+        else:
+            legs = [(self.max_step, t_end)]
         chunks: list[np.ndarray] = []
         handed = _Handed(float(t), np.array(y, float))
         steps, nfev = 0, 0
