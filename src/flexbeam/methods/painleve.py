@@ -110,6 +110,6 @@ def inconsistent(t: float, pair: int, a: float, bn: float) -> str:
     return (
         f"contact.friction: Painlevé's paradox at t = {t:.9g} s, pair {pair}: no contact force is consistent there "
         f"(the stick cannot hold, the slip's W_nn - mu_k s W_nt = {a:.3g} 1/kg, the free normal acceleration "
-        f"{bn:.3g} m/s^2 presses it in); a smaller contact.friction, or CCFM (a compliant contact), carries such a "
-        "case on"
+        f"{bn:.3g} m/s^2 presses it in); a smaller contact.friction, or CCFM (a compliant contact, which has no such "
+        "paradox), may carry the run on"
     )
