@@ -62,9 +62,9 @@ class ImpactMethod:
     #: them no frictional pair can be held: CCM's friction is refused before the run, IMM's run stops where a
     #: frictional pair would come to rest (:meth:`~flexbeam.methods.held_friction.HeldFriction.held_phase`)
     locates_friction = True
-    #: what the message of a run stopped by ``solver.max_contacts`` adds (:meth:`new_contact`): IMM and CCM name why a
-    #: beam settling on a stop chatters under them, and what carries it on
-    chatter_advice = ""
+    #: why a flexible beam settling on a stop chatters under the method, which the message of a run stopped by
+    #: ``solver.max_contacts`` gives with what carries it on (:meth:`new_contact`; IMM and CCM)
+    chatter_cause = ""
 
     def __post_init__(self) -> None:
         w = self.case.solver.baumgarte_frequency
@@ -210,10 +210,16 @@ class ImpactMethod:
         """Log a contact onset of a pair (its approach speed ``velocity_before``, default: its delta' at y), stopping
         the run past ``solver.max_contacts``."""
         if len(self.contacts) >= self.case.solver.max_contacts:
+            advice = (
+                f"; a flexible beam settling on a stop chatters under {self.name.upper()}, {self.chatter_cause}: CCFM "
+                "carries a contact that comes to rest, or raise solver.max_contacts to go on"
+                if self.chatter_cause
+                else ""
+            )
             raise Stop(
                 "max-contacts",
                 f"stopped at t = {t:.9g} s after {len(self.contacts)} contacts "
-                f"(solver.max_contacts); the contacts accumulate (Zeno-like){self.chatter_advice}",
+                f"(solver.max_contacts); the contacts accumulate (Zeno-like){advice}",
             )
         if velocity_before is None:
             velocity_before = self.gap_event(t, y, pair)[1]

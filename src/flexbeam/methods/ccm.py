@@ -43,10 +43,7 @@ class CCM(HeldFriction):
     name = "ccm"
     #: (measured: with friction, seed-experiment, tip-wall and two-stops reach 1000 contacts by 0.25-0.33 s, their
     #: undamped modes ringing against the held pair; CCFM runs each to its end)
-    chatter_advice = (
-        "; a flexible beam settling on a stop chatters under CCM, its modes ringing against the held contact: CCFM "
-        "carries a contact that comes to rest, or raise solver.max_contacts to go on"
-    )
+    chatter_cause = "its modes ringing against the held contact"
 
     def on_impact(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int]) -> tuple[Phase, np.ndarray]:
         jump = self.held_impact(phase, t, y, pairs, 0.0)

@@ -73,15 +73,9 @@ class HeldFriction(ImpactMethod):
         if event == EventKind.STOP:
             return phase, y
         phase, y = self.settled(phase, t, y)
-        if event in (EventKind.UNSTICK_PLUS, EventKind.UNSTICK_MINUS) and self.sticks(phase, pair):
-            phase = self.lifted(phase, t, y, pair, event)
+        if event in (EventKind.UNSTICK_PLUS, EventKind.UNSTICK_MINUS) and coulomb.state(phase, pair) == 2:
+            phase = self.lifted(phase, t, y, pair, event)  # stuck again where its stick just ended
         return phase, y
-
-    @staticmethod
-    def sticks(phase: Phase, pair: int) -> bool:
-        """Is ``pair`` held and sticking in ``phase``?"""
-        held = phase.modes[pair] == ContactMode.CONSTRAINT
-        return held and phase.friction is not None and phase.friction[pair, 1] > 0.0
 
     def settled(self, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         """``phase`` at (t, y) with its Painlevé slips resolved (:meth:`resolved`) and the pairs that leave freed

@@ -50,10 +50,7 @@ class IMM(HeldFriction):
     name = "imm"
     #: (measured: seed-experiment, tip-wall and two-stops reach 1000 contacts by 0.26-0.46 s, and sooner with friction
     #: or beam damping; CCFM runs each to its end)
-    chatter_advice = (
-        "; a flexible beam settling on a stop chatters under IMM, its modes throwing the struck point back after "
-        "each impulse: CCFM carries a contact that comes to rest, or raise solver.max_contacts to go on"
-    )
+    chatter_cause = "its modes throwing the struck point back after each impulse"
     held_name = "resting"
 
     def on_impact(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int]) -> tuple[Phase, np.ndarray]:
