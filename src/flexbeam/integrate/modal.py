@@ -32,10 +32,11 @@ OMEGA_RIGID_DEFAULT = 1e3  # [rad/s] weighs a rigid angle error when the beam ha
 FIRST_STEP = 1e-5  # [s] first step of a phase (the controller grows it by up to 5x per step)
 _ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED = 0, 1, 2, 3, 4, 5
 #: the kernel's info row (``phase.h``): [event kind, steps, rejected, node evaluations, event pair, phase start,
-#: rejections by cause (_REJECT_CAUSES, in order)]
+#: rejections by cause (_REJECT_CAUSES, in order), the step taken at the event before it was cut to end there]
 _INFO_T0, _INFO_REJECT = 5, 6
 _REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
-_INFO_SIZE = _INFO_REJECT + len(_REJECT_CAUSES)
+_INFO_STEP = _INFO_REJECT + len(_REJECT_CAUSES)
+_INFO_SIZE = _INFO_STEP + 1
 #: EventKind by the kernel's code (a tuple look-up: the enum's call costs microseconds)
 _EVENT_KINDS = (None, *EventKind)
 #: the event bits of a phase's events tuple, filled as met
@@ -151,6 +152,8 @@ class ModalStepper:
         self.kernel = system.kernel
         self.record_size, self.state_size, _, _, _ = core.sizes(self.basis.N, system.pairs)
         self.h = FIRST_STEP
+        #: the step the controller took where the last phase ended (before it was cut to end at its event)
+        self.h_taken = FIRST_STEP
         self.omega_rigid = self.basis.omega_rigid
         self.psi = np.diag(self.basis.Psi).copy() if self.basis.diagonal else None
         self.to_m = np.diag(self.basis.toM).copy() if self.basis.diagonal else None
@@ -208,9 +211,15 @@ class ModalStepper:
         self._put_modal(y, state[5 : 5 + N], state[5 + N : 5 + 2 * N])
         # a contact starts with a short step (the force grows as d^n from zero: not polynomial at the onset),
         # free flight where the last phase left off; the controller grows either by up to 5x per step
-        # (a friction event -- the same pairs in contact, the friction switched -- keeps the step: no new contact)
+        # (a friction event -- the same pairs in contact, the friction switched -- keeps the step the controller took
+        # there, not the step cut to end at the event: no new contact, and a stick's residual slip decays over its
+        # first step (kernels/src/nodal.c) -- over a cut step of 1e-9 s its multiplier ~ m v_t / h broke the stick at
+        # once, and the switches recurred at ever shorter intervals down to a step-size underflow)
         switched = phase.friction is not None and self._modes == phase.modes
-        h = min(self.h, FIRST_STEP) if phase.in_contact and not switched else self.h
+        if switched:
+            h = self.h_taken
+        else:
+            h = min(self.h, FIRST_STEP) if phase.in_contact else self.h
         self._modes = phase.modes
         state[:5] = t, h, y[-2], y[-1], 0.0
         # the phase's step bound holds up to phase.max_step_until (an impact's force pulse); the rest of the phase
@@ -237,6 +246,7 @@ class ModalStepper:
                 break
         t1 = float(state[0])
         self.h = float(state[1])
+        self.h_taken = float(info[_INFO_STEP]) if code == _ADV_EVENT else self.h
         y1 = self.from_modal(state[5 : 5 + N], state[5 + N : 5 + 2 * N], state[2], state[3])
         dense = None
         if chunks:  # (one block, the common case: its rows copied, as the concatenation of several blocks would)

@@ -14,8 +14,9 @@ Dynamics with Unilateral Contacts, Wiley 1996, Ch. 5; Glocker & Pfeiffer, Nonlin
   impact that never adds energy, with a warning naming it (:mod:`flexbeam.methods.painleve`).
 
 A pair whose held contact starts gets the friction row of its state right after the onset's (frictional) impulse
-(:func:`~flexbeam.methods.coulomb.onset_row`); a pair held before keeps its row.  After every switch a held pair that
-moves off its obstacle, or whose multiplier would pull under the phase's friction, leaves it (:meth:`leaving`).
+(:func:`~flexbeam.methods.coulomb.onset_row`); a pair held before keeps its row.  After every switch a held pair whose
+multiplier would pull under the phase's friction leaves it, and after an impulse one that moves off its obstacle
+(:meth:`leaving`).
 """
 
 from __future__ import annotations
@@ -78,12 +79,13 @@ class HeldFriction(ImpactMethod):
         return phase, y
 
     def settled(self, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
-        """``phase`` at (t, y) with its Painlevé slips resolved (:meth:`resolved`) and the pairs that leave freed
-        (:meth:`leaving`); as it is without friction."""
+        """``phase`` at (t, y) with its Painlevé slips resolved (:meth:`resolved`) and the pairs whose multiplier
+        would pull under the switched friction freed (:meth:`leaving`, ``moved=False``: a switch leaves the velocities
+        as they are, and a tangential impact's are tested where it is resolved); as it is without friction."""
         if phase.friction is None:
             return phase, y
         phase, y = self.resolved(phase, t, y)
-        return self.leaving(phase, t, y), y
+        return self.leaving(phase, t, y, moved=False), y
 
     def resolved(self, phase: Phase, t: float, y: np.ndarray, pair: int | None = None) -> tuple[Phase, np.ndarray]:
         """The phase and state once every held pair slipping with a <= 0 (and ``pair``, whose a reached zero) has had
@@ -130,12 +132,17 @@ class HeldFriction(ImpactMethod):
         painleve.warn_lift(t, pair, bn)
         return self.end_contact(phase, pair, t, y)
 
-    def leaving(self, phase: Phase, t: float, y: np.ndarray) -> Phase:
+    def leaving(self, phase: Phase, t: float, y: np.ndarray, moved: bool = True) -> Phase:
         """``phase`` without the held pairs that leave the obstacle at (t, y): those moving off it (delta' above
-        ``grazing_speed``, as a tangential impact may leave them) or whose multiplier under the phase's friction
-        would pull (a stick's lambda_n has no reason to share the frictionless one's sign)."""
+        ``grazing_speed``, as a tangential impact may leave them: tested only if the velocities ``moved``) or whose
+        multiplier under the phase's friction would pull (a stick's lambda_n has no reason to share the frictionless
+        one's sign).  A held pair's delta' is the constraint's drift where no impulse moved it (its Baumgarte
+        recovery of a penetration, ~alpha delta, the collocation's 1e-8 m/s): taken for a lift-off after a friction
+        switch, it freed both ends of a bar resting on a floor, which fell back at once, a contact per switch."""
         F = self.system.rhs(t, y, phase.buffer)[1]
         for k, m in enumerate(phase.modes):
-            if m == ContactMode.CONSTRAINT and (self.gap_event(t, y, k)[1] > self.grazing_speed or F[k] < 0.0):
+            if m != ContactMode.CONSTRAINT:
+                continue
+            if F[k] < 0.0 or (moved and self.gap_event(t, y, k)[1] > self.grazing_speed):
                 phase = self.end_contact(phase, k, t, y)
         return phase

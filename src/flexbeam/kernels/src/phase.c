@@ -230,9 +230,11 @@ static double energy_at(const fb_phase *ph, double t, const double *eta, const d
  * phase's first guess: the step just taken (cut to the event), unless that is below the underflow limit -- the event
  * ~1e-15 s into its step, as the second of two separations that nearly coincide -- which would end the next phase
  * before its first attempt (plan_step); then the step the controller accepted before the cut, ``taken`` (plan_step
- * bounds it again by the next phase's hmax and t_end). */
+ * bounds it again by the next phase's hmax and t_end).  ``taken`` is also left in info[FB_INFO_STEP]: a friction
+ * switch resumes from it (integrate/modal.py). */
 static int event_code(double *info, int kind, int pair, double t, double *h, double taken) {
     if (*h < H_MIN_REL * fmax(fabs(t), 1.0)) *h = taken;
+    info[FB_INFO_STEP] = taken;
     info[0] = kind;
     info[4] = pair;
     return ADV_EVENT;

@@ -13,11 +13,13 @@ int fb_state_buffer_size(int N, int S);
 /* control buffer: [rtol, atol, hmax, omega_rigid, events (bits), contacts (fb_contacts_unpack)] */
 #define FB_CTRL_HEAD 5
 /* info, accumulated over the calls of one phase (zero at its start): [event kind, steps, rejected steps, node
- * evaluations, event pair, the phase's start time, rejections by cause (FB_REJECT_*)] */
+ * evaluations, event pair, the phase's start time, rejections by cause (FB_REJECT_*), the step taken at the event
+ * (before it was cut to end there; 0 without an event)] */
 enum { FB_REJECT_ERROR, FB_REJECT_BALANCE, FB_REJECT_COLLOCATION, FB_REJECT_EVENT, FB_REJECT_CAUSES };
 #define FB_INFO_T0 5
 #define FB_INFO_REJECT 6
-#define FB_INFO_SIZE (FB_INFO_REJECT + FB_REJECT_CAUSES)
+#define FB_INFO_STEP (FB_INFO_REJECT + FB_REJECT_CAUSES)
+#define FB_INFO_SIZE (FB_INFO_STEP + 1)
 
 int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t nctrl, double *state, double t_end,
                double *records, int capacity, int *nrec, double *info);
