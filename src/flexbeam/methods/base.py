@@ -325,7 +325,7 @@ class ImpactMethod:
         into holders and followers again.  A stop's sticks that cannot hold there slip on at once
         (:func:`~flexbeam.methods.stick_start.holding`)."""
         if event == EventKind.STOP:
-            friction = coulomb.grouped(self.system, t, y, coulomb.stop(self.system, phase, t, y, pair))
+            friction = coulomb.grouped(self.system, t, y, coulomb.stop(self.system, phase, t, y, pair), phase.modes)
             return stick_start.holding(self, self.phase(phase.modes, phase.parameters, phase.records, friction), t, y)
         if event in FRICTION_EVENTS:
             friction = coulomb.unstick(self.system, phase, event, pair, t, y)
@@ -334,7 +334,7 @@ class ImpactMethod:
             if phase.friction is None:
                 return phase, y
             friction = phase.friction
-        friction = coulomb.grouped(self.system, t, y, friction)
+        friction = coulomb.grouped(self.system, t, y, friction, phase.modes)
         return self.phase(phase.modes, phase.parameters, phase.records, friction), y
 
     def settled(self, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:

@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import numerics as nm
-from ..integrate.phases import EventKind, Phase
+from ..integrate.phases import ContactMode, EventKind, Phase
 from ..model.system import BeamSystem
 
 #: [m/s] a contact whose slip speed at its onset is below this starts sticking (the stick's multiplier then decides)
@@ -115,13 +115,21 @@ def stop(system: BeamSystem, phase: Phase, t: float, y: np.ndarray, pair: int) -
     return out
 
 
-def grouped(system: BeamSystem, t: float, y: np.ndarray, friction: np.ndarray) -> np.ndarray:
+def grouped(system: BeamSystem, t: float, y: np.ndarray, friction: np.ndarray, modes=()) -> np.ndarray:
     """The friction rows with the sticking pairs sorted into holders (stick = 1, a multiplier of their own) and
     followers (stick = 2 + h: the pair's tangential row depends on holder h's -- two points of a rigid bar on two
     stops move together -- so h holds both, within mu_s times their summed normal forces), by the Schur complement of
-    the tangential Delassus matrix on the holders kept so far."""
+    the tangential Delassus matrix on the holders kept so far.  First the held pairs (CONSTRAINT in ``modes``) that
+    their constraints pin (:func:`pinned`) stick as their own followers (stick = 2 + k), whatever their rows said."""
     out = np.array(friction, float)
-    sticking = [k for k in range(out.shape[0]) if out[k, 1] > 0.0]
+    for k in range(out.shape[0]):
+        if out[k, 1] == 2.0 + k:  # pinned before: decided again
+            out[k, 1] = 1.0
+    held = [k for k, m in enumerate(modes) if m == ContactMode.CONSTRAINT]
+    rough = [k for k in held if out[k, 1] > 0.0 or out[k, 4] != 0.0]  # Coulomb's rows: a stick or a slip
+    for k in pinned(system, t, y, rough, held) if rough else ():
+        out[k] = [0.0, 2.0 + k, out[k, 2], 0.0, 0.0]
+    sticking = [k for k in range(out.shape[0]) if out[k, 1] > 0.0 and out[k, 1] != 2.0 + k]
     if len(sticking) < 2:
         out[sticking, 1] = 1.0
         return out
@@ -138,6 +146,26 @@ def grouped(system: BeamSystem, t: float, y: np.ndarray, friction: np.ndarray) -
         else:  # follows the holder it depends on most
             h = max(kept, key=lambda j: abs(W[i, j]) / np.sqrt(W[j, j]))
             out[k, 1] = 2.0 + sticking[h]
+    return out
+
+
+def pinned(system: BeamSystem, t: float, y: np.ndarray, pairs: list[int], held: list[int]) -> list[int]:
+    """The ``pairs`` whose tangential rows depend on the normal rows of the ``held`` pairs (the part of J_t M^-1 J_t^T
+    not explained by them below :data:`DEPENDENT` of it): their constraints pin them, v_t = 0 whenever the held gaps
+    are still, so they stick without a multiplier of their own and their friction force is indeterminate (reported
+    0).  A rigid beam pinned at O and held at P has one coordinate, which the normal constraint fixes: a tangential
+    multiplier made the collocation singular (a step-size underflow at the first stop), and a slip there moves
+    nothing."""
+    rows = sorted(set(pairs) | set(held))
+    W = inverse_mass(system, t, y, rows)  # [J_t; J] M^-1 [J_t; J]^T of rows
+    n = [len(rows) + rows.index(h) for h in held]
+    Wnn = W[np.ix_(n, n)]
+    out = []
+    for k in pairs:
+        i = rows.index(k)
+        w = W[i, i] - nm.dot(W[i, n], nm.solve(Wnn, W[n, i]))
+        if w <= DEPENDENT * W[i, i]:
+            out.append(k)
     return out
 
 

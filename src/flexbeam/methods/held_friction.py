@@ -59,7 +59,7 @@ class HeldFriction(ImpactMethod):
                 friction[k] = 0.0
             elif k in onsets:
                 friction[k] = coulomb.onset_row(self.system, t, y, k)
-        friction = coulomb.grouped(self.system, t, y, friction)
+        friction = coulomb.grouped(self.system, t, y, friction, modes)
         phase, y = self.resolved(self.phase(modes, phase.parameters, records, friction), t, y)
         return self.leaving(phase, t, y), y
 
@@ -111,7 +111,7 @@ class HeldFriction(ImpactMethod):
             hit = True
         if not hit:
             return phase, y
-        friction = coulomb.grouped(self.system, t, y, friction)
+        friction = coulomb.grouped(self.system, t, y, friction, phase.modes)
         return self.leaving(self.phase(phase.modes, phase.parameters, phase.records, friction), t, y), y
 
     def lifted(self, phase: Phase, t: float, y: np.ndarray, pair: int, event: EventKind) -> Phase:

@@ -57,6 +57,6 @@ def holding(method, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.nd
         if broken is None:
             break
         pair, event = broken
-        friction = coulomb.grouped(system, t, y, coulomb.unstick(system, phase, event, pair, t, y))
+        friction = coulomb.grouped(system, t, y, coulomb.unstick(system, phase, event, pair, t, y), phase.modes)
         phase, y = method.settled(method.phase(phase.modes, phase.parameters, phase.records, friction), t, y)
     return phase, y
