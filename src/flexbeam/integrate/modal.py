@@ -26,7 +26,7 @@ from ..model.damping import modal_damping
 from ..model.system import BeamSystem
 from .dense import ModalDense
 from .loop import PhaseRun
-from .phases import ContactMode, EventKind, Phase
+from .phases import EventKind, Phase
 
 OMEGA_RIGID_DEFAULT = 1e3  # [rad/s] weighs a rigid angle error when the beam has no flexible mode
 FIRST_STEP = 1e-5  # [s] first step of a phase (the controller grows it by up to 5x per step)
@@ -133,21 +133,6 @@ def stalled_message(phase: str, t1: float, h: float, info: np.ndarray) -> str:
     return (
         f"no progress at t = {t1:.9g} s ({phase} phase): {steps + rejected} step attempts advanced the phase "
         f"{t1 - t0:.3g} s from t = {t0:.9g} s, the step size now {h:.3g} s; {rejected} rejected ({why})"
-    )
-
-
-def rigid_rest_advice(rigid: bool, phase: Phase, info: np.ndarray) -> str:
-    """What a failed law's contact phase (CCFM's) of a rigid beam (no bending modes) adds when most of its rejections
-    were the energy balance's: at rest its budget -- the energy error a state error of the tolerance makes in T + V_e
-    -- vanishes while the residual carries the contact's and gravity's work at round-off (``balance_error`` in
-    ``kernels/src/phase.c``); else ""."""
-    balance = info[_INFO_REJECT + _REJECT_CAUSES.index("energy balance")]
-    if not rigid or phase.mode != ContactMode.FORCE or balance < 0.5 * max(info[2], 1.0):
-        return ""
-    return (
-        f"; {int(balance)} of its {int(info[2])} rejected steps by the energy balance: a rigid beam (model.modes = 0) "
-        "coming to rest on its contact, whose energy-error budget vanishes at rest -- CCM or IMM hold it there, "
-        "or model.modes >= 1"
     )
 
 
@@ -274,8 +259,6 @@ class ModalStepper:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_STALLED:
             failure = stalled_message(phase.name, t1, float(state[1]), info)
-        if code in (_ADV_UNDERFLOW, _ADV_STALLED):
-            failure += rigid_rest_advice(self.system.beam.n == 0, phase, info)
         run = PhaseRun(t1, y1, event, dense, steps, nfev, failure, int(info[4]))
         if handed.start is not None:
             run.t0, run.y0 = handed.start

@@ -98,6 +98,8 @@ void fb_extrapolate(int N, int S, double ratio, double *f, double F[][FB_P]);
 double fb_energy_norm(const fb_phase *ph, const double *eta, const double *v);
 double fb_tolerance(const fb_phase *ph, const double *eta0, const double *v0, const double *eta1, const double *v1);
 double fb_next_step(double h, double err, int accepted);
+double fb_balance_error(const fb_phase *ph, double r, double scale, double load, double size);
+double fb_rigid_load(const fb_phase *ph, const fb_node *nd);
 
 /* Events (events.c) */
 #define FB_NO_EVENT 2.0
