@@ -60,11 +60,11 @@ def test_a_rigid_beam_coming_to_rest_on_a_law_runs_on_and_rests_at_the_held_forc
     the energy balance's residual is the round-off of the contact's work (its force times an ulp of the gap,
     1.3e-17 J on the seed case), while the budget counted only T + V_e, ~0 at rest without elastic energy: every
     step was rejected and the run stopped (a step-size underflow or no progress at 0.27-0.39 s).  The budget counts
-    the rigid modes' load now (``balance_error``, kernels/src/phase.c): the run reaches t_end = 1 s; over its last
-    0.1 s the force's median is CCM's held one within HELD_FORCE_RTOL (measured 1.6e-7, 1.6e-7, 3.6e-7 on the three
-    presets; a median, since a held multiplier's value at its step's end is extrapolated from the step's nodes, and
-    the held rigid beam's steps are long: 0.02-0.8 s), and the energy balance closes within 4e-6 (measured
-    <= 4.7e-7)."""
+    the rigid modes' load now (``fb_balance_error``, kernels/src/stepcontrol.c): the run reaches t_end = 1 s; over
+    its last 0.1 s the force's median is CCM's held one within HELD_FORCE_RTOL (measured 1.6e-7, 1.6e-7 and 3.6e-7
+    on the three presets; a median, since a held multiplier's value at its step's end is extrapolated from the
+    step's nodes, and the held rigid beam's steps are long: 0.02-0.8 s), and the energy balance closes within 4e-6
+    (measured <= 4.7e-7)."""
     case = fb.load_case(src, {"model.modes": 0, "solver.t_end": 1.0, "output.interval": 1e-3})
     sol, held = fb.simulate(case, "ccfm"), fb.simulate(case, "ccm")
     assert sol.status == "success", sol.message

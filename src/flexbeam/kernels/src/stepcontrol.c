@@ -56,12 +56,13 @@ double fb_next_step(double h, double err, int accepted) {
  * state tolerance admits: a state error e in the error norm (stepcontrol.c: |x|^2 = 2 (T + V_e) = 2 scale, a rigid
  * mode's angle weighed by omega_rigid) moves the energy by at most |grad E| |e| + |e|^2 / 2, and |e| <= tol =
  * atol + rtol |x|.  The gradient's kinetic and elastic part has the norm |x|; a rigid mode's generalised force Q_k
- * (``load`` = |Q_k / omega_rigid| over the rigid modes: the drive torque, gravity) moves the potential or the work
- * by Q_k e_k / omega_rigid, which no elastic energy measures, as a rigid mode stores none -- a rigid beam at rest on
- * a contact or a held constraint, |x| -> 0 while the contact holds the load, r the round-off of that load's work
- * (its force times an ulp of the gap: 1.3e-17 J on the rigid seed beam, against the 2e-18 J |x| admits).  The
- * larger of the two parts stands for |grad E| (today's budget wherever the vibration's part is the larger, as on
- * every flexible beam: at rest its static deflection carries the load, |x| >= |Q / omega| over the flexible modes).
+ * (``load`` = |Q_k / omega_rigid| over the rigid modes' rows of the smooth forcing: the drive torque, gravity, and
+ * the inertial terms, nil at rest) moves the potential or the work by Q_k e_k / omega_rigid, which no elastic energy
+ * measures, as a rigid mode stores none -- a rigid beam at rest on a contact or a held constraint: |x| -> 0 while
+ * the contact holds the load, r the round-off of that load's work (its force times an ulp of the gap: 1.3e-17 J on
+ * the rigid seed beam, against the 2e-18 J |x| admitted).  The larger of the two parts stands for |grad E|: where
+ * the vibration's part is the larger the budget is the former one (a flexible beam at rest keeps |x| from its
+ * static deflection, |Q_k / omega_k| over the flexible modes; every fingerprinted run is the same to the bit).
  * Never below the round-off of the residual's terms (``size``: the sum of their magnitudes).  Returns |r| over
  * that (> 1: reject). */
 double fb_balance_error(const fb_phase *ph, double r, double scale, double load, double size) {
