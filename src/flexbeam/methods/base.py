@@ -29,6 +29,14 @@ CONTACT_STEPS = 8
 #: impacts of every preset last at most 7.4 t_c (tip-wall, seed-experiment-calibrated), so their steps keep the bound;
 #: math.inf keeps it for the whole contact (``benchmarks/resting.py`` compares both).
 RESTING_DURATIONS = 20.0
+#: a held pair bounds the step by HELD_STEPS / kappa (kappa = solver.baumgarte_frequency): the Baumgarte terms damp
+#: the held gap's drift at the rate kappa (critically, delta'' + 2 kappa delta' + kappa^2 delta = 0), and the Gauss
+#: collocation -- A-stable, not L-stable: its stability function |R(z)| -> 1 as z -> -inf -- damps it only on steps
+#: that resolve 1 / kappa.  Measured on the rigid beam held on tip-wall (CCM, 1 s): unbounded, its steps grew to
+#: 0.78 s and left a drift delta' = -6.9e-8 m/s, the held force 3.5e-5 off at t_end; h <= 4 / kappa (2 ms): drift
+#: 1e-16 m/s, the force steady to 2e-12 (500 steps a second); h <= 16 / kappa: 5e-4.  Flexible beams' held steps are
+#: shorter: the 29 fingerprints are the same to the bit.
+HELD_STEPS = 4.0
 #: every phase watches all three kinds of event; each pair is watched for the one its mode can end on
 ALL_EVENTS = (EventKind.IMPACT, EventKind.SEPARATION, EventKind.RELEASE)
 
@@ -95,7 +103,8 @@ class ImpactMethod:
         by its contact's time scale t_c over CONTACT_STEPS until it has lasted RESTING_DURATIONS t_c (the bound
         holds while any pair's contact is that young): a contact that outlasts its impact pulse by far is a
         resting one, whose force follows the beam's slow motion and the ringing of its modes, and the error
-        control resolves it without the bound.
+        control resolves it without the bound.  A held pair bounds the step by HELD_STEPS / alpha to the phase's end,
+        so that the collocation damps the held gap's drift as the Baumgarte terms do.
         """
         modes = tuple(m if type(m) is ContactMode else ContactMode(m) for m in modes)  # (the enum's call: ~1 us)
         if not any(modes):
@@ -107,6 +116,9 @@ class ImpactMethod:
         young = [r for m, r in zip(modes, records) if m == ContactMode.FORCE and r]
         steps = [r.time_scale / CONTACT_STEPS for r in young]
         until = max((r.onset + RESTING_DURATIONS * r.time_scale for r in young), default=math.inf)
+        if self.baumgarte[0] > 0.0 and any(m == ContactMode.CONSTRAINT for m in modes):
+            steps.append(HELD_STEPS / self.baumgarte[0])  # (with a young contact beside: the smaller, to the end)
+            until = math.inf
         rough = friction is not None and np.count_nonzero(friction) > 0  # (np.any costs 5 us a phase)
         events = ALL_EVENTS + FRICTION_EVENTS if rough else ALL_EVENTS
         if (

@@ -23,7 +23,7 @@
  * contact's duration sets).  Measured over the test suite (fast and slow) and the presets: at most 1564 attempts in
  * a phase and 343 per unit of r (t - t0), except a rigid rod resting under gravity (IMM's resting or CCM's
  * constrained phase, 7 of 8 steps rejected by the energy balance: up to 3.3e3 per unit, 3.5e5 attempts in one
- * phase, until the balance's budget counted the rigid modes' load: 9-130 steps a second at rest now); the bound is
+ * phase, until the balance's budget counted the rigid modes' load: ~500 steps a second at rest now); the bound is
  * >= 12 times every phase's use.  The faults of issue 23 that break the energy balance stopped
  * after 1e4-2e5 attempts. */
 #define EFFORT_BASE 1e4
