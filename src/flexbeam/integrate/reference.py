@@ -86,12 +86,14 @@ class PiecewiseDense:
         self.breaks, self.pieces = np.asarray(ts, float), pieces
 
     def __call__(self, times: np.ndarray) -> np.ndarray:
+        """The rows y(t) at ``times``: each step's piece called once on its times, in their order (the times grouped
+        by a stable sort on their step, so that a call costs its times and the steps they touch)."""
         times = np.atleast_1d(np.asarray(times, float))
         idx = np.clip(np.searchsorted(self.breaks, times, side="left") - 1, 0, len(self.pieces) - 1)
         out = np.empty((times.size, self.pieces[0](self.breaks[0]).size))
-        for i in np.unique(idx):
-            sel = idx == i
-            out[sel] = self.pieces[i](times[sel]).T
+        order = np.argsort(idx, kind="stable")
+        for group in () if times.size == 0 else np.split(order, np.flatnonzero(np.diff(idx[order])) + 1):
+            out[group] = self.pieces[idx[group[0]]](times[group]).T
         return out
 
 
