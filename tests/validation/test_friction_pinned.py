@@ -50,6 +50,7 @@ def test_a_rigid_beam_held_on_its_stop_sticks_with_the_static_force_and_no_frict
     assert sol.metrics()["energy_drift_max"] <= 1e-10
     _, smooth = _run(method, 0.0)
     assert smooth.to_xarray()["contact_force"].values[-1] == pytest.approx(F_s, rel=1e-9)
+    assert ds["contact_force"].values[-1] == pytest.approx(smooth.to_xarray()["contact_force"].values[-1], rel=1e-9)
 
 
 @pytest.mark.parametrize("src", ["seed-experiment", "two-stops", "tip-wall"])

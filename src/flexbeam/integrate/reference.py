@@ -91,8 +91,10 @@ class PiecewiseDense:
         times = np.atleast_1d(np.asarray(times, float))
         idx = np.clip(np.searchsorted(self.breaks, times, side="left") - 1, 0, len(self.pieces) - 1)
         out = np.empty((times.size, self.pieces[0](self.breaks[0]).size))
+        if not times.size:
+            return out
         order = np.argsort(idx, kind="stable")
-        for group in () if times.size == 0 else np.split(order, np.flatnonzero(np.diff(idx[order])) + 1):
+        for group in np.split(order, np.flatnonzero(np.diff(idx[order])) + 1):
             out[group] = self.pieces[idx[group[0]]](times[group]).T
         return out
 

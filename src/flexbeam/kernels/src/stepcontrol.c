@@ -53,7 +53,7 @@ double fb_next_step(double h, double err, int accepted) {
 }
 
 /* The step's energy-balance residual r = E(t + h) - E(t) + dE_d - dW against BALANCE_SHARE of the energy error the
- * state tolerance admits: a state error e in the error norm (stepcontrol.c: |x|^2 = 2 (T + V_e) = 2 scale, a rigid
+ * state tolerance admits: a state error e in the error norm (above: |x|^2 = 2 (T + V_e) = 2 scale, a rigid
  * mode's angle weighed by omega_rigid) moves the energy by at most |grad E| |e| + |e|^2 / 2, and |e| <= tol =
  * atol + rtol |x|.  The gradient's kinetic and elastic part has the norm |x|; a rigid mode's generalised force Q_k
  * (``load`` = |Q_k / omega_rigid| over the rigid modes' rows of the smooth forcing: the drive torque, gravity, and
