@@ -5,8 +5,9 @@ a Markdown table: the steps, the events, the median integration time (the phase 
 outputs) and its time per step, and the ratio of the frictional run's time per step to the frictionless one's (issue
 28's target: at most 1.3); the same for the phase loop's thread CPU time, which a machine shared with other jobs
 inflates less than the wall time.  A step costs the same with friction (the sliding bar: sustained slip); a friction
-event (a stop, a stick's end) costs a phase's restart, which runs that switch often between stick and slip pay per
-step.
+event (a stop, a stick's end) costs a restart of the collocation and the location of its time, which runs that switch
+often between stick and slip pay per step (the compiled stepper takes most of them without returning to the phase
+loop: ``kernels/src/friction_switch.c``).
 The machine it ran on is printed below the table.
 
     python benchmarks/friction.py [--runs 5] [--quick]

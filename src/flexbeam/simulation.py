@@ -148,6 +148,8 @@ def simulate(
     stepper = make_stepper(case, method, system)
     rough = any(p.frictional for p in system.contact.pairs)
     impact.locates_friction = isinstance(stepper, ModalStepper)
+    if isinstance(stepper, ModalStepper):
+        stepper.friction_coef = impact.kernel_switches()
     if method in ("ccfm", "ccm") and rough and not isinstance(stepper, ModalStepper):
         raise ModelError(
             f"contact.friction: {method.upper()}'s friction runs on the exponential integrator, which a compliant "

@@ -72,8 +72,26 @@ class Segment:
 
 
 @dataclass
+class Switch:
+    """A friction switch the stepper took inside a phase without ending it (CCFM's Coulomb friction:
+    ``kernels/src/friction_switch.c``): the part of the phase before it (its dense output, steps and node
+    evaluations), the time and state there, the event (a stop, the end of a stick) and the pair's friction row after
+    it (a stop's stick, or the slip it broke into at once)."""
+
+    t: float
+    y: np.ndarray
+    event: EventKind
+    pair: int
+    row: np.ndarray
+    dense: DenseOutput | None
+    steps: int
+    nfev: int
+
+
+@dataclass
 class PhaseRun:
-    """What a stepper returns for one phase."""
+    """What a stepper returns for one phase (``switches``: the friction switches it took inside the phase, in time
+    order; the rest of the fields are those of the part after the last of them)."""
 
     t1: float
     y1: np.ndarray
@@ -86,6 +104,7 @@ class PhaseRun:
     #: where ``dense`` starts (time, state) when the phase's earlier steps were handed on in parts (``hand_on``)
     t0: float | None = None
     y0: np.ndarray | None = None
+    switches: list[Switch] = field(default_factory=list)
 
 
 class Stepper(Protocol):
@@ -115,6 +134,8 @@ class PhaseMethod(Protocol):
     def transition(
         self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
     ) -> tuple[Phase, np.ndarray]: ...
+
+    def friction_switched(self, phase: Phase, pair: int, row: np.ndarray) -> Phase: ...
 
 
 @dataclass
@@ -172,6 +193,12 @@ def run_phases(
                 if parts:
                     stepper.hand_on = _hand_on(sink, phase, progress)
                 run = stepper.advance(phase, t, y, t_end)
+                for sw in run.switches:  # the parts of the phase that friction switches inside the stepper ended
+                    steps, nfev, events = steps + sw.steps, nfev + sw.nfev, events + 1
+                    phase_steps.append((phase.name, sw.steps))
+                    keep(Segment(phase, t, sw.t, y.copy(), sw.y.copy(), sw.dense))
+                    stalled, t, y = 0, sw.t, sw.y
+                    phase = method.friction_switched(phase, sw.pair, sw.row)
                 steps += run.steps
                 nfev += run.nfev
                 phase_steps.append((phase.name, run.steps))

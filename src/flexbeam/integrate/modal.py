@@ -16,7 +16,7 @@ phase's dense output, evaluated only when outputs are asked for.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -25,7 +25,7 @@ from ..kernels import core, pack_basis, pack_controls
 from ..model.damping import modal_damping
 from ..model.system import BeamSystem
 from .dense import ModalDense
-from .loop import PhaseRun
+from .loop import PhaseRun, Switch
 from .phases import EventKind, Phase
 
 OMEGA_RIGID_DEFAULT = 1e3  # [rad/s] weighs a rigid angle error when the beam has no flexible mode
@@ -49,6 +49,9 @@ _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 
 #: largest multiplier so far, which scales its multiplier's error): the steps are those of one long call, whatever
 #: the block size
 BLOCK_RECORDS = 16384
+#: the floats of a friction switch's row before its modal state (FB_SWITCH_HEAD, ``kernels/src/phase.h``), and the
+#: switches one kernel call takes at most before it hands the event to the phase loop
+_SWITCH_HEAD, _SWITCH_ROWS = 14, 64
 
 
 @dataclass(frozen=True)
@@ -160,6 +163,9 @@ class ModalStepper:
         #: set by a streamed run's loop: called with each finished part of a long phase (t0, y0, t1, y1, dense,
         #: opens), which is then dropped (:func:`flexbeam.integrate.loop.run_phases`)
         self.hand_on = None
+        #: the impact method's friction switches the kernel takes itself (``coef`` of kernels/src/friction_switch.c:
+        #: :meth:`~flexbeam.methods.base.ImpactMethod.kernel_switches`; None: the phase loop takes them all)
+        self.friction_coef: np.ndarray | None = None
         self._modes: tuple = ()  # the contact modes of the last phase advanced
 
     # state conversion between the reference layout [z, z', (s, s'), E_d, W] and modal (eta, v)
@@ -234,13 +240,26 @@ class ModalStepper:
             legs = [(self.max_step, t_end)]
         chunks: list[np.ndarray] = []
         handed = _Handed(float(t), np.array(y, float))
+        # the friction switches the kernel takes (rows of the switch buffer), with the steps and node evaluations of
+        # the part of the phase each ends; steps, nfev: the part after the last one
+        handed.coef = self._switching(phase)
+        switches: list[tuple[int, np.ndarray, int, int]] = []
         steps, nfev = 0, 0
         info = np.empty(_INFO_SIZE)
+        ctrl = None
         for hmax, leg_end in legs:
-            ctrl = self._controls(phase, hmax)
+            if ctrl is None:
+                ctrl = self._controls(phase, hmax)
+            else:  # (the friction rows as the kernel left them)
+                ctrl = ctrl.copy()
+                ctrl[2] = hmax
             info.fill(0.0)
             info[_INFO_T0] = state[0]  # the kernel sets it only at the phase's start (its effort budget)
             code = self._run(ctrl, state, leg_end, info, chunks, handed)
+            for start, row in handed.switched:
+                switches.append((start, row, steps + int(row[9]), nfev + int(row[10])))
+                steps = nfev = 0
+            handed.switched.clear()
             steps, nfev = steps + int(info[1]), nfev + int(info[3])
             if code != _ADV_END:
                 break
@@ -251,6 +270,13 @@ class ModalStepper:
         dense = None
         if chunks:  # (one block, the common case: its rows copied, as the concatenation of several blocks would)
             dense = ModalDense(self, chunks[0].copy() if len(chunks) == 1 else np.concatenate(chunks))
+        parts: list[Switch] = []
+        if switches:
+            parts, dense = self._split(dense, switches)
+            friction = phase.friction.copy()
+            for sw in parts:
+                friction[sw.pair] = sw.row
+            phase = replace(phase, friction=friction)  # (the underflow advice below reads its rows)
         event = _EVENT_KINDS[int(info[0])] if code == _ADV_EVENT else None
         failure = ""
         if code == _ADV_UNDERFLOW:
@@ -259,10 +285,31 @@ class ModalStepper:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_STALLED:
             failure = stalled_message(phase.name, t1, float(state[1]), info)
-        run = PhaseRun(t1, y1, event, dense, steps, nfev, failure, int(info[4]))
+        run = PhaseRun(t1, y1, event, dense, steps, nfev, failure, int(info[4]), switches=parts)
         if handed.start is not None:
             run.t0, run.y0 = handed.start
         return run
+
+    def _switching(self, phase: Phase) -> np.ndarray | None:
+        """The kernel's friction switches' ``coef`` for ``phase``, or None where the phase loop takes them: a phase
+        with friction, a diagonal basis of the system's own coordinates (the kernel passes the state through
+        y = Psi eta as :meth:`from_modal` does), not handed on in parts (a streamed run)."""
+        if self.friction_coef is None or phase.friction is None or self.hand_on is not None:
+            return None
+        return self.friction_coef if self.psi is not None and self.basis.N == self.system.nz else None
+
+    def _split(self, dense: ModalDense, switches: list) -> tuple[list[Switch], ModalDense | None]:
+        """The phase's records cut where the kernel switched friction: a :class:`~flexbeam.integrate.loop.Switch`
+        for the part before each switch, and the dense output of the part after the last."""
+        N, records, parts, a = self.basis.N, dense.records, [], 0
+        for start, row, steps, nfev in switches:
+            eta, v = row[_SWITCH_HEAD : _SWITCH_HEAD + N], row[_SWITCH_HEAD + N : _SWITCH_HEAD + 2 * N]
+            y = self.from_modal(eta, v, row[12], row[13])
+            part = ModalDense(self, records[a:start]) if start > a else None
+            event = _EVENT_KINDS[int(row[2])]
+            parts.append(Switch(float(row[1]), y, event, int(row[3]), row[4:9].copy(), part, steps, nfev))
+            a = start
+        return parts, ModalDense(self, records[a:]) if records.shape[0] > a else None
 
     def _controls(self, phase: Phase, hmax: float) -> np.ndarray:
         """The control buffer of ``phase`` under the step bound ``hmax`` (:func:`~flexbeam.kernels.pack_controls`)."""
@@ -281,7 +328,14 @@ class ModalStepper:
         capacity = 64
         while True:
             records = np.empty((capacity, self.record_size))
-            code, nrec = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info)
+            if handed.coef is None:
+                code, nrec, _ = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info)
+            else:
+                rows = np.empty((_SWITCH_ROWS, _SWITCH_HEAD + 2 * self.basis.N))
+                code, nrec, nsw = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info,
+                                               handed.coef, rows)  # fmt: skip
+                handed.switched += [(handed.total + int(r[0]), r) for r in rows[:nsw]]
+            handed.total += nrec
             if nrec:
                 chunks.append(records[:nrec])
                 handed.held += nrec
@@ -314,3 +368,8 @@ class _Handed:
     y: np.ndarray
     held: int = 0
     start: tuple[float, np.ndarray] | None = None
+    #: the kernel's friction switches: its coef (None: not taken in the kernel), the records of the phase so far,
+    #: and the switches taken since they were last collected (the index of the first record after each, its row)
+    coef: np.ndarray | None = None
+    total: int = 0
+    switched: list = field(default_factory=list)

@@ -7,7 +7,7 @@ every event a phase ends on, the next phase and the state after it (a velocity j
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -348,6 +348,21 @@ class ImpactMethod:
             friction = phase.friction
         friction = coulomb.grouped(self.system, t, y, friction, phase.modes)
         return self.phase(phase.modes, phase.parameters, phase.records, friction), y
+
+    def friction_switched(self, phase: Phase, pair: int, row: np.ndarray) -> Phase:
+        """``phase`` with pair ``pair``'s friction row switched to ``row`` by the stepper (a stop or the end of a
+        stick that :meth:`transition` would have decided the same way: :meth:`kernel_switches`).  The phase
+        :meth:`phase` would build: the same modes and records give the same name, step bound and sample step, and a
+        stick or slip row keeps the friction events watched."""
+        friction = phase.friction.copy()
+        friction[pair] = row
+        return replace(phase, friction=friction)
+
+    def kernel_switches(self) -> np.ndarray | None:
+        """What the compiled stepper needs to take this method's friction switches itself (``coef`` of
+        ``kernels/src/friction_switch.c``), or None where :meth:`transition` takes them all: CCFM's, see
+        :meth:`flexbeam.methods.ccfm.CCFM.kernel_switches`."""
+        return None
 
     def settled(self, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         """The phase and state after a friction switch at (t, y): as they are (CCFM's law pairs);

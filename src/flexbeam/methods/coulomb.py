@@ -24,6 +24,12 @@ the slip's direction (0 unless slipping), sigma = -mu_k s and v_rest the residua
 stick may run back by (:func:`unstick`).  The direction is kept apart from sigma so that a pair with mu_k = 0 <
 mu_s, which slips without friction, is still watched for its stop and sticks there (:func:`slip_row`).
 
+The compiled stepper takes the stops and stick ends that these rules decide alone -- pairs under their laws, at most
+one of them sticking -- without a transition of the phase loop (``kernels/src/friction_switch.c``, the same rows from
+the same numbers; ``tests/validation/test_friction_kernel_switches.py`` runs every frictional preset both ways): a
+change to :func:`stop`, :func:`unstick`, :func:`after_event` or :mod:`~flexbeam.methods.stick_start`'s test is made
+there too.
+
 ``contact.friction_model = "threlfall"`` replaces the switching by Threlfall's regularised law (Threlfall,
 Mechanism and Machine Theory 13 (1978) 475-483), F_t = -mu_k F (1 - exp(-3 abs(v_t) / v_0)) sign(v_t) with
 v_0 = ``contact.friction_velocity``: no events, no stick (a body on an incline creeps at a speed ~ v_0 tan(alpha) /

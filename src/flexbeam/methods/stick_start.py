@@ -10,7 +10,9 @@ multiplier -- that of the constrained accelerations at (t, y) with every stickin
 forces and the slipping pairs' kinetic forces, evaluated by the kernel (``kernels/src/rhs.c`` fb_contact_forces,
 :meth:`~flexbeam.model.system.BeamSystem.contact_forces`) -- the same test, mu_s (F + the followers' F) - abs(lambda_t)
 against the band of the multiplier's accuracy, and the same switch, so that the run is the one it was without the
-stick phase of zero length (a Python transition and a restart of the collocation saved at each).
+stick phase of zero length (a Python transition and a restart of the collocation saved at each).  The compiled
+stepper applies the same test to a stop it takes itself (``kernels/src/friction_switch.c``, one sticking pair, the
+band of :func:`breaking` handed to it by :meth:`flexbeam.methods.ccfm.CCFM.kernel_switches`).
 """
 
 from __future__ import annotations

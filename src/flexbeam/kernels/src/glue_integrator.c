@@ -4,38 +4,45 @@
 #include "glue.h"
 #include "phase.h"
 
-/* advance(model, basis, ctrl, state, t_end, records, info) -> (code, nrec) */
+/* advance(model, basis, ctrl, state, t_end, records, info[, coef, switches]) -> (code, nrec, nswitch): a phase's step
+ * loop (fb_advance); with coef and switches, CCFM's friction switches taken in place (friction_switch.c: ctrl's
+ * friction rows updated, each switch a row of `switches`, switch_width(N) floats) */
 PyObject *py_advance(PyObject *self, PyObject *args) {
-    PyObject *om, *ob, *oc, *os, *orec, *oi;
+    PyObject *om, *ob, *oc, *os, *orec, *oi, *ocoef = NULL, *osw = NULL;
     double t_end;
-    if (!PyArg_ParseTuple(args, "OOOOdOO", &om, &ob, &oc, &os, &t_end, &orec, &oi)) return NULL;
-    buf_t b[6];
+    if (!PyArg_ParseTuple(args, "OOOOdOO|OO", &om, &ob, &oc, &os, &t_end, &orec, &oi, &ocoef, &osw)) return NULL;
+    buf_t b[8];
     memset(b, 0, sizeof b);
     fb_model m;
     fb_basis bs;
-    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(oc, &b[2], 0, "ctrl") ||
+    int switching = ocoef != NULL && osw != NULL;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(oc, &b[2], 1, "ctrl") ||
         get_buf(os, &b[3], 1, "state") || get_buf(orec, &b[4], 1, "records") || get_buf(oi, &b[5], 1, "info") ||
+        (switching && (get_buf(ocoef, &b[6], 0, "coef") || get_buf(osw, &b[7], 1, "switches"))) ||
         model_from(&b[0], &m) || basis_from(&b[1], &bs))
         goto fail;
-    int R = fb_record_size(bs.N, m.npairs);
+    int R = fb_record_size(bs.N, m.npairs), width = fb_switch_width(bs.N);
     if (LEN(b[3]) != (size_t)fb_state_buffer_size(bs.N, m.npairs) || LEN(b[4]) % R || LEN(b[5]) < FB_INFO_SIZE ||
-        bs.N > FB_MAXN) {
+        bs.N > FB_MAXN || (switching && (LEN(b[6]) != 2 + 2 * (size_t)m.npairs || LEN(b[7]) % width))) {
         PyErr_SetString(PyExc_ValueError, "advance: array sizes do not match");
         goto fail;
     }
-    int nrec = 0, code;
+    int nrec = 0, nsw = 0, code, capacity = (int)(LEN(b[4]) / R);
     Py_BEGIN_ALLOW_THREADS
-    code = fb_advance(&m, &bs, PTR(b[2]), LEN(b[2]), PTR(b[3]), t_end, PTR(b[4]), (int)(LEN(b[4]) / R), &nrec,
-                      PTR(b[5]));
+    if (switching)
+        code = fb_advance_switching(&m, &bs, PTR(b[2]), LEN(b[2]), PTR(b[3]), t_end, PTR(b[4]), capacity, &nrec,
+                                    PTR(b[5]), PTR(b[6]), PTR(b[7]), (int)(LEN(b[7]) / width), &nsw);
+    else
+        code = fb_advance(&m, &bs, PTR(b[2]), LEN(b[2]), PTR(b[3]), t_end, PTR(b[4]), capacity, &nrec, PTR(b[5]));
     Py_END_ALLOW_THREADS
-    release(b, 6);
+    release(b, 8);
     if (code < 0) {
         PyErr_SetString(PyExc_ValueError, "advance: ctrl does not match the model's pairs");
         return NULL;
     }
-    return Py_BuildValue("ii", code, nrec);
+    return Py_BuildValue("iii", code, nrec, nsw);
 fail:
-    release(b, 6);
+    release(b, 8);
     return NULL;
 }
 

@@ -29,7 +29,6 @@
 #define EFFORT_BASE 1e4
 #define EFFORT_RATE 4e4
 
-enum { ADV_END = 0, ADV_EVENT = 1, ADV_FULL = 2, ADV_UNDERFLOW = 3, ADV_NONFINITE = 4, ADV_STALLED = 5 };
 enum { EV_IMPACT = 1, EV_SEPARATION = 2, EV_RELEASE = 4 };
 
 int fb_record_size(int N, int S) { return 4 + 2 * N + FB_P * N + 2 * S * FB_P + 2 * FB_P + FB_RECORD_SUMMARY; }

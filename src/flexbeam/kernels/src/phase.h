@@ -12,6 +12,9 @@ int fb_record_size(int N, int S);
 int fb_state_buffer_size(int N, int S);
 /* control buffer: [rtol, atol, hmax, omega_rigid, events (bits), contacts (fb_contacts_unpack)] */
 #define FB_CTRL_HEAD 5
+/* what fb_advance returns: t_end reached, an event, the records full, a step-size underflow, a non-finite state, a
+ * phase that cannot make progress */
+enum { ADV_END = 0, ADV_EVENT = 1, ADV_FULL = 2, ADV_UNDERFLOW = 3, ADV_NONFINITE = 4, ADV_STALLED = 5 };
 /* info, accumulated over the calls of one phase (zero at its start): [event kind, steps, rejected steps, node
  * evaluations, event pair, the phase's start time, rejections by cause (FB_REJECT_*), the step taken at the event
  * (before it was cut to end there; 0 without an event)] */
@@ -23,6 +26,12 @@ enum { FB_REJECT_ERROR, FB_REJECT_BALANCE, FB_REJECT_COLLOCATION, FB_REJECT_EVEN
 
 int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t nctrl, double *state, double t_end,
                double *records, int capacity, int *nrec, double *info);
+/* fb_advance with a CCFM phase's Coulomb switches taken in place (friction_switch.c) */
+#define FB_SWITCH_HEAD 14
+int fb_switch_width(int N);
+int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, size_t nctrl, double *state,
+                         double t_end, double *records, int capacity, int *nrec, double *info, const double *coef,
+                         double *switches, int cap_switches, int *nswitch);
 double fb_dense_layout(const fb_phase *ph, const double *rec, double t, double *eta, double *v, double *y);
 int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, int nrec, const double *times,
                   int count, double *Y);

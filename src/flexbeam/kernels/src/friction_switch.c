@@ -1,0 +1,138 @@
+/* Coulomb's switches of a CCFM phase taken in place (issue 28): fb_advance, and at each stop or end of a stick that
+ * methods/coulomb.py and methods/stick_start.py would decide alone -- a phase of pairs under their laws, at most one
+ * of them sticking -- the pair's new friction row written into the control buffer and the phase started again from
+ * the event, as flexbeam.integrate.modal.ModalStepper.advance starts a phase: the step the controller took there, a
+ * fresh collocation guess, the modal state passed through the stepper's state vector (y = Psi eta, eta = toM y; a
+ * diagonal basis, N = nz), the phase's effort budget from the event.  The rules, from those modules:
+ *
+ *   stop of pair k (its slip velocity reached zero): k sticks, row [0, 1, mu_s, 0, 0]; the stick holds if
+ *     mu_s F_k - |lambda_t| + band max(|lambda_t|, mu_s F_k, |lambda_t|) >= 0 with (F, lambda_t) the multipliers
+ *     of the phase with that row (rhs.c fb_contact_forces), band = max(UNSTICK_RTOL rtol, UNSTICK_NOISE); else k
+ *     slips on against lambda_t at once (the unstick below, sign(lambda_t) its event);
+ *   end of pair k's stick (UNSTICK_PLUS / _MINUS): k slips in direction s = -1 / +1, row
+ *     [-mu_k s, 0, mu_s, 2 |v_t|, s], v_t its residual slip velocity at the event.
+ *
+ * Anything else -- another slipping pair within REST_SPEED of a stop (it would stop too), a second sticking pair (the
+ * holders and followers of coulomb.grouped), a held pair (CCM's rows), Threlfall's law, a sub-phase that made no step
+ * (Python's count of phases without progress), an event at t_end (the phase loop ends there), non-finite
+ * multipliers -- returns the event to Python as fb_advance does.  Each switch taken is written to `switches` (fb_switch_width(N) doubles): [records written before it, t,
+ * the event, the pair, the new row (5), the finished sub-phase's steps and node evaluations, the step taken at the
+ * event, Ed, W, eta (N), v (N)]; the stepper splits the phase's records there. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "phase.h"
+
+int fb_switch_width(int N) { return FB_SWITCH_HEAD + 2 * N; }
+
+/* pair k's friction row [sigma, stick, mu_s, v_rest, s] in the contacts buffer (pack_contacts: 10 floats a pair) */
+static double *friction_row(double *contacts, int k) { return contacts + 3 + 10 * k + 5; }
+
+/* the slip velocity v_t of pair k at (t, y) (as core.tangent: no support) */
+static double slip_velocity(const fb_model *m, double t, const double *y, int k, double *J) {
+    fb_frame fr;
+    const double *q, *qd;
+    double vt;
+    fb_state_split(m, t, y, &fr, &q, &qd);
+    fb_pair_tangent(m, k, &fr, q, qd, 0.0, 0.0, 0, J, J + fb_nfull(m) + 1, &vt);
+    return vt;
+}
+
+/* The friction row of `pair` after its event `kind` at (t, y) (the rules above), in row; 0, or 1 where Python
+ * decides.  contacts: the phase's contacts buffer (nbuf floats), unchanged; coef: [band, REST_SPEED, mu_k (S),
+ * mu_s (S)]. */
+static int decide(const fb_model *m, const double *contacts, size_t nbuf, double t, const double *y, int kind,
+                  int pair, const double *coef, double *row) {
+    int S = m->npairs, others = 0;
+    fb_contacts c;
+    if (fb_contacts_unpack(&c, m, contacts, nbuf) || nbuf != 3 + 10 * (size_t)S) return 1;
+    for (int k = 0; k < S; k++) {
+        if (c.mode[k] == FB_MODE_CONSTRAINT || c.follow[k] >= 0 || c.regv[k] > 0.0) return 1;
+        others += k != pair && c.stick[k];
+    }
+    double band = coef[0], rest = coef[1], muk = coef[2 + pair], mus = coef[2 + S + pair];
+    double *J = malloc(sizeof(double) * 2 * (size_t)(fb_nfull(m) + 1));
+    if (!J) return 1;
+    int python = 0;
+    if (kind == FB_EVENT_STOP) {
+        python = others > 0 || c.stick[pair] || c.sdir[pair] == 0.0;
+        for (int k = 0; k < S && !python; k++) /* coulomb.stop: another slip this slow stops with it */
+            python = k != pair && c.sdir[k] != 0.0 && !c.stick[k] && fabs(slip_velocity(m, t, y, k, J)) <= rest;
+        if (!python) { /* the stick; does it hold there? (stick_start.holding, breaking) */
+            double buf[3 + 10 * FB_MAX_PAIRS], F[FB_MAX_PAIRS], Ft[FB_MAX_PAIRS];
+            memcpy(buf, contacts, sizeof(double) * nbuf);
+            double stick[5] = {0.0, 1.0, mus, 0.0, 0.0};
+            memcpy(friction_row(buf, pair), stick, sizeof stick);
+            memcpy(row, stick, sizeof stick);
+            fb_contacts cs;
+            if (fb_contacts_unpack(&cs, m, buf, nbuf)) {
+                python = 1;
+            } else if (fb_contact_forces(m, t, y, &cs, F, Ft) == 0) { /* (singular: no multipliers, it holds) */
+                double Fs = F[pair] + 0.0, lt = fabs(Ft[pair]), held = mus * Fs;
+                if (!isfinite(Fs) || !isfinite(lt)) {
+                    python = 1;
+                } else if (held - lt + band * fmax(lt, fmax(held, lt)) < 0.0) {
+                    kind = Ft[pair] > 0.0 ? FB_EVENT_UNSTICK_PLUS : FB_EVENT_UNSTICK_MINUS;
+                }
+            }
+        }
+    } else if (kind == FB_EVENT_UNSTICK_PLUS || kind == FB_EVENT_UNSTICK_MINUS) {
+        python = others > 1 || !c.stick[pair];
+    } else {
+        python = 1;
+    }
+    if (!python && kind != FB_EVENT_STOP) { /* coulomb.unstick: slip against the multiplier that held it */
+        double s = kind == FB_EVENT_UNSTICK_PLUS ? -1.0 : 1.0;
+        row[0] = -muk * s, row[1] = 0.0, row[2] = mus, row[3] = 2.0 * fabs(slip_velocity(m, t, y, pair, J));
+        row[4] = s;
+    }
+    free(J);
+    return python;
+}
+
+int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, size_t nctrl, double *state,
+                         double t_end, double *records, int capacity, int *nrec, double *info, const double *coef,
+                         double *switches, int cap_switches, int *nswitch) {
+    int N = b->N, S = m->npairs, R = fb_record_size(N, S), width = fb_switch_width(N), code;
+    size_t ny = (size_t)fb_state_size(m);
+    *nrec = 0, *nswitch = 0;
+    double *y = malloc(sizeof(double) * ny);
+    if (!y) return ADV_NONFINITE;
+    for (;;) {
+        int n = 0;
+        code = fb_advance(m, b, ctrl, nctrl, state, t_end, records + (size_t)(*nrec) * R, capacity - *nrec, &n, info);
+        *nrec += n;
+        int kind = (int)info[0], pair = (int)info[4];
+        if (code != ADV_EVENT || *nswitch >= cap_switches || info[1] == 0.0 || state[0] >= t_end ||
+            kind < FB_EVENT_STOP || kind > FB_EVENT_UNSTICK_MINUS || !b->diagonal || N != fb_nz(m) ||
+            ny != (size_t)(2 * N + 2))
+            break;
+        double t = state[0], *eta = state + 5, *v = eta + N, row[5];
+        for (int i = 0; i < N; i++) { /* the stepper's state vector (ModalStepper.from_modal) */
+            double psi = b->Psi[(size_t)i * N + i];
+            y[i] = psi * eta[i], y[N + i] = psi * v[i];
+        }
+        y[2 * N] = state[2], y[2 * N + 1] = state[3];
+        if (decide(m, ctrl + FB_CTRL_HEAD, nctrl - FB_CTRL_HEAD, t, y, kind, pair, coef, row)) break;
+        double *e = switches + (size_t)(*nswitch) * width;
+        e[0] = *nrec, e[1] = t, e[2] = kind, e[3] = pair;
+        memcpy(e + 4, row, sizeof row);
+        e[9] = info[1], e[10] = info[3], e[11] = info[FB_INFO_STEP], e[12] = state[2], e[13] = state[3];
+        memcpy(e + FB_SWITCH_HEAD, eta, sizeof(double) * 2 * N);
+        (*nswitch)++;
+        /* the next phase as the stepper starts it (ModalStepper.advance): the step taken at the event, no guess */
+        double h = info[FB_INFO_STEP], Ed = state[2], W = state[3];
+        memset(state, 0, sizeof(double) * (size_t)fb_state_buffer_size(N, S));
+        state[0] = t, state[1] = h, state[2] = Ed, state[3] = W;
+        for (int i = 0; i < N; i++) {
+            double tom = b->toM[(size_t)i * N + i];
+            state[5 + i] = tom * y[i], state[5 + N + i] = tom * y[N + i];
+        }
+        memset(info, 0, sizeof(double) * FB_INFO_SIZE);
+        info[FB_INFO_T0] = t;
+        memcpy(friction_row(ctrl + FB_CTRL_HEAD, pair), row, sizeof row);
+    }
+    free(y);
+    return code;
+}

@@ -1,0 +1,108 @@
+"""CCFM's Coulomb switches taken by the compiled stepper are the phase loop's, to the bit (issue 28).
+
+A slip's stop and a stick's end that :mod:`flexbeam.methods.coulomb` and :mod:`flexbeam.methods.stick_start` decide
+alone -- pairs under their laws, at most one of them sticking -- are taken inside the kernel's phase
+(``kernels/src/friction_switch.c``): the pair's new row, the stick test at the stop with the same multipliers, and the
+phase started again as the stepper starts one.  Those rules are written twice, in Python for every case and in C for
+that one, so each frictional run here is made both ways -- with the kernel's switches, and without them
+(:meth:`~flexbeam.methods.ccfm.CCFM.kernel_switches` returning None: every switch a transition of the phase loop, as
+all of them were taken before) -- and the two runs must be the same to the bit: every segment's ends, states,
+friction rows and step records, the steps, node evaluations and events, the contact records and the metrics.  The
+cases make the kernel take every kind of switch (a stop whose stick holds, a stop whose stick breaks at once, the end
+of a stick) on one pair, on two pairs (two-stops: the other pair's slip and stick leave some switches to the loop),
+on a free bar's pair anywhere and with mu_k = 0 < mu_s; the threlfall law (no switches) is the same either way.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flexbeam as fb
+from flexbeam.integrate import modal
+from flexbeam.integrate.phases import EventKind
+from flexbeam.methods.ccfm import CCFM
+
+DATA = Path(__file__).parent / "data"
+CASES = {
+    "tip-wall": ("tip-wall", {"contact.friction": 0.3}),
+    "two-stops": ("two-stops", {"contact.friction": 0.5, "solver.t_end": 0.3}),
+    "seed": ("seed-experiment", {"contact.friction": 0.3, "solver.t_end": 0.1}),
+    "seed, mu_k = 0": (
+        "seed-experiment",
+        {"contact.friction": 0.0, "contact.friction_static": 0.3, "solver.t_end": 0.1},
+    ),
+    "free-bar-drop": (str(DATA / "free-bar-drop.toml"), {"contact.friction": 0.3}),
+    "threlfall": (
+        "seed-experiment",
+        {"contact.friction": 0.3, "contact.friction_model": "threlfall", "solver.t_end": 0.02},
+    ),
+}
+
+
+def run(name: str, monkeypatch, kernel: bool):
+    """The case's CCFM run, with the kernel's friction switches or without; and the switches the kernel took."""
+    source, overrides = CASES[name]
+    taken = []
+    advance = modal.ModalStepper.advance
+
+    def recording(self, phase, t, y, t_end):
+        out = advance(self, phase, t, y, t_end)
+        taken.extend(out.switches)
+        return out
+
+    with monkeypatch.context() as m:
+        m.setattr(modal.ModalStepper, "advance", recording)
+        if not kernel:
+            m.setattr(CCFM, "kernel_switches", lambda self: None)
+        sol = fb.simulate(fb.load_case(source, overrides), "ccfm")
+        contacts = repr(sol.contacts)
+        metrics = json.dumps({k: v for k, v in sol.metrics().items() if "wall" not in k}, sort_keys=True, default=str)
+    assert sol.status == "success", sol.message
+    return sol.source.run, contacts, metrics, taken
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_the_kernels_switches_give_the_phase_loops_run(monkeypatch, name: str) -> None:
+    ours, contacts, metrics, taken = run(name, monkeypatch, kernel=True)
+    loops, contacts_loop, metrics_loop, none = run(name, monkeypatch, kernel=False)
+    assert not none
+    if name == "threlfall":
+        assert not taken
+    else:
+        assert taken, "the kernel took no switch: nothing is compared"
+    assert (ours.steps, ours.nfev, ours.events, ours.status) == (loops.steps, loops.nfev, loops.events, loops.status)
+    assert [n for n, _ in ours.phase_steps] == [n for n, _ in loops.phase_steps]
+    assert [k for _, k in ours.phase_steps] == [k for _, k in loops.phase_steps]
+    assert len(ours.segments) == len(loops.segments)
+    for a, b in zip(ours.segments, loops.segments):
+        assert (a.t0, a.t1, a.phase.modes) == (b.t0, b.t1, b.phase.modes)
+        np.testing.assert_array_equal(a.y0, b.y0)
+        np.testing.assert_array_equal(a.y1, b.y1)
+        if a.phase.friction is None or b.phase.friction is None:
+            assert a.phase.friction is b.phase.friction is None
+        else:
+            np.testing.assert_array_equal(a.phase.friction, b.phase.friction)
+        np.testing.assert_array_equal(a.phase.buffer, b.phase.buffer)
+        assert (a.dense is None) == (b.dense is None)
+        if a.dense is not None:
+            np.testing.assert_array_equal(a.dense.records, b.dense.records)
+    assert contacts == contacts_loop
+    assert metrics == metrics_loop
+
+
+def test_the_kernel_takes_every_kind_of_switch(monkeypatch) -> None:
+    """tip-wall's ringing tip stops and sticks, stops and slips back at once, and slips out of its sticks: each kind
+    is taken in the kernel (its Switch names the event and the row after it)."""
+    taken = run("tip-wall", monkeypatch, kernel=True)[3]
+    held = [s for s in taken if s.event == EventKind.STOP and s.row[1] == 1.0]
+    broke = [s for s in taken if s.event == EventKind.STOP and s.row[1] == 0.0]
+    ended = [s for s in taken if s.event in (EventKind.UNSTICK_PLUS, EventKind.UNSTICK_MINUS)]
+    assert held and broke and ended
+    for s in broke + ended:  # slipping on against the multiplier, from the stick's residual slip
+        assert s.row[4] in (-1.0, 1.0) and s.row[0] == -0.3 * s.row[4] and s.row[3] >= 0.0
+    for s in held:
+        np.testing.assert_array_equal(s.row, [0.0, 1.0, 0.3, 0.0, 0.0])
