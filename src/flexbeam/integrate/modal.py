@@ -16,7 +16,7 @@ phase's dense output, evaluated only when outputs are asked for.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -273,12 +273,13 @@ class ModalStepper:
         parts: list[Switch] = []
         if switches:
             parts, dense = self._split(dense, switches)
+        event = _EVENT_KINDS[int(info[0])] if code == _ADV_EVENT else None
+        failure = ""
+        if parts and code in (_ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED):  # (the advice reads the rows at the end)
             friction = phase.friction.copy()
             for sw in parts:
                 friction[sw.pair] = sw.row
-            phase = replace(phase, friction=friction)  # (the underflow advice below reads its rows)
-        event = _EVENT_KINDS[int(info[0])] if code == _ADV_EVENT else None
-        failure = ""
+            phase = phase.with_friction(friction)
         if code == _ADV_UNDERFLOW:
             failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)" + phase.underflow_advice
         elif code == _ADV_NONFINITE:

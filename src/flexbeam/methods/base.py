@@ -7,7 +7,7 @@ every event a phase ends on, the next phase and the state after it (a velocity j
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -356,7 +356,7 @@ class ImpactMethod:
         stick or slip row keeps the friction events watched."""
         friction = phase.friction.copy()
         friction[pair] = row
-        return replace(phase, friction=friction)
+        return phase.with_friction(friction)
 
     def kernel_switches(self) -> np.ndarray | None:
         """What the compiled stepper needs to take this method's friction switches itself (``coef`` of
