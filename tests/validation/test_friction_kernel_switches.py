@@ -10,7 +10,8 @@ all of them were taken before) -- and the two runs must be the same to the bit: 
 friction rows and step records, the steps, node evaluations and events, the contact records and the metrics.  The
 cases make the kernel take every kind of switch (a stop whose stick holds, a stop whose stick breaks at once, the end
 of a stick) on one pair, on two pairs (two-stops: the other pair's slip and stick leave some switches to the loop),
-on a free bar's pair anywhere and with mu_k = 0 < mu_s; the threlfall law (no switches) is the same either way.
+on a free bar's pair anywhere, on the seed beam against its compliant support (the support's coordinate one more mode
+of the state) and with mu_k = 0 < mu_s; the threlfall law (no switches) is the same either way.
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ CASES = {
         {"contact.friction": 0.0, "contact.friction_static": 0.3, "solver.t_end": 0.1},
     ),
     "free-bar-drop": (str(DATA / "free-bar-drop.toml"), {"contact.friction": 0.3}),
+    "compliant support": ("seed-experiment-calibrated", {"contact.friction": 0.3, "solver.t_end": 0.1}),
     "threlfall": (
         "seed-experiment",
         {"contact.friction": 0.3, "contact.friction_model": "threlfall", "solver.t_end": 0.02},

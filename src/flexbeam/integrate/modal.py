@@ -293,11 +293,11 @@ class ModalStepper:
 
     def _switching(self, phase: Phase) -> np.ndarray | None:
         """The kernel's friction switches' ``coef`` for ``phase``, or None where the phase loop takes them: a phase
-        with friction, a diagonal basis of the system's own coordinates (the kernel passes the state through
-        y = Psi eta as :meth:`from_modal` does), not handed on in parts (a streamed run)."""
-        if self.friction_coef is None or phase.friction is None or self.hand_on is not None:
+        with friction, a diagonal basis (the kernel passes the state through y = Psi eta as :meth:`from_modal`
+        does), not handed on in parts (a streamed run)."""
+        if self.friction_coef is None or phase.friction is None or self.hand_on is not None or self.psi is None:
             return None
-        return self.friction_coef if self.psi is not None and self.basis.N == self.system.nz else None
+        return self.friction_coef
 
     def _split(self, dense: ModalDense, switches: list) -> tuple[list[Switch], ModalDense | None]:
         """The phase's records cut where the kernel switched friction: a :class:`~flexbeam.integrate.loop.Switch`

@@ -3,7 +3,7 @@
  * of them sticking -- the pair's new friction row written into the control buffer and the phase started again from
  * the event, as flexbeam.integrate.modal.ModalStepper.advance starts a phase: the step the controller took there, a
  * fresh collocation guess, the modal state passed through the stepper's state vector (y = Psi eta, eta = toM y; a
- * diagonal basis, N = nz), the phase's effort budget from the event.  The rules, from those modules:
+ * diagonal basis: the beam's coordinates and a compliant support's), the phase's effort budget from the event.  The rules, from those modules:
  *
  *   stop of pair k (its slip velocity reached zero): k sticks, row [0, 1, mu_s, 0, 0]; the stick holds if
  *     mu_s F_k - |lambda_t| + band max(|lambda_t|, mu_s F_k, |lambda_t|) >= 0 with (F, lambda_t) the multipliers
@@ -29,13 +29,15 @@ int fb_switch_width(int N) { return FB_SWITCH_HEAD + 2 * N; }
 /* pair k's friction row [sigma, stick, mu_s, v_rest, s] in the contacts buffer (pack_contacts: 10 floats a pair) */
 static double *friction_row(double *contacts, int k) { return contacts + 3 + 10 * k + 5; }
 
-/* the slip velocity v_t of pair k at (t, y) (as core.tangent: no support) */
+/* the slip velocity v_t of pair k at (t, y) (as core.tangent) */
 static double slip_velocity(const fb_model *m, double t, const double *y, int k, double *J) {
     fb_frame fr;
     const double *q, *qd;
     double vt;
+    int nb = 2 * fb_nz(m), compliant = fb_compliant(m);
     fb_state_split(m, t, y, &fr, &q, &qd);
-    fb_pair_tangent(m, k, &fr, q, qd, 0.0, 0.0, 0, J, J + fb_nfull(m) + 1, &vt);
+    fb_pair_tangent(m, k, &fr, q, qd, compliant ? y[nb] : 0.0, compliant ? y[nb + 1] : 0.0, 0, J,
+                    J + fb_nfull(m) + 1, &vt);
     return vt;
 }
 
@@ -95,6 +97,7 @@ int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, siz
                          double t_end, double *records, int capacity, int *nrec, double *info, const double *coef,
                          double *switches, int cap_switches, int *nswitch) {
     int N = b->N, S = m->npairs, R = fb_record_size(N, S), width = fb_switch_width(N), code;
+    int nz = fb_nz(m), compliant = fb_compliant(m); /* the state vector [z (nz), z' (nz), (s, s'), Ed, W] */
     size_t ny = (size_t)fb_state_size(m);
     *nrec = 0, *nswitch = 0;
     double *y = malloc(sizeof(double) * ny);
@@ -105,15 +108,15 @@ int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, siz
         *nrec += n;
         int kind = (int)info[0], pair = (int)info[4];
         if (code != ADV_EVENT || *nswitch >= cap_switches || info[1] == 0.0 || state[0] >= t_end ||
-            kind < FB_EVENT_STOP || kind > FB_EVENT_UNSTICK_MINUS || !b->diagonal || N != fb_nz(m) ||
-            ny != (size_t)(2 * N + 2))
+            kind < FB_EVENT_STOP || kind > FB_EVENT_UNSTICK_MINUS || !b->diagonal || N != nz + compliant)
             break;
         double t = state[0], *eta = state + 5, *v = eta + N, row[5];
         for (int i = 0; i < N; i++) { /* the stepper's state vector (ModalStepper.from_modal) */
             double psi = b->Psi[(size_t)i * N + i];
-            y[i] = psi * eta[i], y[N + i] = psi * v[i];
+            int iz = i < nz ? i : 2 * nz, iv = i < nz ? nz + i : 2 * nz + 1; /* the support's s, s' after z' */
+            y[iz] = psi * eta[i], y[iv] = psi * v[i];
         }
-        y[2 * N] = state[2], y[2 * N + 1] = state[3];
+        y[ny - 2] = state[2], y[ny - 1] = state[3];
         if (decide(m, ctrl + FB_CTRL_HEAD, nctrl - FB_CTRL_HEAD, t, y, kind, pair, coef, row)) break;
         double *e = switches + (size_t)(*nswitch) * width;
         e[0] = *nrec, e[1] = t, e[2] = kind, e[3] = pair;
@@ -125,9 +128,10 @@ int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, siz
         double h = info[FB_INFO_STEP], Ed = state[2], W = state[3];
         memset(state, 0, sizeof(double) * (size_t)fb_state_buffer_size(N, S));
         state[0] = t, state[1] = h, state[2] = Ed, state[3] = W;
-        for (int i = 0; i < N; i++) {
+        for (int i = 0; i < N; i++) { /* (ModalStepper._put_modal) */
             double tom = b->toM[(size_t)i * N + i];
-            state[5 + i] = tom * y[i], state[5 + N + i] = tom * y[N + i];
+            int iz = i < nz ? i : 2 * nz, iv = i < nz ? nz + i : 2 * nz + 1;
+            state[5 + i] = tom * y[iz], state[5 + N + i] = tom * y[iv];
         }
         memset(info, 0, sizeof(double) * FB_INFO_SIZE);
         info[FB_INFO_T0] = t;
