@@ -3,21 +3,23 @@
  * of them sticking -- the pair's new friction row written into the control buffer and the phase started again from
  * the event, as flexbeam.integrate.modal.ModalStepper.advance starts a phase: the step the controller took there, a
  * fresh collocation guess, the modal state passed through the stepper's state vector (y = Psi eta, eta = toM y; a
- * diagonal basis: the beam's coordinates and a compliant support's), the phase's effort budget from the event.  The rules, from those modules:
+ * diagonal basis: the beam's coordinates and a compliant support's), the phase's effort budget from the event.
+ * The rules, from those modules:
  *
  *   stop of pair k (its slip velocity reached zero): k sticks, row [0, 1, mu_s, 0, 0]; the stick holds if
- *     mu_s F_k - |lambda_t| + band max(|lambda_t|, mu_s F_k, |lambda_t|) >= 0 with (F, lambda_t) the multipliers
- *     of the phase with that row (rhs.c fb_contact_forces), band = max(UNSTICK_RTOL rtol, UNSTICK_NOISE); else k
- *     slips on against lambda_t at once (the unstick below, sign(lambda_t) its event);
+ *     mu_s F_k - |lambda_t| + band max(|lambda_t|, mu_s F_k) >= 0 with (F, lambda_t) the multipliers of the phase
+ *     with that row (rhs.c fb_contact_forces), band = max(UNSTICK_RTOL rtol, UNSTICK_NOISE); else k slips on
+ *     against lambda_t at once (the unstick below, sign(lambda_t) its event);
  *   end of pair k's stick (UNSTICK_PLUS / _MINUS): k slips in direction s = -1 / +1, row
  *     [-mu_k s, 0, mu_s, 2 |v_t|, s], v_t its residual slip velocity at the event.
  *
- * Anything else -- another slipping pair within REST_SPEED of a stop (it would stop too), a second sticking pair (the
- * holders and followers of coulomb.grouped), a held pair (CCM's rows), Threlfall's law, a sub-phase that made no step
- * (Python's count of phases without progress), an event at t_end (the phase loop ends there), non-finite
- * multipliers -- returns the event to Python as fb_advance does.  Each switch taken is written to `switches` (fb_switch_width(N) doubles): [records written before it, t,
- * the event, the pair, the new row (5), the finished sub-phase's steps and node evaluations, the step taken at the
- * event, Ed, W, eta (N), v (N)]; the stepper splits the phase's records there. */
+ * Anything else returns the event to Python as fb_advance does: another slipping pair within REST_SPEED of a stop
+ * (it stops too), a stop beside a sticking pair or a stick's end beside two (the holders and followers of
+ * coulomb.grouped), a held pair (CCM's rows), Threlfall's law, a part of the phase that made no step (the phase
+ * loop counts those), an event at t_end (the loop ends there), non-finite multipliers.  Each switch taken is a row
+ * of `switches` (fb_switch_width(N) doubles): [records written before it, t, the event, the pair, the new row (5),
+ * the finished part's steps and node evaluations, the step taken at the event, Ed, W, eta (N), v (N)]; the stepper
+ * cuts the phase's records there. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
