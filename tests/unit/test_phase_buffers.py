@@ -58,3 +58,22 @@ def test_a_phase_of_other_modes_packs_its_own() -> None:
         p = method.phase(modes, base.parameters, [None, None])
         fresh = pack_contacts(modes, p.parameters, *p.baumgarte)
         np.testing.assert_array_equal(p.buffer, fresh)
+
+
+def test_a_friction_switch_copies_every_other_field() -> None:
+    """Phase.with_friction (built field by field for speed) is dataclasses.replace with new friction rows: a field
+    added to Phase and not passed on would fail here."""
+    import dataclasses
+
+    from flexbeam.methods.ccfm import CCFM
+    from flexbeam.model.system import BeamSystem
+
+    case = fb.load_case("tip-wall", {"contact.friction": 0.3})
+    method = CCFM(BeamSystem.from_case(case), case)
+    rows = np.array([[0.0, 1.0, 0.3, 0.0, 0.0]])
+    phase = method.phase([1], np.array([[1e9, 1.5, 0.1, 0.0]]), [None], rows)
+    switched = np.array([[-0.3, 0.0, 0.3, 1e-9, 1.0]])
+    got, want = phase.with_friction(switched), dataclasses.replace(phase, friction=switched)
+    for f in dataclasses.fields(phase):
+        a, b = getattr(got, f.name), getattr(want, f.name)
+        assert np.array_equal(a, b) if isinstance(a, np.ndarray) else a == b, f.name

@@ -115,7 +115,8 @@ class Phase:
 
     def with_friction(self, friction: np.ndarray) -> Phase:
         """A copy with the friction rows ``friction`` (the same pairs, modes and records: a friction switch), built
-        field by field (``dataclasses.replace`` costs ~10 us; a frictional run switches thousands of times)."""
+        field by field (``dataclasses.replace`` costs ~10 us, and a long frictional run switches thousands of
+        times)."""
         return Phase(self.name, self.modes, self.events, self.sample_step, self.parameters, self.records,
                      self.baumgarte, self.max_step, self.max_step_until, friction)  # fmt: skip
 
