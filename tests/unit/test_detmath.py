@@ -267,6 +267,34 @@ def test_pow_grid():
     assert err <= BOUND, (err, xy)
 
 
+#: pow(x, 1.5) and pow(x, 2.5) on (2^-300, 2^300) take x sqrt(x) in double-double (detmath_pow.c, pow_odd_half):
+#: relative error before the final rounding ~2^-103 (derived there), i.e. below 0.5 + 2^-40 ulp
+ODD_HALF_BOUND = 0.5 + 2.0**-40
+HARD_ODD_HALF = {
+    1.5: ["0x1.ecc44cf035a36p+3", "0x1.9dc9f2fc94ec8p-21", "0x1.db90e92191582p-29"],
+    2.5: ["0x1.e4ec4bae68d77p-31", "0x1.4e8c30e902df8p-19", "0x1.42da210a74462p-18", "0x1.1ee971bcdf978p-11"],
+}
+
+
+@pytest.mark.parametrize("y", [1.5, 2.5])
+def test_pow_odd_half_is_correctly_rounded(y):
+    """The contact laws' exponent 3/2 and their potential's 5/2: x spread over the fast path's whole range, and
+    contact-like penetrations (1e-12 to 1e-2 m) densely; both ends of the range and just beyond (the general
+    path)."""
+    rng = np.random.default_rng(11)
+    x = np.concatenate(
+        [logspace2(2.0**-300, 2.0**300, 3000), np.exp(rng.uniform(math.log(1e-12), math.log(1e-2), 20000))]
+    )
+    x = np.concatenate([x, np.nextafter([2.0**-300, 2.0**300], [0.0, math.inf]), [2.0**-300, 2.0**300]])
+    err, xy = max_ulp2(numerics.pow, mpmath.power, x, np.full_like(x, y))
+    assert err <= ODD_HALF_BOUND, (err, xy)
+    # arguments whose x^y lies 1e-6 to 2e-5 ulp from a rounding midpoint, found among 2e6 random ones: exp(y log x)
+    # (error < 0.502 ulp) rounded them the wrong way; within 2^-50 ulp the fast path rounds them correctly
+    hard = [float.fromhex(h) for h in HARD_ODD_HALF[y]]
+    err, xy = max_ulp2(numerics.pow, mpmath.power, hard, np.full(len(hard), y))
+    assert err < 0.5, (err, xy)
+
+
 def test_pow_integer_powers_of_negative_bases():
     x = -logspace2(1e-3, 1e3, 300)
     y = np.tile(np.arange(-50.0, 51.0, 1.0), 3)[: x.size]
