@@ -22,9 +22,12 @@ static inline int is_odd_integer(double y) { /* y finite */
 }
 
 /* x^1.5 = x sqrt(x) and x^2.5 = x^2 sqrt(x) for 2^-300 < x < 2^300 (the contact laws' exponent n = 3/2 and their
- * potential's n + 1): sqrt(x) = s + e / (2 s) to ~2^-105 with s = sqrt(x) rounded and e = x - s^2, which is a double
- * (the remainder of a correctly rounded square root: (x - hi) - lo of two_prod(s, s) exactly), the product with x or
- * x^2 in double-double and one final rounding -- error < 0.5 + 2^-40 ulp, at a fifth of exp(y log x)'s cost. */
+ * potential's n + 1), at a fifth of exp(y log x)'s cost.  s = sqrt(x) rounded; e = x - s^2 is a double (the remainder
+ * of a correctly rounded square root), so (x - hi) - lo of two_prod(s, s) is e exactly (x - hi by Sterbenz); then
+ * sqrt(x) = s + c, c = e / (2 s), to (e / s^2)^2 / 8 <= 2^-107 relative, c rounded to 2^-53 of itself <= 2^-106 of s.
+ * The product with x (or x^2 = two_prod(x, x)) in double-double: x c and the sum of the low parts round to 2^-106 and
+ * 2^-105 of the result (x^2's low part times c, ~2^-106, is dropped), so before the final rounding the relative error
+ * is below 2^-103: < 0.5 + 2^-50 ulp. */
 static double pow_odd_half(double x, double y) {
     double s = sqrt(x);
     dd ss = two_prod(s, s);
