@@ -88,8 +88,10 @@ def assert_same_files(streamed, in_memory, rel: float = 0.0):
         ("seed-experiment", "imm", {"solver__t_end": 0.05, "model__modes": 4}),
         ("seed-experiment", "ccfm", {"solver__t_end": 0.03, **COMPLIANT}),  # the sensor pulse
         ("two-stops", "ccfm", {"solver__t_end": 0.1, "model__modes": 4}),  # per-pair variables
+        # friction: in memory the compiled stepper takes the switches, streamed the phase loop (friction_switch.c)
+        ("tip-wall", "ccfm", {"solver__t_end": 0.03, "contact__friction": 0.3}),
     ],
-    ids=["seed", "imm", "compliant", "two-stops"],
+    ids=["seed", "imm", "compliant", "two-stops", "friction"],
 )
 def test_a_streamed_run_writes_what_the_run_in_memory_writes(tmp_path, name, method, overrides):
     case = fb.load_case(name, {k.replace("__", "."): v for k, v in overrides.items()})
