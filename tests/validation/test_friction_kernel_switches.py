@@ -108,3 +108,21 @@ def test_the_kernel_takes_every_kind_of_switch(monkeypatch) -> None:
         assert s.row[4] in (-1.0, 1.0) and s.row[0] == -0.3 * s.row[4] and s.row[3] >= 0.0
     for s in held:
         np.testing.assert_array_equal(s.row, [0.0, 1.0, 0.3, 0.0, 0.0])
+
+
+def test_a_full_switch_buffer_hands_the_event_to_the_phase_loop(monkeypatch) -> None:
+    """With room for one switch per kernel call, every other switch of tip-wall (mu = 1: 446 events over 0.2 s) goes
+    back to the phase loop when the buffer is full: the run is the same to the bit as with room for 64 and as the
+    phase loop's own."""
+    case = fb.load_case("tip-wall", {"contact.friction": 1.0, "solver.t_end": 0.2})
+
+    def digest() -> tuple:
+        run = fb.simulate(case, "ccfm").source.run
+        ends = np.array([(s.t0, s.t1) for s in run.segments]).ravel()
+        return run.steps, run.events, ends.tobytes(), np.concatenate([s.y1 for s in run.segments]).tobytes()
+
+    wide = digest()
+    monkeypatch.setattr(modal, "_SWITCH_ROWS", 1)
+    narrow = digest()
+    monkeypatch.setattr(CCFM, "kernel_switches", lambda self: None)
+    assert wide == narrow == digest()
