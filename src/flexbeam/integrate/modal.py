@@ -276,10 +276,8 @@ class ModalStepper:
         event = _EVENT_KINDS[int(info[0])] if code == _ADV_EVENT else None
         failure = ""
         if parts and code in (_ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED):  # (the advice reads the rows at the end)
-            friction = phase.friction.copy()
             for sw in parts:
-                friction[sw.pair] = sw.row
-            phase = phase.with_friction(friction)
+                phase = phase.with_friction_row(sw.pair, sw.row)
         if code == _ADV_UNDERFLOW:
             failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)" + phase.underflow_advice
         elif code == _ADV_NONFINITE:

@@ -120,6 +120,12 @@ class Phase:
         return Phase(self.name, self.modes, self.events, self.sample_step, self.parameters, self.records,
                      self.baumgarte, self.max_step, self.max_step_until, friction)  # fmt: skip
 
+    def with_friction_row(self, pair: int, row: np.ndarray) -> Phase:
+        """A copy with pair ``pair``'s friction row switched to ``row`` (a stop or a stick's end)."""
+        friction = self.friction.copy()
+        friction[pair] = row
+        return self.with_friction(friction)
+
     def with_pair(self, pair: int, mode: ContactMode, parameters=None, record: ContactEvent | None = None,
                   **changes) -> Phase:  # fmt: skip
         """A copy with pair ``pair`` in ``mode`` (its law ``parameters``, its contact ``record``)."""

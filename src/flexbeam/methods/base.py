@@ -354,9 +354,7 @@ class ImpactMethod:
         stick that :meth:`transition` would have decided the same way: :meth:`kernel_switches`).  The phase
         :meth:`phase` would build: the same modes and records give the same name, step bound and sample step, and a
         stick or slip row keeps the friction events watched."""
-        friction = phase.friction.copy()
-        friction[pair] = row
-        return phase.with_friction(friction)
+        return phase.with_friction_row(pair, row)
 
     def kernel_switches(self) -> np.ndarray | None:
         """What the compiled stepper needs to take this method's friction switches itself (``coef`` of

@@ -50,11 +50,12 @@ class CCFM(ImpactMethod):
         takes a stop or the end of a stick itself where :meth:`transition` would decide it alone -- pairs under their
         laws, at most one sticking (``kernels/src/friction_switch.c``: the same rows from the same numbers, so the
         run is the same to the bit) -- and saves the phase loop's round trip.  The band is
-        :func:`flexbeam.methods.stick_start.breaking`'s; None without friction or with Threlfall's law."""
+        :func:`flexbeam.methods.stick_start.band`, the stick test's; None without friction or with Threlfall's
+        law."""
         pairs = self.system.contact.pairs
         if not any(p.frictional and p.friction_model != "threlfall" for p in pairs):
             return None
-        band = max(stick_start.UNSTICK_RTOL * self.case.solver.fast_rtol, stick_start.UNSTICK_NOISE)
+        band = stick_start.band(self.case.solver.fast_rtol)
         mu_k = [p.friction if p.frictional else 0.0 for p in pairs]
         mu_s = [p.friction_static if p.frictional else 0.0 for p in pairs]
         return np.array([band, coulomb.REST_SPEED, *mu_k, *mu_s], float)

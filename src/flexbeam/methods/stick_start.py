@@ -12,7 +12,7 @@ forces and the slipping pairs' kinetic forces, evaluated by the kernel (``kernel
 against the band of the multiplier's accuracy, and the same switch, so that the run is the one it was without the
 stick phase of zero length (a Python transition and a restart of the collocation saved at each).  The compiled
 stepper applies the same test to a stop it takes itself (``kernels/src/friction_switch.c``, one sticking pair, the
-band of :func:`breaking` handed to it by :meth:`flexbeam.methods.ccfm.CCFM.kernel_switches`).
+band of :func:`breaking` (:func:`band`) handed to it by :meth:`flexbeam.methods.ccfm.CCFM.kernel_switches`).
 """
 
 from __future__ import annotations
@@ -28,6 +28,11 @@ UNSTICK_RTOL = 100.0
 UNSTICK_NOISE = 1e-7
 
 
+def band(rtol: float) -> float:
+    """The stick margin's band as a share of the multipliers' scale: max(UNSTICK_RTOL rtol, UNSTICK_NOISE)."""
+    return max(UNSTICK_RTOL * rtol, UNSTICK_NOISE)
+
+
 def breaking(phase: Phase, F: np.ndarray, Ft: np.ndarray, rtol: float) -> tuple[int, EventKind] | None:
     """The first holder of ``phase`` (by pair, as the kernel's earliest event) whose stick cannot hold under the normal
     forces ``F`` and tangential multipliers ``Ft``: abs(lambda_t) beyond mu_s times its and its followers' normal
@@ -37,10 +42,10 @@ def breaking(phase: Phase, F: np.ndarray, Ft: np.ndarray, rtol: float) -> tuple[
     F, Ft = F.tolist(), Ft.tolist()
     holders = [k for k, h in enumerate(held) if h == 1.0]
     scale = max([abs(Ft[k]) for k in holders] + [abs(f) for f, m in zip(F, phase.modes) if m == ContactMode.CONSTRAINT])
-    band = max(UNSTICK_RTOL * rtol, UNSTICK_NOISE)
+    share = band(rtol)
     for k in holders:
         Fs = F[k] + sum(f for f, h in zip(F, held) if h == 2.0 + k)
-        if mus[k] * Fs - abs(Ft[k]) + band * max(scale, mus[k] * Fs, abs(Ft[k])) < 0.0:
+        if mus[k] * Fs - abs(Ft[k]) + share * max(scale, mus[k] * Fs, abs(Ft[k])) < 0.0:
             return k, EventKind.UNSTICK_PLUS if Ft[k] > 0.0 else EventKind.UNSTICK_MINUS
     return None
 
