@@ -10,7 +10,13 @@ often between stick and slip pay per step (the compiled stepper takes most of th
 loop: ``kernels/src/friction_switch.c``).
 The machine it ran on is printed below the table.
 
-    python benchmarks/friction.py [--runs 5] [--quick]
+``--sweep CASE`` separates the two costs: it runs the case frictionless and at friction coefficients from 0.05 to 1
+(their events per step differ) and fits the phase loop's CPU time of the frictional runs as a steps + b events, a
+the cost of a frictional step without events, b the cost of an event (its location, the step retaken to it, the
+next phase's start); a against the frictionless run's cost per step net of its own events at the same b is the
+ratio per step that friction itself costs.
+
+    python benchmarks/friction.py [--runs 5] [--quick] [--sweep tip-wall]
 """
 
 from __future__ import annotations
@@ -20,6 +26,8 @@ import os
 import platform
 import statistics
 import time
+
+import numpy as np
 
 import flexbeam as fb
 import flexbeam.simulation as simulation
@@ -92,25 +100,61 @@ def measure(source: str | dict, overrides: dict, runs: int) -> tuple[int, int, f
     return steps, events, statistics.median(walls), statistics.median(cpus)
 
 
+#: the friction coefficients of ``--sweep``
+SWEEP_MU = (0.05, 0.1, 0.2, 0.3, 0.5, 0.8, 1.0)
+
+
+def sweep(name: str, runs: int) -> None:
+    """Print the phase loop's CPU time of case ``name`` (of CASES) frictionless and at SWEEP_MU, and the fit of the
+    frictional runs' times as a steps + b events."""
+    source, rough = next((src, ov) for case, src, ov in CASES if case == name)
+    base = {k: v for k, v in rough.items() if not k.startswith("contact.friction")}
+    print("| friction | steps | events | events per step | CPU [ms] | CPU per step [us] |")
+    print("|---|---|---|---|---|---|")
+    rows = []
+    for mu in (0.0, *SWEEP_MU):
+        steps, events, _, cpu = measure(source, {**base, "contact.friction": mu} if mu else base, runs)
+        rows.append((steps, events, cpu))
+        print(f"| {mu} | {steps} | {events} | {events / steps:.3f} | {1e3 * cpu:.2f} | {1e6 * cpu / steps:.2f} |")
+    fit = np.array(rows[1:])
+    (a, b), *_ = np.linalg.lstsq(fit[:, :2], fit[:, 2], rcond=None)
+    steps0, events0, cpu0 = rows[0]
+    a0 = (cpu0 - b * events0) / steps0
+    print(
+        f"\nfit over the frictional runs: a = {1e6 * a:.2f} us per step, b = {1e6 * b:.1f} us per event; the "
+        f"frictionless run: {1e6 * a0:.2f} us per step net of its {events0} events at that b; a / a0 = {a / a0:.2f}"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--quick", action="store_true", help="one run of the first case")
+    parser.add_argument(
+        "--sweep",
+        metavar="CASE",
+        choices=[c[0] for c in CASES],
+        help="a frictional step's and an event's cost apart, over friction coefficients",
+    )
     args = parser.parse_args()
+    if args.sweep:
+        sweep(args.sweep, args.runs)
+        return
     cases = CASES[:1] if args.quick else CASES
     runs = 1 if args.quick else args.runs
     print("| case | friction | steps | events | integration [ms] | per step [us] | ratio per step | CPU per step [us] |"
-          " CPU ratio per step |")  # fmt: skip
-    print("|---|---|---|---|---|---|---|---|---|")
+          " CPU ratio per step | events per step |")  # fmt: skip
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for name, source, rough in cases:
         smooth = {k: v for k, v in rough.items() if not k.startswith("contact.friction")}
         n0, e0, w0, c0 = measure(source, smooth, runs)
         n1, e1, w1, c1 = measure(source, rough, runs)
         ratio, cpu_ratio = (w1 / n1) / (w0 / n0), (c1 / n1) / (c0 / n0)
         mu = rough["contact.friction"]
-        print(f"| {name} | 0 | {n0} | {e0} | {1e3 * w0:.1f} | {1e6 * w0 / n0:.1f} | | {1e6 * c0 / n0:.1f} | |")
+        print(f"| {name} | 0 | {n0} | {e0} | {1e3 * w0:.1f} | {1e6 * w0 / n0:.1f} | | {1e6 * c0 / n0:.1f} | "
+              f"| {e0 / n0:.3f} |")  # fmt: skip
         print(f"| {name} | {mu} | {n1} | {e1} | {1e3 * w1:.1f} | {1e6 * w1 / n1:.1f} | {ratio:.2f} "
-              f"| {1e6 * c1 / n1:.1f} | {cpu_ratio:.2f} |")  # fmt: skip
+              f"| {1e6 * c1 / n1:.1f} | {cpu_ratio:.2f} | {e1 / n1:.3f} |")  # fmt: skip
     machine = platform.processor() or platform.machine()
     print(f"\n{machine}, {os.cpu_count()} cores, Python {platform.python_version()}, median of {runs} run(s)")
 
