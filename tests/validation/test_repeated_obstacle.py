@@ -121,6 +121,23 @@ def test_a_single_pair_anywhere_fails_where_the_bar_lies_flat_and_says_why(metho
     assert "lies flat on obstacle" in sol.message and "[[obstacles]]" in sol.message
 
 
+def test_a_single_pair_anywhere_on_a_flat_rigid_bar_with_friction_fails_at_once_instead_of_chattering():
+    """The same limit with Coulomb friction (found by a random hunt): a rigid bar (no modes) under Carvalho &
+    Martins's law (e = 0.1) settles flat at ~0.024 s; its one contact point jumps between the ends as the bar's
+    angle crosses zero at the 1e-16 level, and each stick fails the way the other end's multiplier points, so its
+    slip switched direction every 1-3 ns and the run did not end (0.5 s would take ~1e8 events).  The storm of
+    events (flexbeam.integrate.loop.STORM_EVENTS within STORM_SPAN) ends it at once with the advice.  Checked to
+    fail (hang, killed by the timeout of the suite) with the storm test taken out."""
+    overrides = {"contact.law": "carvalho_martins", "contact.restitution": 0.1, "contact.friction": 0.1,
+                 "contact.friction_static": 0.15, "initial.impact_angle": 0.2259, "model.modes": 0,
+                 "solver.t_end": 0.5}  # fmt: skip
+    sol = fb.simulate(fb.load_case(DATA / "free-bar-drop.toml", overrides), "ccfm")
+    assert sol.status == "failed"
+    assert "events keep recurring without progress" in sol.message, sol.message
+    assert "lies flat on obstacle" in sol.message and "[[obstacles]]" in sol.message
+    assert sol.source.run.t_final < 0.05  # settled flat well before t_end
+
+
 @pytest.mark.parametrize("method", ["imm", "ccm"])
 def test_a_rigid_bar_dropped_flat_rests_on_both_ends_under_imm_and_ccm(method):
     """The rigid bar (no modes) dropped flat from 0.1 mm: IMM's bounces (e = 0.5) accumulate onto the floor and CCM's

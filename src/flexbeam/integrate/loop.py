@@ -16,6 +16,7 @@ the run.
 from __future__ import annotations
 
 import time
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Protocol
@@ -26,6 +27,14 @@ from ..errors import SolverError
 from .phases import EventKind, Phase
 
 MAX_STALLED = 100  # consecutive zero-length phases before the run is declared stalled
+#: A storm of events: STORM_EVENTS consecutive events (the phase loop's and the friction switches a stepper takes)
+#: within STORM_SPAN [s] end the run as making no progress.  The least span of 100 consecutive events measured over
+#: the presets and the frictional cases (every method, up to 1 s; tip-wall under IMM with friction, at its
+#: max-contacts) is 1.7e-4 s, 170 times the span; a single pair anywhere on a bar lying flat on a floor, its one
+#: contact point jumping between the bar's ends, switched its slip's direction every 1-3 ns (100 events in 2e-7 s),
+#: progress that would take ~1e8 events a second of the run.
+STORM_EVENTS = 100
+STORM_SPAN = 1e-6
 
 
 class DenseOutput(Protocol):
@@ -187,6 +196,7 @@ def run_phases(
     if not np.array_equal(y, y0):  # a jump at the start: keep the state before it
         keep(Segment(method.free_phase(), 0.0, 0.0, y0.copy(), y0.copy()))
     stalled = 0
+    recent: deque[float] = deque(maxlen=STORM_EVENTS)  # the times of the latest events
     with np.errstate(over="raise", invalid="raise", divide="raise"):
         try:
             while t < t_end:
@@ -199,6 +209,7 @@ def run_phases(
                     keep(Segment(phase, t, sw.t, y.copy(), sw.y.copy(), sw.dense))
                     stalled, t, y = 0, sw.t, sw.y
                     phase = method.friction_switched(phase, sw.pair, sw.row)
+                    recent.append(t)
                 steps += run.steps
                 nfev += run.nfev
                 phase_steps.append((phase.name, run.steps))
@@ -216,6 +227,10 @@ def run_phases(
                 if run.event is None:
                     break
                 events += 1
+                recent.append(t)
+                if storm(recent):
+                    status, message = "failed", storm_message(recent, run.event, run.pair)
+                    break
                 try:
                     phase, y = method.transition(phase, run.event, t, y, run.pair)
                 except Stop as stop:
@@ -234,6 +249,19 @@ def run_phases(
                 stepper.hand_on = None
     wall = time.perf_counter() - wall0
     return RunResult(segments, status, message, t, wall, steps, nfev, stepper.name, events, phase_steps)
+
+
+def storm(recent: deque[float]) -> bool:
+    """Have the latest STORM_EVENTS events (their times in ``recent``) come within STORM_SPAN?"""
+    return len(recent) == STORM_EVENTS and recent[-1] - recent[0] < STORM_SPAN
+
+
+def storm_message(recent: deque[float], event: EventKind, pair: int) -> str:
+    """The failure message of a storm of events (:func:`storm`)."""
+    return (
+        f"events keep recurring without progress at t = {recent[-1]:.9g} s: {len(recent)} events within "
+        f"{recent[-1] - recent[0]:.2g} s, the last a {event.name.lower()} of pair {pair}"
+    )
 
 
 def _hand_on(sink: Callable[[Segment], None], phase: Phase, progress: Callable[[float], None] | None):
