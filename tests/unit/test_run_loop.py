@@ -32,3 +32,27 @@ def test_an_overflow_ends_the_run_as_a_failure_at_its_time_keeping_what_was_comp
     assert run.message.startswith(f"floating-point failure at t = {run.t_final:.9g} s: overflow")
     assert 0.0 < run.t_final < case.solver.t_end
     assert run.segments and run.segments[-1].t1 == run.t_final
+
+
+def test_a_storm_is_a_full_window_of_friction_switches_within_its_span():
+    """:func:`storm` on hand-made windows: STORM_EVENTS switches within STORM_SPAN are one, one switch fewer or a
+    span at the limit are not."""
+    from collections import deque
+
+    from flexbeam.integrate.loop import STORM_EVENTS, STORM_SPAN, storm
+
+    fast = deque(np.linspace(0.5, 0.5 + 0.5 * STORM_SPAN, STORM_EVENTS), maxlen=STORM_EVENTS)
+    assert storm(fast)
+    short = deque(list(fast)[1:], maxlen=STORM_EVENTS)
+    assert not storm(short)
+    slow = deque(np.linspace(0.0, STORM_SPAN, STORM_EVENTS), maxlen=STORM_EVENTS)
+    assert not storm(slow)
+
+
+def test_impacts_coming_faster_than_a_storm_are_capped_as_contacts_not_as_a_storm():
+    """IMM on the axially stiff rod-end: its impulses throw the struck end back 1e-13-1e-8 s apart (1013 events within
+    7.1 us); impacts are contacts, and the run stops at solver.max_contacts with that cap's own advice, not as a storm
+    of friction switches (which only friction events make)."""
+    sol = fb.simulate(fb.load_case("rod-end", {"contact.friction": 0.3}), "imm")
+    assert sol.status == "max-contacts", sol.message
+    assert "solver.max_contacts" in sol.message

@@ -126,8 +126,8 @@ def test_a_single_pair_anywhere_on_a_flat_rigid_bar_with_friction_fails_at_once_
     Martins's law (e = 0.1) settles flat at ~0.024 s; its one contact point jumps between the ends as the bar's
     angle crosses zero at the 1e-16 level, and each stick fails the way the other end's multiplier points, so its
     slip switched direction every 1-3 ns and the run did not end (0.5 s would take ~1e8 events).  The storm of
-    events (flexbeam.integrate.loop.STORM_EVENTS within STORM_SPAN) ends it at once with the advice.  Checked to
-    fail (hang, killed by the timeout of the suite) with the storm test taken out."""
+    friction switches (flexbeam.integrate.loop.STORM_EVENTS within STORM_SPAN) ends it at once with the advice.
+    Checked to fail (hang, killed by the timeout of the suite) with the storm test taken out."""
     overrides = {"contact.law": "carvalho_martins", "contact.restitution": 0.1, "contact.friction": 0.1,
                  "contact.friction_static": 0.15, "initial.impact_angle": 0.2259, "model.modes": 0,
                  "solver.t_end": 0.5}  # fmt: skip
