@@ -49,8 +49,14 @@ def sensor_pulse(sol: Solution, threshold: float = 0.05) -> tuple[list[tuple[flo
     samples); its peaks are the sampled local maxima above ``threshold`` x its maximum.  A streamed run collected
     the pulse's samples as it went.
     """
-    if "sensor_pulse" in getattr(sol, "summaries", {}):
-        peaks, duration = sol.summaries["sensor_pulse"]
+    source = getattr(sol, "source", None)
+    if "sensor_pulse" in getattr(sol, "summaries", {}) or source is not None:
+        if "sensor_pulse" in getattr(sol, "summaries", {}):
+            peaks, duration = sol.summaries["sensor_pulse"]
+        elif source.system.compliant:  # the pulse's own samples, not the whole run's
+            peaks, duration = source.sensor_pulse(sol.records[:1])
+        else:
+            return [], math.nan
         top = max((p[1] for p in peaks), default=0.0)
         return [p for p in peaks if p[1] > threshold * top], duration
     if "sensor_force" not in sol.arrays or not sol.records:
