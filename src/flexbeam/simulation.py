@@ -151,10 +151,8 @@ def simulate(
     if isinstance(stepper, ModalStepper):
         stepper.friction_coef = impact.kernel_switches()
     if method in ("ccfm", "ccm") and rough and not isinstance(stepper, ModalStepper):
-        raise ModelError(
-            f"contact.friction: {method.upper()}'s friction runs on the exponential integrator, which a compliant "
-            "support with theta(t) prescribed does not take; omit obstacle.support or friction"
-        )
+        raise ModelError(f"contact.friction: {method.upper()}'s friction runs on the exponential integrator, "
+                         f"{_reference_cause(method)}; or friction = 0")  # fmt: skip
     if stream is not None:
         return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
     run = run_phases(impact, stepper, y0, case.solver.t_end, progress)
@@ -257,6 +255,14 @@ def make_stepper(case: Case, method: str, system: BeamSystem):
     from .integrate.reference import ReferenceStepper
 
     return ReferenceStepper(system, s.rtol, s.atol, s.max_step)
+
+
+def _reference_cause(method: str) -> str:
+    """Why a run with solver.integrator = 'exponential' takes the reference integrator (:func:`uses_exponential`),
+    and what lifts it, for a message."""
+    if method == "ccm":
+        return "which CCM's constrained phases against a compliant support do not take: omit obstacle.support"
+    return "which a compliant support with theta(t) prescribed does not take: omit obstacle.support"
 
 
 def uses_exponential(case: Case, method: str, system: BeamSystem) -> bool:

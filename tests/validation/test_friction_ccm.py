@@ -262,6 +262,21 @@ def test_ccm_friction_on_the_reference_integrator_is_refused_in_one_line():
     assert "\n" not in str(err.value)
 
 
+@pytest.mark.parametrize(("method", "overrides", "cause"), [
+    ("ccm", {}, "CCM's constrained phases against a compliant support"),
+    ("ccfm", {"drive.kind": "prescribed", "drive.profile": "constant-rate", "drive.spin_rate": 1.0},
+     "a compliant support with theta(t) prescribed"),
+])  # fmt: skip
+def test_friction_on_a_compliant_support_the_exponential_integrator_does_not_take_says_why(method, overrides, cause):
+    """A compliant support sends CCM's constrained phases, and CCFM with theta(t) prescribed, to the reference
+    integrator, where friction does not run: refused in one line naming that cause (the free drive's CCM was told
+    its theta(t) was prescribed -- found by a random hunt)."""
+    case = fb.load_case("seed-experiment-calibrated", {"contact.friction": 0.1, **overrides})
+    with pytest.raises(ModelError, match=r"^contact\.friction: ") as err:
+        fb.simulate(case, method)
+    assert cause in str(err.value) and "\n" not in str(err.value)
+
+
 def test_the_cli_refuses_ccm_friction_on_the_reference_integrator_in_one_line():
     """Through the real CLI: exit 2, one stderr line starting with the field, no traceback."""
     import subprocess
