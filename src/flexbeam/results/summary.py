@@ -47,13 +47,14 @@ def sensor_pulse(sol: Solution, threshold: float = 0.05) -> tuple[list[tuple[flo
     by the sign of the impact force" (Duan et al. 2013, Sec. 4), the pulse runs from the first contact's
     onset until the sensor force -(k_s s + c_s s') first returns to zero (linear interpolation between
     samples); its peaks are the sampled local maxima above ``threshold`` x its maximum.  A streamed run collected
-    the pulse's samples as it went.
+    the pulse's samples as it went, and a run in memory evaluates them alone (:meth:`RunSource.sensor_pulse
+    <flexbeam.results.arrays.RunSource.sensor_pulse>`); a Solution read from a file reads them off its samples.
     """
-    source = getattr(sol, "source", None)
-    if "sensor_pulse" in getattr(sol, "summaries", {}) or source is not None:
-        if "sensor_pulse" in getattr(sol, "summaries", {}):
-            peaks, duration = sol.summaries["sensor_pulse"]
-        elif source.system.compliant:  # the pulse's own samples, not the whole run's
+    summaries, source = getattr(sol, "summaries", {}), getattr(sol, "source", None)
+    if "sensor_pulse" in summaries or source is not None:
+        if "sensor_pulse" in summaries:
+            peaks, duration = summaries["sensor_pulse"]
+        elif source.system.compliant:
             peaks, duration = source.sensor_pulse(sol.records[:1])
         else:
             return [], math.nan
