@@ -24,7 +24,7 @@ from typing import Protocol
 import numpy as np
 
 from ..errors import SolverError
-from .phases import FRICTION_EVENTS, EventKind, Phase
+from .phases import FRICTION_EVENTS, PAINLEVE_EVENTS, EventKind, Phase
 
 MAX_STALLED = 100  # consecutive zero-length phases before the run is declared stalled
 #: A storm of friction events: STORM_EVENTS consecutive friction switches of the contacts (stops, ends of sticks,
@@ -233,7 +233,7 @@ def run_phases(
                 if run.event is None:
                     break
                 events += 1
-                if run.event in FRICTION_EVENTS or run.event == EventKind.PAINLEVE:
+                if run.event in FRICTION_EVENTS + PAINLEVE_EVENTS:
                     recent.append(t)
                 else:
                     recent.clear()

@@ -97,11 +97,7 @@ class RunSource:
         """(time, phase name, arrays) over the whole run."""
         sysm = self.system
         n, nz = sysm.n, sysm.nz
-        counts = {True: 0, False: 0}  # on the contact spacing or not
-        fine = sysm.case.sample_steps()[1]
-        for seg in self.segments:
-            counts[seg.phase.sample_step == fine] += sample_count(seg.t0, seg.t1, seg.phase.sample_step)
-        check_samples(sysm.case, sysm.pairs, counts[False], counts[True])  # the exact count, before evaluating
+        self._check_samples(self.segments)  # the exact count, before evaluating
         times, phases, parts, rough = [], [], [], has_friction(self.segments)
         fparts = []
         for seg in self.segments:
@@ -249,18 +245,24 @@ class RunSource:
         cols = self.evaluate(self.segments[i], np.array([t]))[0]
         return float(cols["kinetic_energy"][0] + cols["elastic_energy"][0] + cols["gravitational_energy"][0])
 
+    def _check_samples(self, segments: list[Segment]) -> None:
+        """:func:`check_samples` for the output samples of ``segments``: those on the ``solver.contact_sample_step``
+        grid and the others counted apart."""
+        counts = {True: 0, False: 0}  # on the contact spacing or not
+        fine = self.system.case.sample_steps()[1]
+        for seg in segments:
+            counts[seg.phase.sample_step == fine] += sample_count(seg.t0, seg.t1, seg.phase.sample_step)
+        check_samples(self.system.case, self.system.pairs, counts[False], counts[True])
+
     def sensor_pulse(self, contacts: list) -> tuple[list[tuple[float, float]], float]:
         """The first sensor-force pulse's every positive peak and its duration (:class:`SensorPulse`, as a streamed
         run collects it), from the samples of the segments from the first contact's onset until the pulse is over:
         not the whole run's samples (a resting contact sampled at ``solver.contact_sample_step`` to its end made the
         metrics of 2 s of ``seed-experiment-calibrated`` evaluate 1e7 samples, 25 s and 3 GB)."""
-        tally, sysm = SensorPulse(contacts), self.system
-        fine = sysm.case.sample_steps()[1]
+        tally = SensorPulse(contacts)
         for i in self._around(contacts[0].onset, math.inf) if contacts else ():
             seg = self.segments[i]
-            count = sample_count(seg.t0, seg.t1, seg.phase.sample_step)
-            in_contact = seg.phase.sample_step == fine
-            check_samples(sysm.case, sysm.pairs, 0 if in_contact else count, count if in_contact else 0)
+            self._check_samples([seg])
             grid = sample_grid(seg.t0, seg.t1, seg.phase.sample_step)
             for j in range(0, grid.size, PULSE_CHUNK):  # a resting contact's grid in parts: the pulse may end early
                 t = grid[j : j + PULSE_CHUNK]
