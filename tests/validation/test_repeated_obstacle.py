@@ -14,6 +14,7 @@ delta_s = (m g / (2 K))^(1/n) (Hertz's static contact).
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -136,6 +137,26 @@ def test_a_single_pair_anywhere_on_a_flat_rigid_bar_with_friction_fails_at_once_
     assert "events keep recurring without progress" in sol.message, sol.message
     assert "lies flat on obstacle" in sol.message and "[[obstacles]]" in sol.message
     assert sol.source.run.t_final < 0.05  # settled flat well before t_end
+
+
+@pytest.mark.parametrize("axial_modes", [0, 4])
+def test_a_single_pair_anywhere_whose_point_jumps_between_the_ends_fails_at_once_instead_of_crawling(axial_modes):
+    """The same limit under Threlfall's regularised friction (found by a random hunt): the rigid bar settles flat at
+    ~0.16 s and its one contact point jumps between the ends as the bar's angle crosses zero at the 1e-16 level --
+    no friction switch, so no storm of them, but steps of ~1e-9 s: with 4 axial modes the run did not end (still
+    running after 100 s at 0.1641 s), without them it failed for want of progress after 45 s.  The kernel counts
+    the point's jumps (``JUMP_*`` in ``kernels/src/phase.c``: 100 within 1e-5 s; they came 2.5e-9 and 1e-8 s apart)
+    and ends the run at once, with the advice.  Checked to fail (hang, killed by the suite's timeout) without it."""
+    overrides = {"contact.friction": 0.1, "contact.friction_model": "threlfall", "contact.law": "carvalho_martins",
+                 "contact.restitution": 0.5, "initial.impact_angle": 0.0669, "model.axial_modes": axial_modes,
+                 "model.modes": 0, "solver.t_end": 0.5}  # fmt: skip
+    sol = fb.simulate(fb.load_case(DATA / "free-bar-drop.toml", overrides), "ccfm")
+    assert sol.status == "failed"
+    assert "events keep recurring without progress" in sol.message and "jumped 100 times" in sol.message
+    ends = re.search(r"between x = (\S+) m and x = (\S+) m", sol.message)
+    assert ends is not None and sorted(abs(float(x)) for x in ends.groups()) == pytest.approx([0.0, L], abs=1e-6)
+    assert "lies flat on obstacle" in sol.message and "[[obstacles]]" in sol.message
+    assert 0.15 < sol.source.run.t_final < 0.2  # settled flat at ~0.16 s
 
 
 @pytest.mark.parametrize("method", ["imm", "ccm"])

@@ -30,13 +30,15 @@ from .phases import EventKind, Phase
 
 OMEGA_RIGID_DEFAULT = 1e3  # [rad/s] weighs a rigid angle error when the beam has no flexible mode
 FIRST_STEP = 1e-5  # [s] first step of a phase (the controller grows it by up to 5x per step)
-_ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED = 0, 1, 2, 3, 4, 5
+_ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED, _ADV_JUMPING = 0, 1, 2, 3, 4, 5, 6
 #: the kernel's info row (``phase.h``): [event kind, steps, rejected, node evaluations, event pair, phase start,
-#: rejections by cause (_REJECT_CAUSES, in order), the step taken at the event before it was cut to end there]
+#: rejections by cause (_REJECT_CAUSES, in order), the step taken at the event before it was cut to end there, then
+#: a pair anywhere's jumps: their count in the window, its start, the last one's pair and material coordinates]
 _INFO_T0, _INFO_REJECT = 5, 6
 _REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
 _INFO_STEP = _INFO_REJECT + len(_REJECT_CAUSES)
-_INFO_SIZE = _INFO_STEP + 1
+_INFO_JUMPS = _INFO_STEP + 1
+_INFO_SIZE = _INFO_JUMPS + 5
 #: EventKind by the kernel's code (a tuple look-up: the enum's call costs microseconds)
 _EVENT_KINDS = (None, *EventKind)
 #: the event bits of a phase's events tuple, filled as met
@@ -136,6 +138,17 @@ def stalled_message(phase: str, t1: float, h: float, info: np.ndarray) -> str:
     return (
         f"no progress at t = {t1:.9g} s ({phase} phase): {steps + rejected} step attempts advanced the phase "
         f"{t1 - t0:.3g} s from t = {t0:.9g} s, the step size now {h:.3g} s; {rejected} rejected ({why})"
+    )
+
+
+def jumping_message(phase: str, t1: float, jumps: np.ndarray) -> str:
+    """The failure of a phase whose pair anywhere's contact point kept jumping (``JUMP_*`` in
+    ``kernels/src/phase.c``): ``jumps`` the kernel's count, window start, pair and the last jump's two points."""
+    count, start, pair, x0, x1 = jumps
+    return (
+        f"events keep recurring without progress at t = {t1:.9g} s ({phase} phase): the contact point of pair "
+        f"{int(pair)} jumped {int(count)} times within {t1 - start:.2g} s between x = {x0:.4g} m and x = {x1:.4g} m "
+        "of the beam, which touches that surface at both at once"
     )
 
 
@@ -275,7 +288,12 @@ class ModalStepper:
             parts, dense = self._split(dense, switches)
         event = _EVENT_KINDS[int(info[0])] if code == _ADV_EVENT else None
         failure = ""
-        if parts and code in (_ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED):  # (the advice reads the rows at the end)
+        if parts and code in (
+            _ADV_UNDERFLOW,
+            _ADV_NONFINITE,
+            _ADV_STALLED,
+            _ADV_JUMPING,
+        ):  # (the advice reads the rows at the end)
             for sw in parts:
                 phase = phase.with_friction_row(sw.pair, sw.row)
         if code == _ADV_UNDERFLOW:
@@ -284,6 +302,8 @@ class ModalStepper:
             failure = f"non-finite state at t = {t1:.9g} s ({phase.name} phase)"
         elif code == _ADV_STALLED:
             failure = stalled_message(phase.name, t1, float(state[1]), info)
+        elif code == _ADV_JUMPING:
+            failure = jumping_message(phase.name, t1, info[_INFO_JUMPS : _INFO_JUMPS + 5])
         run = PhaseRun(t1, y1, event, dense, steps, nfev, failure, int(info[4]), switches=parts)
         if handed.start is not None:
             run.t0, run.y0 = handed.start
