@@ -29,6 +29,8 @@ enum { FB_REJECT_ERROR, FB_REJECT_BALANCE, FB_REJECT_COLLOCATION, FB_REJECT_EVEN
 #define FB_INFO_JUMPS (FB_INFO_STEP + 1)
 #define FB_INFO_SIZE (FB_INFO_JUMPS + 5)
 
+/* the step just taken to t moved a pair anywhere's point by a jump: booked in info; ADV_JUMPING on a storm (jumps.c) */
+int fb_jump_storm(const fb_phase *ph, const fb_work *w, double t, double *xprev, int *have_x, double *info);
 int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t nctrl, double *state, double t_end,
                double *records, int capacity, int *nrec, double *info);
 /* fb_advance with a CCFM phase's Coulomb switches taken in place (friction_switch.c) */
