@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..contact.laws import threlfall
 from ..integrate.loop import Stop
 from ..integrate.phases import ContactMode, EventKind, Phase
 from . import coulomb, painleve
@@ -96,7 +97,11 @@ class HeldFriction(ImpactMethod):
         hit = False
         for k, m in enumerate(phase.modes):
             sigma = friction[k, 0]
-            if m != ContactMode.CONSTRAINT or sigma == 0.0 or friction[k, 1] != 0.0:
+            if m != ContactMode.CONSTRAINT or sigma == 0.0:
+                continue
+            if friction[k, 1] == -1.0:  # Threlfall's regularised law: its coefficient at the slip velocity now
+                sigma = float(threlfall(sigma, friction[k, 2], self.system.tangent(t, y, k)[2]))
+            elif friction[k, 1] != 0.0:  # (sticking)
                 continue
             a, wnn = painleve.slip_inverse_mass(self.system, t, y, k, sigma)
             if a > painleve.SHARE * wnn and k != pair:

@@ -2,8 +2,9 @@
 
 While a held pair slips (Coulomb friction under CCM or in IMM's resting contact,
 :mod:`flexbeam.methods.held_friction`) its constraint force acts along
-(J_n + sigma J_t)^T with sigma = -mu_k sign(v_t), so the normal multiplier solves a lambda_n = -(free normal
-acceleration), with the slip's effective inverse mass
+(J_n + sigma J_t)^T with sigma = -mu_k sign(v_t) (under Threlfall's regularised law sigma(v_t), the law's coefficient
+at the slip speed of the moment), so the normal multiplier solves a lambda_n = -(free normal acceleration), with the
+slip's effective inverse mass
 
     a = W_nn + sigma W_nt,        W = [J_t; J_n] M^-1 [J_t; J_n]^T.
 

@@ -214,10 +214,13 @@ static double slip_stop(const fb_dense *d, const fb_work *w, int *kind) {
 
 /* a - PAINLEVE_SHARE W_nn, a = W_nn + sigma W_nt, of a held slipping pair at an evaluated node: a = jm . b (b holds
  * the slip's force direction; the modal basis spans the state, Psi Psi^T = M0^-1, so jm . b = J M^-1 (J + sigma
- * Jt)^T) and W_nn = a - sigma jm . bt. */
+ * Jt)^T) and W_nn = a - sigma jm . bt.  Under the regularised law the tangential force is an unknown of its own (b
+ * holds J's direction alone) and sigma = sigma(v_t) at the node: W_nn = jm . b, a = W_nn + sigma(v_t) jm . bt. */
 static double slip_mass(const fb_phase *ph, const fb_node *nd, int k) {
     double a = 0.0, nt = 0.0;
     for (int i = 0; i < ph->b->N; i++) a += nd->jm[k][i] * nd->b[k][i], nt += nd->jm[k][i] * nd->bt[k][i];
+    if (ph->c.regv[k] > 0.0) /* the regularised law: b is J's alone, its force sigma(v_t) F along Jt an unknown */
+        return a + fb_slip_coefficient(&ph->c, k, nd->vt[k]) * nt - PAINLEVE_SHARE * a;
     return a - PAINLEVE_SHARE * (a - ph->c.slip[k] * nt);
 }
 
@@ -261,7 +264,8 @@ double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *k
     const fb_phase *ph = d->ph;
     int k = d->pair;
     double xp = FB_NO_EVENT;
-    if (ph->c.slip[k] != 0.0 && ph->c.mode[k] == FB_MODE_CONSTRAINT && (events & EV_PAINLEVE)) {
+    int slips = ph->c.slip[k] != 0.0 || ph->c.regv[k] > 0.0; /* Coulomb's slip, or the regularised law's */
+    if (slips && ph->c.mode[k] == FB_MODE_CONSTRAINT && (events & EV_PAINLEVE)) {
         xp = find_painleve(d, w);
         if (xp <= 0.0) {
             *kind = FB_EVENT_PAINLEVE;
@@ -282,7 +286,8 @@ double fb_friction_event(const fb_dense *d, const fb_work *w, int events, int *k
                 for (int j = 0; j < FB_P; j++) F[j] += w->F[l][j];
         return fb_find_unstick(ph, k, F, w->Ft[k], w->lambda_scale, kind);
     }
-    return FB_NO_EVENT;
+    if (xp != FB_NO_EVENT) *kind = FB_EVENT_PAINLEVE; /* (the regularised law: neither a slip's stop nor a stick) */
+    return xp;
 }
 
 /* Friction's dissipation rate -(sigma F + F_t) v_t of pair k at an evaluated node (normal force F, tangential
