@@ -152,7 +152,7 @@ def simulate(
         stepper.friction_coef = impact.kernel_switches()
     if method in ("ccfm", "ccm") and rough and not isinstance(stepper, ModalStepper):
         raise ModelError(f"contact.friction: {method.upper()}'s friction runs on the exponential integrator, "
-                         f"{_reference_cause(method)}; or friction = 0")  # fmt: skip
+                         f"{REFERENCE_CAUSE}; or friction = 0")  # fmt: skip
     if stream is not None:
         return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
     run = run_phases(impact, stepper, y0, case.solver.t_end, progress)
@@ -257,26 +257,24 @@ def make_stepper(case: Case, method: str, system: BeamSystem):
     return ReferenceStepper(system, s.rtol, s.atol, s.max_step)
 
 
-def _reference_cause(method: str) -> str:
-    """Why a run with solver.integrator = 'exponential' takes the reference integrator (:func:`uses_exponential`),
-    and what lifts it, for a message."""
-    if method == "ccm":
-        return "which CCM's constrained phases against a compliant support do not take: omit obstacle.support"
-    return "which a compliant support with theta(t) prescribed does not take: omit obstacle.support"
+#: why a run with solver.integrator = 'exponential' takes the reference integrator (:func:`uses_exponential`), and
+#: what lifts it, for a message
+REFERENCE_CAUSE = "which a compliant support with theta(t) prescribed does not take: omit obstacle.support"
 
 
 def uses_exponential(case: Case, method: str, system: BeamSystem) -> bool:
     """Does ``solver.integrator = "exponential"`` apply to this run?
 
-    Every impact method on a rigid obstacle, and CCFM on a compliant support (its s as one more exactly
-    propagated mode).  Constrained phases against a compliant support (CCM, IMM's resting contact) take the
-    reference path (the collocated multiplier does work ~5e-6 of the energy over a contact against the stiff
-    support, above the energy tests' 1e-6), and so does a compliant support with theta(t) prescribed.  The
-    Solution's provenance names the integrator that ran.
+    Every impact method on a rigid obstacle, and on a compliant support (its s as one more exactly propagated mode;
+    a held pair's multiplier against it held to its effect on the state as well, ``kernels/src/collocation.c``)
+    unless theta(t) is prescribed, which takes the reference path.  (Constrained phases against a compliant support
+    took the reference path too until the multiplier's effect was held: CCM and IMM on the calibrated sensor now
+    agree with it as CCFM does, ``tests/validation/test_modal_integrator.py``.)  The Solution's provenance names the
+    integrator that ran.
     """
     if case.solver.integrator != "exponential":
         return False
-    return not system.compliant or (method == "ccfm" and not system.prescribed)
+    return not (system.compliant and system.prescribed)
 
 
 def collect(

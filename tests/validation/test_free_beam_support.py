@@ -23,10 +23,12 @@ BAR = "tests/validation/data/free-bar-drop.toml"
 MS = 0.5
 
 
-@pytest.mark.parametrize("e", [1.0])
+@pytest.mark.parametrize("e", [1.0, 0.5])
 def test_imm_on_a_sprung_floor_is_the_two_body_impact(e):
     """The first impulses on the rigid and the sprung floor satisfy 1/P = (W_nn + 1/m_s) / ((1 + e) v0) to 1e-12
-    (an impulse map: round-off), Newton's normal velocity after, and the run goes on to its end."""
+    (an impulse map: round-off), Newton's normal velocity after, and the run goes on to its end (with e = 0.5 the
+    end and the sprung floor chattered into "events keep recurring without progress" at 36 us while IMM's resting
+    contact on a compliant support took the reference integrator; it rests now, on the compiled one)."""
     over = {"contact.law": "hertz", "contact.restitution": e, "solver.t_end": 2e-3}
     rigid = fb.simulate(fb.load_case(BAR, over), "imm")
     sprung = fb.simulate(fb.load_case(BAR, {**over, "obstacle.support.mass": MS, "obstacle.support.stiffness": 1e6,

@@ -101,8 +101,8 @@ class Solver(Section):
     ``integrator = "exponential"`` (default): exact modal propagation with Gauss
     collocation of the coupling and contact terms, compiled (fast; tolerances
     ``fast_rtol``/``fast_atol``); it serves every impact method on a rigidly held
-    obstacle and CCFM on a compliant ``obstacle.support``; constrained phases against a
-    compliant support (CCM, IMM's resting contact) take the reference path.
+    obstacle and on a compliant ``obstacle.support``, but for a compliant support with
+    theta(t) prescribed, which takes the reference path.
     ``"reference"``: scipy's DOP853, event-driven (``rtol``/``atol``).
 
     A run whose estimated memory (dense output, phases and, when they are written or drawn, output
@@ -111,8 +111,8 @@ class Solver(Section):
 
     integrator: Literal["exponential", "reference"] = Field(
         "exponential",
-        description="time integrator (exponential: with a rigid obstacle, or CCFM "
-        "on a compliant support; else the reference is used)",
+        description="time integrator (exponential: every method, but for a compliant support "
+        "with theta(t) prescribed, where the reference is used)",
     )
     fast_rtol: Annotated[float, Field(gt=0, lt=1)] = Field(
         1e-6, description="relative tolerance of the exponential integrator"
