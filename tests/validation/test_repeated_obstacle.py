@@ -145,7 +145,7 @@ def test_a_single_pair_anywhere_whose_point_jumps_between_the_ends_fails_at_once
     ~0.16 s and its one contact point jumps between the ends as the bar's angle crosses zero at the 1e-16 level --
     no friction switch, so no storm of them, but steps of ~1e-9 s: with 4 axial modes the run did not end (still
     running after 100 s at 0.1641 s), without them it failed for want of progress after 45 s.  The kernel counts
-    the point's jumps (``JUMP_*`` in ``kernels/src/phase.c``: 100 within 1e-5 s; they came 2.5e-9 and 1e-8 s apart)
+    the point's jumps (``JUMP_*`` in ``kernels/src/jumps.c``: 100 within 1e-5 s; they came 2.5e-9 and 1e-8 s apart)
     and ends the run at once, with the advice.  Checked to fail (hang, killed by the suite's timeout) without it."""
     overrides = {"contact.friction": 0.1, "contact.friction_model": "threlfall", "contact.law": "carvalho_martins",
                  "contact.restitution": 0.5, "initial.impact_angle": 0.0669, "model.axial_modes": axial_modes,

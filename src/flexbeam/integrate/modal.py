@@ -31,6 +31,7 @@ from .phases import EventKind, Phase
 OMEGA_RIGID_DEFAULT = 1e3  # [rad/s] weighs a rigid angle error when the beam has no flexible mode
 FIRST_STEP = 1e-5  # [s] first step of a phase (the controller grows it by up to 5x per step)
 _ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED, _ADV_JUMPING = 0, 1, 2, 3, 4, 5, 6
+_FAILURES = (_ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED, _ADV_JUMPING)  # the codes that fail the run
 #: the kernel's info row (``phase.h``): [event kind, steps, rejected, node evaluations, event pair, phase start,
 #: rejections by cause (_REJECT_CAUSES, in order), the step taken at the event before it was cut to end there, then
 #: a pair anywhere's jumps: their count in the window, its start, the last one's pair and material coordinates]
@@ -143,7 +144,7 @@ def stalled_message(phase: str, t1: float, h: float, info: np.ndarray) -> str:
 
 def jumping_message(phase: str, t1: float, jumps: np.ndarray) -> str:
     """The failure of a phase whose pair anywhere's contact point kept jumping (``JUMP_*`` in
-    ``kernels/src/phase.c``): ``jumps`` the kernel's count, window start, pair and the last jump's two points."""
+    ``kernels/src/jumps.c``): ``jumps`` the kernel's count, window start, pair and the last jump's two points."""
     count, start, pair, x0, x1 = jumps
     return (
         f"events keep recurring without progress at t = {t1:.9g} s ({phase} phase): the contact point of pair "
@@ -288,12 +289,7 @@ class ModalStepper:
             parts, dense = self._split(dense, switches)
         event = _EVENT_KINDS[int(info[0])] if code == _ADV_EVENT else None
         failure = ""
-        if parts and code in (
-            _ADV_UNDERFLOW,
-            _ADV_NONFINITE,
-            _ADV_STALLED,
-            _ADV_JUMPING,
-        ):  # (the advice reads the rows at the end)
+        if parts and code in _FAILURES:  # (the advice reads the rows at the end)
             for sw in parts:
                 phase = phase.with_friction_row(sw.pair, sw.row)
         if code == _ADV_UNDERFLOW:

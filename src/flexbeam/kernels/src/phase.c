@@ -302,7 +302,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
     double trial[FB_P * FB_MAXN], E0 = 0.0, scale0 = 0.0;
     fb_gap gap0[FB_MAX_PAIRS];
     fb_step st;
-    double xprev[FB_MAX_PAIRS]; /* the pairs anywhere's points at the last step's end (jump_storm) */
+    double xprev[FB_MAX_PAIRS]; /* the pairs anywhere's points at the last step's end (fb_jump_storm) */
     int have_x = 0;
     while (t < t_end) {
         int last = 0, stop = plan_step(m, t, t_end, hmax, rate, retry, *nrec, capacity, info, &h, &last);

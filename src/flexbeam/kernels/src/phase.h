@@ -13,13 +13,13 @@ int fb_state_buffer_size(int N, int S);
 /* control buffer: [rtol, atol, hmax, omega_rigid, events (bits), contacts (fb_contacts_unpack)] */
 #define FB_CTRL_HEAD 5
 /* what fb_advance returns: t_end reached, an event, the records full, a step-size underflow, a non-finite state, a
- * phase that cannot make progress, a pair anywhere's contact point jumping to and fro (phase.c, JUMP_*) */
+ * phase that cannot make progress, a pair anywhere's contact point jumping to and fro (jumps.c, JUMP_*) */
 enum {
     ADV_END = 0, ADV_EVENT = 1, ADV_FULL = 2, ADV_UNDERFLOW = 3, ADV_NONFINITE = 4, ADV_STALLED = 5, ADV_JUMPING = 6
 };
 /* info, accumulated over the calls of one phase (zero at its start): [event kind, steps, rejected steps, node
  * evaluations, event pair, the phase's start time, rejections by cause (FB_REJECT_*), the step taken at the event
- * (before it was cut to end there; 0 without an event), then the jumps of a pair anywhere's point (phase.c, JUMP_*):
+ * (before it was cut to end there; 0 without an event), then the jumps of a pair anywhere's point (jumps.c, JUMP_*):
  * their count in the current window, the window's start, the last jump's pair, its material coordinates before and
  * after] */
 enum { FB_REJECT_ERROR, FB_REJECT_BALANCE, FB_REJECT_COLLOCATION, FB_REJECT_EVENT, FB_REJECT_CAUSES };
