@@ -146,13 +146,9 @@ def simulate(
         y0, info = _continued(system, state), {}
     impact = cls(system, case)
     stepper = make_stepper(case, method, system)
-    rough = any(p.frictional for p in system.contact.pairs)
     impact.locates_friction = isinstance(stepper, ModalStepper)
     if isinstance(stepper, ModalStepper):
         stepper.friction_coef = impact.kernel_switches()
-    if method in ("ccfm", "ccm") and rough and not isinstance(stepper, ModalStepper):
-        raise ModelError(f"contact.friction: {method.upper()}'s friction runs on the exponential integrator, "
-                         f"{REFERENCE_CAUSE}; or friction = 0")  # fmt: skip
     if stream is not None:
         return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
     run = run_phases(impact, stepper, y0, case.solver.t_end, progress)
@@ -247,34 +243,22 @@ def _streamed(
 
 
 def make_stepper(case: Case, method: str, system: BeamSystem):
-    """The integrator of a run: the compiled modal one (``solver.integrator = "exponential"``) where it
-    applies, else scipy's DOP853 (:func:`uses_exponential`)."""
+    """The integrator of a run: the compiled modal one (``solver.integrator = "exponential"``), else scipy's DOP853.
+
+    The compiled one serves every impact method on a rigid obstacle and on a compliant support (its s as one more
+    exactly propagated mode; a held pair's multiplier against it held to its effect on the state as well,
+    ``kernels/src/collocation.c``), theta free or prescribed.  (Until 2026-11-27 CCM's and IMM's held phases against a
+    compliant support took DOP853, and so did a compliant support with theta(t) prescribed: the prescribed joint's
+    reaction, booked as the drive's work, took the contact's Jacobian at the support's rest position; both agree with
+    the reference integrator now, ``tests/validation/test_modal_integrator.py``.)  The Solution's provenance names
+    the integrator that ran; ``method`` and ``system``: kept for the callers, neither decides today.
+    """
     s = case.solver
-    if uses_exponential(case, method, system):
+    if s.integrator == "exponential":
         return ModalStepper(system, s.fast_rtol, s.fast_atol, s.max_step)
     from .integrate.reference import ReferenceStepper
 
     return ReferenceStepper(system, s.rtol, s.atol, s.max_step)
-
-
-#: why a run with solver.integrator = 'exponential' takes the reference integrator (:func:`uses_exponential`), and
-#: what lifts it, for a message
-REFERENCE_CAUSE = "which a compliant support with theta(t) prescribed does not take: omit obstacle.support"
-
-
-def uses_exponential(case: Case, method: str, system: BeamSystem) -> bool:
-    """Does ``solver.integrator = "exponential"`` apply to this run?
-
-    Every impact method on a rigid obstacle, and on a compliant support (its s as one more exactly propagated mode;
-    a held pair's multiplier against it held to its effect on the state as well, ``kernels/src/collocation.c``)
-    unless theta(t) is prescribed, which takes the reference path.  (Constrained phases against a compliant support
-    took the reference path too until the multiplier's effect was held: CCM and IMM on the calibrated sensor now
-    agree with it as CCFM does, ``tests/validation/test_modal_integrator.py``.)  The Solution's provenance names the
-    integrator that ran.
-    """
-    if case.solver.integrator != "exponential":
-        return False
-    return not (system.compliant and system.prescribed)
 
 
 def collect(

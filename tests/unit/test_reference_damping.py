@@ -1,7 +1,7 @@
 """The explicit reference integrator refuses structural damping that would make it stiff beyond use.
 
-A run on the reference integrator (scipy's DOP853: ``solver.integrator = "reference"``, or a compliant support with
-theta(t) prescribed; CCM and IMM on a compliant support took it before 2026-11-27) has its step bounded by the fastest
+A run on the reference integrator (scipy's DOP853, ``solver.integrator = "reference"``; CCM and IMM on a compliant
+support, and theta(t) prescribed on one, took it by default before 2026-11-27) has its step bounded by the fastest
 root of the linearised modes; Kelvin-Voigt damping c makes a high mode's fastest root about c w^2.  A fuzzed case
 (c = 6.4 s on the calibrated seed experiment) put it 7e5 times the fastest frequency: a run of hours.  It is refused
 in one line naming the field (exit 2), while moderate damping runs.

@@ -101,8 +101,7 @@ class Solver(Section):
     ``integrator = "exponential"`` (default): exact modal propagation with Gauss
     collocation of the coupling and contact terms, compiled (fast; tolerances
     ``fast_rtol``/``fast_atol``); it serves every impact method on a rigidly held
-    obstacle and on a compliant ``obstacle.support``, but for a compliant support with
-    theta(t) prescribed, which takes the reference path.
+    obstacle and on a compliant ``obstacle.support``.
     ``"reference"``: scipy's DOP853, event-driven (``rtol``/``atol``).
 
     A run whose estimated memory (dense output, phases and, when they are written or drawn, output
@@ -111,8 +110,7 @@ class Solver(Section):
 
     integrator: Literal["exponential", "reference"] = Field(
         "exponential",
-        description="time integrator (exponential: every method, but for a compliant support "
-        "with theta(t) prescribed, where the reference is used)",
+        description="time integrator (exponential: compiled, every method and obstacle; reference: scipy's DOP853)",
     )
     fast_rtol: Annotated[float, Field(gt=0, lt=1)] = Field(
         1e-6, description="relative tolerance of the exponential integrator"
