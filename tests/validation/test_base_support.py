@@ -39,20 +39,29 @@ def closed_form(t: np.ndarray) -> np.ndarray:
     return S * np.sin(w * t - phi) + np.exp(-zeta * wn * t) * (A * np.cos(wd * t) + B * np.sin(wd * t))
 
 
-@pytest.mark.parametrize("method", ["ccfm", "imm"])
-def test_a_support_carried_by_a_shaken_base_is_a_base_excited_oscillator(method):
-    """The support's displacement over 0.3 s against the closed form to 1e-9 of its steady amplitude, and the energy
-    balance to 1e-9 of the base's work (measured 9e-15 and 6e-15: the support's linear part is propagated exactly;
-    the integrator's own tolerance, 1e-6 of the state, would allow more)."""
+@pytest.mark.parametrize(("method", "solver", "bound_s", "bound_e"), [
+    ("ccfm", {"solver.integrator": "reference"}, 1e-9, 1e-9),
+    ("imm", {"solver.integrator": "reference"}, 1e-9, 1e-9),
+    ("ccfm", {"solver.fast_rtol": 1e-10, "solver.fast_atol": 1e-13}, 5e-11, 5e-9),
+    ("imm", {"solver.fast_rtol": 1e-10, "solver.fast_atol": 1e-13}, 5e-11, 5e-9),
+    ("ccfm", {}, 3e-6, 2e-5),
+])  # fmt: skip
+def test_a_support_carried_by_a_shaken_base_is_a_base_excited_oscillator(method, solver, bound_s, bound_e):
+    """The support's displacement over 0.3 s against the closed form, to ``bound_s`` of its steady amplitude, and the
+    energy balance, to ``bound_e`` of the base's work.  The reference integrator (this case's path, theta(t) being
+    prescribed on a compliant support, until 2026-11-27): 1e-9 and 1e-9 (measured 8.6e-15 and 5.8e-15).  The
+    exponential one, which the case takes now: its support is one more exactly propagated mode, the base's forcing
+    collocated, so it converges with fast_rtol -- at 1e-10, 5e-11 and 5e-9 (measured 4.7e-12 and 5.3e-10); at the
+    default 1e-6, 3e-6 and 2e-5 (measured 2.7e-7 and 2.2e-6, 83 steps against the reference's 2309)."""
     case = fb.load_case(SHAKER, {
         "obstacle.centre": [0.3, -1.0], "obstacle.support.mass": MS, "obstacle.support.stiffness": KS,
-        "obstacle.support.damping": CS, "obstacle.support.direction": [0.0, 1.0], "solver.t_end": 0.3,
+        "obstacle.support.damping": CS, "obstacle.support.direction": [0.0, 1.0], "solver.t_end": 0.3, **solver,
     })  # fmt: skip
     sol = fb.simulate(case, method)
     assert sol.status == "success" and not sol.contacts
     s = sol.arrays["support_displacement"]
     w = 2 * math.pi * F_DRIVE
     S = MS * Y * w * w / math.hypot(KS - MS * w * w, CS * w)
-    assert np.max(np.abs(s - closed_form(sol.time))) <= 1e-9 * S
+    assert np.max(np.abs(s - closed_form(sol.time))) <= bound_s * S
     E = sol.arrays["total_energy"]
-    assert np.max(np.abs(E - E[0])) <= 1e-9 * np.max(np.abs(sol.arrays["drive_work"]))
+    assert np.max(np.abs(E - E[0])) <= bound_e * np.max(np.abs(sol.arrays["drive_work"]))
