@@ -42,7 +42,7 @@ void fb_node_rates(const fb_phase *ph, const fb_node *nd, const double F[][FB_P]
     const double *q = nd->z + off, *qd = nd->zd + off;
     int N = ph->b->N, compliant = fb_compliant(m);
     /* the contact's Jacobian where the support has moved it (at its rest position the drive's work on the calibrated
-     * sensor drifted by 4e-5 of the energy at 1 rad/s, 3e-3 at 4 rad/s, against the reference's 5e-9 and 4e-8) */
+     * sensor drifted by 4e-5 of the energy at -1 rad/s, 3e-3 at -4 rad/s, against the reference's 5e-9 and 4e-8) */
     double s = compliant ? nd->z[N - 1] : 0.0, sd = compliant ? nd->zd[N - 1] : 0.0;
     double Q[FB_MAXN], J[FB_MAXN], M[FB_MAXN * FB_MAXN];
     jt->forces(m, &nd->frame, q, qd, 0.0, 1, Q);
