@@ -141,7 +141,7 @@ int fb_gap_far(const fb_dense *d, const double *jb, double gap0);
 double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double dx, double *fast);
 double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known,
                          const double *eta_known, const double *jm, const double *jb, double *beyond);
-double fb_find_release(const double *lam);
+double fb_find_release(const double *lam, int later);
 double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, int count);
 
 /* Coulomb friction (friction.c) */

@@ -42,10 +42,10 @@ static void reject(double *info, int cause) {
 
 /* The earliest event of the accepted step [t, t + h] over the pairs, as a fraction of the step (FB_NO_EVENT if
  * none; FB_UNDECIDED, with *beyond, if some pair's search cannot decide), its kind and pair; and the earliest kink
- * of a law's force before it (*kink, FB_NO_EVENT if none). */
+ * of a law's force before it (*kink, FB_NO_EVENT if none).  later: not the phase's first step (fb_find_release). */
 static double find_events(const fb_phase *ph, fb_work *w, int events, double t, double h, const double *eta,
-                          const double *v, const double *f, const fb_step *st, const fb_gap *gap0, int *kind,
-                          int *pair, double *beyond, double *kink) {
+                          const double *v, const double *f, const fb_step *st, const fb_gap *gap0, int later,
+                          int *kind, int *pair, double *beyond, double *kink) {
     const fb_tables *tb = fb_gauss();
     int N = ph->b->N, S = ph->c.npairs, need_jm = 0;
     double x = FB_NO_EVENT, ek[(FB_P + 2) * FB_MAXN];
@@ -90,7 +90,7 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
             xk = fb_find_gap_event(&dd, 1, kx, known, ek, jm, w->node[0].jb[k], &bk);
             if (xk <= 1.0 && xk != FB_UNDECIDED && xk < x) x = xk, *kind = FB_EVENT_SEPARATION, *pair = k;
         } else if (mode == FB_MODE_CONSTRAINT && (events & EV_RELEASE)) {
-            xk = fb_find_release(w->F[k]);
+            xk = fb_find_release(w->F[k], later);
             if (xk <= 1.0 && xk < x) x = xk, *kind = FB_EVENT_RELEASE, *pair = k;
         }
         int fk = 0; /* Coulomb friction's events (friction.c) */
@@ -235,7 +235,8 @@ static double step_events(const fb_phase *ph, fb_work *w, int events, double t, 
     if (!have_gap0)
         for (int k = 0; k < ph->m->npairs; k++) gap0[k] = fb_gap_at(ph, k, t, eta, v);
     double beyond, kink;
-    double x = find_events(ph, w, events, t, *h, eta, v, trial, st, gap0, kind, pair, &beyond, &kink);
+    int later = info[1] > 0.0; /* not the phase's first step */
+    double x = find_events(ph, w, events, t, *h, eta, v, trial, st, gap0, later, kind, pair, &beyond, &kink);
     if (x == FB_UNDECIDED) {
         *h *= beyond < 1.0 ? fmax(beyond, 0.0625) : 0.25;
         reject(info, FB_REJECT_EVENT);
