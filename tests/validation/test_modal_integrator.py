@@ -194,40 +194,48 @@ def test_held_phases_on_a_compliant_support_first_contact_and_sensor_agree(metho
 
 @pytest.mark.parametrize("method", ["ccm", "imm"])
 def test_held_phases_on_a_compliant_support_rattling_onsets_converge_to_the_reference(method):
-    """The nine-contact rattle on the sensor (gravity x 10, 30 ms) under CCM (12 contacts) and IMM (61 records), both
-    integrators tightened (fast_rtol 1e-10; rtol 1e-11): every onset within 5e-8 s (measured <= 5.4e-9 s; the
-    reference at its default rtol is 7.1e-8 s from its tightened self) and, for CCM, the peaks of the contacts to
-    22 ms within 1e-5 of the first (7.7e-7; the rattle amplifies what differs: the last two peaks 8.3e-6 and 1.3e-5
-    apart, as far as the reference at its default rtol is from itself tightened, 1e-5).  At the default fast_rtol
-    IMM's onsets stay within 1e-5 s (1.1e-6) and CCM's first eight within 3e-6 s (2.4e-7); later CCM's held
-    landings, two of them 3.5e-7 s apart, part at the default tolerance."""
+    """The nine-contact rattle on the sensor (gravity x 10, 30 ms) under CCM (12 contacts) and IMM (its first burst:
+    the impact and the micro-impacts that bring the end to rest on the sensor, 8 records), both integrators
+    tightened (fast_rtol 1e-10; rtol 1e-11): the onsets of CCM's first nine contacts (to 22 ms) within 5e-8 s
+    (measured <= 4.4e-10 s; the reference at its default rtol is 5.7e-9 s from its tightened self) and their peaks
+    within 1e-5 of the first (7.7e-7); IMM's eight within 5e-8 s (1.3e-14).  At the default fast_rtol CCM's first
+    eight within 3e-6 s (2.4e-7), IMM's within 1e-9 s (1.5e-11).  No counts: the reference's (DOP853, which sums with
+    the BLAS) number of IMM's micro-impacts over the 30 ms changes with the CPU's kernels (61 records, 52 under
+    OPENBLAS_CORETYPE=Haswell), and CCM's later held landings, two of them 3.5e-7 s apart, part at the default
+    tolerance."""
     case = _calibrated(model__modes=4, model__gravity=98.1, solver__t_end=0.03)
     tight = _calibrated(model__modes=4, model__gravity=98.1, solver__t_end=0.03, solver__fast_rtol=1e-10,
                         solver__fast_atol=1e-13, solver__rtol=1e-11, solver__atol=1e-14)  # fmt: skip
     ref, fast = _both(tight, method)
-    assert len(fast.contacts) == len(ref.contacts) >= 12
+    n = 9 if method == "ccm" else 8
+    assert len(fast.contacts) >= n and len(ref.contacts) >= n
     top = ref.contacts[0].peak_force
-    for x, y in zip(ref.contacts, fast.contacts, strict=True):
+    for x, y in zip(ref.contacts[:n], fast.contacts[:n], strict=True):
         assert_allclose(y.onset, x.onset, rtol=0, atol=5e-8)
-        if method == "ccm" and x.onset < 0.022:
+        if method == "ccm":
             assert_allclose(y.peak_force, x.peak_force, rtol=0, atol=1e-5 * top)
     ref, fast = _both(case, method)
-    n = 8 if method == "ccm" else len(ref.contacts)
+    n = 8
     assert len(fast.contacts) >= n and len(ref.contacts) >= n
     for x, y in zip(ref.contacts[:n], fast.contacts[:n], strict=True):
-        assert_allclose(y.onset, x.onset, rtol=0, atol=3e-6 if method == "ccm" else 1e-5)
+        assert_allclose(y.onset, x.onset, rtol=0, atol=3e-6 if method == "ccm" else 1e-9)
 
 
 @pytest.mark.parametrize("method", ["ccfm", "ccm", "imm"])
 def test_prescribed_theta_on_a_compliant_support_agrees_and_books_the_drives_work(method):
-    """theta(t) prescribed (constant rate -1 rad/s, 30 ms: 9 contacts under CCFM, 28 under CCM, 138 records under IMM)
-    on the sensor, which took the reference path until its drive's work was booked with the contact's Jacobian where
-    the support has moved it (at its rest position the energy drifted by 4e-5 of the energy, 3e-3 at 4 rad/s).  At
-    the default tolerances, against the reference integrator: the first eight onsets within 2e-6 s (measured 2.4e-10,
-    1.2e-7, 2.5e-12), the first contact's peak within 1e-5 of it (CCFM, CCM: <= 1.0e-7), the sensor's peak within
-    1e-5 (<= 1.1e-7), the drive's work within 3e-5 (<= 3.0e-6) and the energy drift below 2e-6 (<= 1.1e-7)."""
+    """theta(t) prescribed (constant rate -1 rad/s, 30 ms: 9 contacts under CCFM, 28 under CCM; IMM over 3 ms, its
+    first burst of 8 records) on the sensor, which took the reference path until its drive's work was booked with the
+    contact's Jacobian where the support has moved it (at its rest position the energy drifted by 4e-5 of the
+    energy, 3e-3 at 4 rad/s).  At the default tolerances, against the reference integrator: the first eight onsets
+    within 2e-6 s (measured 2.4e-10, 1.2e-7, 2.5e-12), the first contact's peak within 1e-5 of it (CCFM, CCM: <=
+    1.0e-7), the sensor's peak within 1e-5 (<= 1.1e-7), the drive's work within 3e-5 (<= 3.0e-6) and the energy
+    drift below 2e-6 (<= 1.1e-7).  IMM's 30 ms are not compared: on the reference integrator they end in "events
+    keep recurring without progress" under OPENBLAS_CORETYPE=Haswell (8.2 ms) and Prescott (18.9 ms), its
+    micro-impacts' resting decided by round-off that depends on the CPU's BLAS kernels (on the exponential one the
+    same bits everywhere, tests/validation/fingerprints.py)."""
     drive = dict(drive__kind="prescribed", drive__profile="constant-rate", drive__spin_rate=-1.0)
-    ref, fast = _both(_calibrated(model__modes=4, solver__t_end=0.03, **drive), method)
+    t_end = 0.003 if method == "imm" else 0.03
+    ref, fast = _both(_calibrated(model__modes=4, solver__t_end=t_end, **drive), method)
     assert "exponential" in fast.provenance["integrator"] and "DOP853" in ref.provenance["integrator"]
     assert fast.status == ref.status == "success"
     assert len(fast.contacts) >= 8 and len(ref.contacts) >= 8
