@@ -38,6 +38,8 @@ MAX_STALLED = 100  # consecutive zero-length phases before the run is declared s
 #: 5e-7 s): ~1e8 switches a second of the run.
 STORM_EVENTS = 100
 STORM_SPAN = 1e-6
+#: the event kinds a storm counts (built once: the loop tests each event against it)
+_STORM_KINDS = FRICTION_EVENTS + PAINLEVE_EVENTS
 
 
 class DenseOutput(Protocol):
@@ -233,7 +235,7 @@ def run_phases(
                 if run.event is None:
                     break
                 events += 1
-                if run.event in FRICTION_EVENTS + PAINLEVE_EVENTS:
+                if run.event in _STORM_KINDS:
                     recent.append(t)
                 else:
                     recent.clear()

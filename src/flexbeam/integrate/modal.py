@@ -38,8 +38,8 @@ _FAILURES = (_ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED, _ADV_JUMPING)  # the 
 _INFO_T0, _INFO_REJECT = 5, 6
 _REJECT_CAUSES = ("error estimate", "energy balance", "collocation not converging", "event search undecided")
 _INFO_STEP = _INFO_REJECT + len(_REJECT_CAUSES)
-_INFO_JUMPS = _INFO_STEP + 1
-_INFO_SIZE = _INFO_JUMPS + 5
+_INFO_JUMPS, _JUMP_FIELDS = _INFO_STEP + 1, 5
+_INFO_SIZE = _INFO_JUMPS + _JUMP_FIELDS
 #: EventKind by the kernel's code (a tuple look-up: the enum's call costs microseconds)
 _EVENT_KINDS = (None, *EventKind)
 #: the event bits of a phase's events tuple, filled as met
@@ -299,7 +299,7 @@ class ModalStepper:
         elif code == _ADV_STALLED:
             failure = stalled_message(phase.name, t1, float(state[1]), info)
         elif code == _ADV_JUMPING:
-            failure = jumping_message(phase.name, t1, info[_INFO_JUMPS : _INFO_JUMPS + 5])
+            failure = jumping_message(phase.name, t1, info[_INFO_JUMPS : _INFO_JUMPS + _JUMP_FIELDS])
         run = PhaseRun(t1, y1, event, dense, steps, nfev, failure, int(info[4]), switches=parts)
         if handed.start is not None:
             run.t0, run.y0 = handed.start
