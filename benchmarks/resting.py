@@ -43,10 +43,35 @@ def measure(resting: float, t_end: float) -> dict:
     }
 
 
+WINDOW_POINTS = 20001
+WINDOW_EDGES = (1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 15.0, 20.0, 30.0, 50.0, 100.0)
+
+
+def windows(t_end: float) -> None:
+    """Print the resting contact's steps per second and ringing in the windows WINDOW_EDGES up to ``t_end``."""
+    case = fb.load_case("seed-experiment", {"solver.t_end": t_end, "solver.memory_limit": 2e10})
+    sol = fb.simulate(case, "ccfm")
+    seg = sol.source.run.segments[-1]
+    t = seg.dense.records[:, 0]
+    print(f"resting contact from {seg.t0:.3f} s, {len(t)} steps")
+    print("| window [s] | steps/s | F mean [N] | F std (ringing) [N] |")
+    print("|---|---|---|---|")
+    for a, b in zip(WINDOW_EDGES[:-1], WINDOW_EDGES[1:]):
+        if b > t_end or a < seg.t0:
+            continue
+        force = sol.source.force_many(np.linspace(a, b, WINDOW_POINTS), 0)
+        steps = np.count_nonzero((t >= a) & (t < b)) / (b - a)
+        print(f"| {a:g}-{b:g} | {steps:.0f} | {force.mean():.4f} | {force.std():.3g} |")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--t-end", type=float, default=3.0)
+    ap.add_argument("--windows", action="store_true", help="steps/s and ringing by window, default bound only")
     args = ap.parse_args()
+    if args.windows:
+        windows(args.t_end)
+        return
     default = base.RESTING_DURATIONS
     rows = [measure(math.inf, args.t_end), measure(default, args.t_end)]
     base.RESTING_DURATIONS = default
