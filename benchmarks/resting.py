@@ -1,8 +1,9 @@
 """CCFM's resting contact (issue 25, item 3): steps per simulated second while the seed beam rests on the sphere.
 
 Runs ``seed-experiment`` to 3 s with CCFM twice in one process: with the step bound t_c / CONTACT_STEPS lifted once a
-contact has lasted RESTING_DURATIONS t_c (``flexbeam.methods.base``, the default) and with it kept for the whole
-contact (RESTING_DURATIONS = inf, the behaviour before), and prints a Markdown table: the resting phase's steps, its
+contact has lasted RESTING_DURATIONS t_c (``flexbeam.methods.base``, the default: the resting contact then collocates
+at Radau IIA's nodes, ``kernels/src/propagation.c``) and with it kept for the whole contact (RESTING_DURATIONS = inf,
+the behaviour before, Gauss's nodes throughout), and prints a Markdown table: the resting phase's steps, its
 steps per simulated second overall and from t = 2 s, the wall time and the contact force at t_end.
 
     python benchmarks/resting.py [--t-end 3.0]

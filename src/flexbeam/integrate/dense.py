@@ -17,14 +17,48 @@ if TYPE_CHECKING:
     from .modal import ModalStepper
 
 #: floats at the end of a step record that summarise the step (FB_RECORD_SUMMARY in kernels/src/phase.h): the total
-#: and kinetic energy at its end, the tip deflection at its FB_P Gauss nodes
+#: and kinetic energy at its end, the tip deflection at its FB_P nodes; the float before them says which nodes
 SUMMARY = 6
+#: the Radau IIA nodes on (0, 1] and their weights, a resting contact's collocation (kernels/src/propagation.c:
+#: x = 2 c - 1 the zeros of P_4(x) - P_3(x) and 1; weights (1 + x) / (32 P_3(x)^2) and 1/16; computed to 30 digits)
+RADAU_NODES = np.array([0.088587959512703947395546143769456, 0.409466864440734710864926252068820,
+                        0.787659461760847056025241889875996, 1.0])  # fmt: skip
+RADAU_WEIGHTS = np.array([0.220462211176768375275478, 0.388193468843171880780232, 0.328844319980059743944289,
+                          0.0625])  # fmt: skip
 
 
 def gauss_nodes() -> tuple[np.ndarray, np.ndarray]:
-    """The 4 Gauss-Legendre nodes and weights on (0, 1) of the collocation."""
+    """The 4 Gauss-Legendre nodes and weights on (0, 1) of the collocation (every step but a resting contact's)."""
     x, w = nm.leggauss(4)
     return 0.5 * (x + 1.0), 0.5 * w
+
+
+def radau_steps(records: np.ndarray) -> np.ndarray:
+    """Which step records were collocated at Radau IIA's nodes (a resting contact's; the flag before the summary)."""
+    return records[:, -SUMMARY - 1] != 0.0
+
+
+def step_nodes(records: np.ndarray) -> np.ndarray:
+    """Each step record's nodes on (0, 1] (steps x 4): Gauss's, or Radau's where :func:`radau_steps`."""
+    c, _ = gauss_nodes()
+    radau = radau_steps(records)
+    if not radau.any():
+        return np.broadcast_to(c, (records.shape[0], c.size))
+    return np.where(radau[:, None], RADAU_NODES[None, :], c[None, :])
+
+
+def step_quadrature(records: np.ndarray, values: np.ndarray) -> float:
+    """sum over the steps of h x the step's quadrature of its nodal ``values`` (steps x 4), correctly rounded: each
+    step with its own nodes' weights (:func:`step_nodes`)."""
+    _, w = gauss_nodes()
+    radau = radau_steps(records)
+    h = records[:, 1]
+    if not radau.any():
+        return nm.fsum(h * nm.matmul(np.ascontiguousarray(values), w))
+    gauss = ~radau
+    parts = [h[gauss] * nm.matmul(np.ascontiguousarray(values[gauss]), w),
+             h[radau] * nm.matmul(np.ascontiguousarray(values[radau]), RADAU_WEIGHTS)]  # fmt: skip
+    return nm.fsum(np.concatenate(parts))
 
 
 class ModalDense:
@@ -105,36 +139,33 @@ class ModalDense:
         return self.records[:, off : off + 4]
 
     def impulse(self, pair: int = 0) -> float:
-        """int F dt of a pair over the phase: each step's Gauss quadrature of its nodal contact force (or
-        multiplier)."""
-        c, w = gauss_nodes()
-        return nm.fsum(self.records[:, 1] * nm.matmul(np.ascontiguousarray(self._forces(pair)), w))
+        """int F dt of a pair over the phase: each step's quadrature (:func:`step_quadrature`) of its nodal contact
+        force (or multiplier)."""
+        return step_quadrature(self.records, self._forces(pair))
 
     def tangential_impulse(self, pair: int, sigma: float) -> float:
         """int F_t dt of a pair over the phase, F_t = sigma F + lambda_t: its slip's kinetic friction (``sigma``, 0
         unless it slips) and its nodal tangential unknown (a stick's multiplier, or the regularised law's force
-        sigma(v_t) F: zero otherwise; ``kernels/src/nodal.c``), by each step's Gauss quadrature of the nodal values."""
-        _, w = gauss_nodes()
+        sigma(v_t) F: zero otherwise; ``kernels/src/nodal.c``), by each step's quadrature of the nodal values."""
         N, S = self.stepper.basis.N, self.stepper.system.pairs
         off = 4 + 6 * N + 4 * S + 8 + 4 * pair
-        lam = np.ascontiguousarray(self.records[:, off : off + 4])
-        return sigma * self.impulse(pair) + nm.fsum(self.records[:, 1] * nm.matmul(lam, w))
+        return sigma * self.impulse(pair) + step_quadrature(self.records, self.records[:, off : off + 4])
 
     def multipliers(self, pair: int, times: np.ndarray) -> np.ndarray:
         """A pair's tangential multiplier lambda_t (stick; zero otherwise) at ``times`` inside the phase: the Lagrange
         interpolant of its step's nodal values."""
-        c, _ = gauss_nodes()
         N, S = self.stepper.basis.N, self.stepper.system.pairs
         off = 4 + 6 * N + 4 * S + 8 + 4 * pair
         i = np.clip(np.searchsorted(self.records[:, 0], times, side="right") - 1, 0, self.records.shape[0] - 1)
         x = (np.asarray(times, float) - self.records[i, 0]) / self.records[i, 1]
         lam = self.records[i, off : off + 4]
+        c = step_nodes(self.records[i])
         out = np.zeros(x.size)
         for j in range(4):
             lj = np.ones(x.size)
             for m in range(4):
                 if m != j:
-                    lj *= (x - c[m]) / (c[j] - c[m])
+                    lj *= (x - c[:, m]) / (c[:, j] - c[:, m])
             out += lj * lam[:, j]
         return out
 
@@ -145,13 +176,11 @@ class ModalDense:
         return self.ends, tail[:, 0], tail[:, 1]
 
     def tip_nodes(self) -> tuple[np.ndarray, np.ndarray]:
-        """(times, values) of the tip deflection at every step's Gauss nodes, as the integrator evaluated it."""
-        c, _ = gauss_nodes()
-        t = self.records[:, 0:1] + self.records[:, 1:2] * c[None, :]
+        """(times, values) of the tip deflection at every step's nodes, as the integrator evaluated it."""
+        t = self.records[:, 0:1] + self.records[:, 1:2] * step_nodes(self.records)
         return t.ravel(), self.records[:, -SUMMARY + 2 :].ravel()
 
     def nodal_forces(self, pair: int = 0) -> tuple[np.ndarray, np.ndarray]:
-        """(times, values) of a pair's contact force (or multiplier) at every step's Gauss nodes."""
-        c, _ = gauss_nodes()
-        t = self.records[:, 0:1] + self.records[:, 1:2] * c[None, :]
+        """(times, values) of a pair's contact force (or multiplier) at every step's nodes."""
+        t = self.records[:, 0:1] + self.records[:, 1:2] * step_nodes(self.records)
         return t.ravel(), self._forces(pair).ravel()

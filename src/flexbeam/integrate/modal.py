@@ -44,6 +44,8 @@ _INFO_SIZE = _INFO_JUMPS + _JUMP_FIELDS
 _EVENT_KINDS = (None, *EventKind)
 #: the event bits of a phase's events tuple, filled as met
 _EVENT_MASKS: dict[tuple, int] = {}
+#: the control buffer's bit (among the event bits) for a phase collocated at Radau IIA's nodes (FB_CTRL_RADAU)
+_RADAU_BIT = 128
 _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 4, EventKind.STOP: 8,
                EventKind.UNSTICK_PLUS: 16, EventKind.UNSTICK_MINUS: 32, EventKind.PAINLEVE: 64}  # fmt: skip
 #: the largest block of step records the kernel fills in one call (the blocks grow from 64 by doubling); a stepper
@@ -245,13 +247,16 @@ class ModalStepper:
         # the phase's step bound holds up to phase.max_step_until (an impact's force pulse); the rest of the phase
         # continues from the same state buffer (its nodal forcing the guess) under the stepper's own bound alone -- all
         # of a phase that starts past it (a friction event's, or another pair's separation, in an old contact)
+        # -- and collocates at Radau IIA's nodes after it (a contact under its law that has outlasted its impact: a
+        # resting contact, whose spring the step no longer resolves; kernels/src/propagation.c, fb_radau)
         until = phase.max_step_until
+        rests = math.isfinite(until)
         if t < until:
-            legs = [(min(self.max_step, phase.max_step), min(until, t_end))]
+            legs = [(min(self.max_step, phase.max_step), min(until, t_end), False)]
             if until < t_end:
-                legs.append((self.max_step, t_end))
+                legs.append((self.max_step, t_end, rests))
         else:
-            legs = [(self.max_step, t_end)]
+            legs = [(self.max_step, t_end, rests)]
         chunks: list[np.ndarray] = []
         handed = _Handed(float(t), np.array(y, float))
         # the friction switches the kernel takes (rows of the switch buffer), with the steps and node evaluations of
@@ -261,12 +266,14 @@ class ModalStepper:
         steps, nfev = 0, 0
         info = np.empty(_INFO_SIZE)
         ctrl = None
-        for hmax, leg_end in legs:
+        for hmax, leg_end, radau in legs:
             if ctrl is None:
                 ctrl = self._controls(phase, hmax)
             else:  # (the friction rows as the kernel left them)
                 ctrl = ctrl.copy()
                 ctrl[2] = hmax
+            if radau:
+                ctrl[4] = float(int(ctrl[4]) | _RADAU_BIT)
             info.fill(0.0)
             info[_INFO_T0] = state[0]  # the kernel sets it only at the phase's start (its effort budget)
             code = self._run(ctrl, state, leg_end, info, chunks, handed)

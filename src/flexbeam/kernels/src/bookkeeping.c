@@ -163,7 +163,7 @@ static double base_boundary_at(const fb_phase *ph, double t, const double *eta) 
  * step's nodal forcing (the damped modes' dissipation, fb_damping_books). */
 void fb_step_books(const fb_phase *ph, const fb_work *w, double t, double h, const double *eta, const double *v,
                    const fb_step *st, const double *f, double *red, double *rwd, double *dEd, double *dW) {
-    const fb_tables *tb = fb_gauss();
+    const fb_tables *tb = ph->tb;
     const fb_model *m = ph->m;
     int moving = fb_base_moving(m), off = m->nrigid - m->ngiven;
     double ed = 0.0, wd = 0.0, wb = 0.0;
@@ -209,7 +209,7 @@ double fb_dense_layout(const fb_phase *ph, const double *rec, double t, double *
     if (x > 1.0) x = 1.0;
     const double *eta0 = rec + 4, *v0 = eta0 + N, *f = v0 + N;
     double z[FB_MAXN], zd[FB_MAXN];
-    fb_dense dd = {ph, rec[0], rec[1], eta0, v0, f, 0};
+    fb_dense dd = {ph, rec[0], rec[1], eta0, v0, f, 0, fb_record_tables(rec, fb_record_size(N, ph->m->npairs))};
     fb_dense_state(&dd, x, eta, v);
     fb_to_physical(b, eta, z);
     fb_to_physical(b, v, zd);
@@ -239,11 +239,12 @@ int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, i
         while (r + 1 < nrec && t > records[(size_t)r * R] + records[(size_t)r * R + 1]) r++;
         const double *rec = records + (size_t)r * R;
         const double *eta0 = rec + 4, *v0 = eta0 + N, *red = v0 + N + FB_P * N + S * FB_P, *rwd = red + FB_P;
+        const fb_tables *tb = fb_record_tables(rec, R);
         double eta[FB_MAXN], v[FB_MAXN], *y = Y + (size_t)i * size;
         double x = fb_dense_layout(&ph, rec, t, eta, v, y);
         double Ed = rec[2], W = rec[3];
         for (int j = 0; j < FB_P; j++) {
-            double li = fb_lagrange_integral(j, x);
+            double li = fb_lagrange_integral(tb, j, x);
             Ed += rec[1] * li * red[j];
             W += rec[1] * li * rwd[j];
         }

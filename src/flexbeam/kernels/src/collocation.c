@@ -1,4 +1,4 @@
-/* One step of Gauss collocation on the exactly propagated modal equations.
+/* One step of collocation (Gauss's nodes, Radau IIA's at rest: ph->tb) on the exactly propagated modal equations.
  *
  * Linearising M(z) z'' = Q + J^T F about the undeformed beam at rest gives M0 z'' + K0 z = R with
  *   R = M0 M(z)^-1 (Q + J^T F) + K0 z,
@@ -6,7 +6,7 @@
  * M(z) = M0 + ds e0 e0^T (ds = q^T Mc q), so by Sherman-Morrison
  *   M0 M^-1 x = x - c e0 (row0 . x),  c = ds / (1 + ds (M0^-1)_00),  row0 = e0^T M0^-1.
  * In modal coordinates z = Psi eta: eta'' + diag(w^2) eta = f = Psi^T R (exact propagation, propagation.c)
- * with f the interpolant of its values at the FB_P Gauss nodes, found by fixed-point iteration; the contact
+ * with f the interpolant of its values at the FB_P nodes, found by fixed-point iteration; the contact
  * forces (CCFM) or multipliers (CCM) of the pairs in contact at the nodes are solved inside each sweep by Newton's
  * method with their exact linear modal response (pairs and nodes together), so a stiff contact needs no small
  * step.  With theta(t) prescribed, z = q and M = M_qq is constant: R = Q_q - m_tq theta''.  A compliant support is
@@ -46,6 +46,7 @@ void fb_phase_init(fb_phase *ph, const fb_model *m, const fb_basis *b, const fb_
     ph->atol = atol;
     ph->omega_rigid = omega_rigid;
     ph->row0_q = fb_joint(m)->row0_coupled(m, b);
+    ph->tb = fb_gauss();
 }
 
 void fb_eval_node(const fb_phase *ph, double t, const double *eta, const double *v, int want, fb_node *out) {
@@ -128,14 +129,15 @@ fb_gap fb_gap_at(const fb_phase *ph, int pair, double t, const double *eta, cons
 }
 
 static void ensure_weights(const fb_phase *ph, fb_work *w, double h) {
-    if (w->h == h) return;
-    const fb_tables *tb = fb_gauss();
+    const fb_tables *tb = ph->tb;
+    if (w->h == h && w->tb == tb) return;
     int N = ph->b->N;
     for (int k = 0; k < N; k++) {
-        for (int i = 0; i < FB_P; i++) fb_mode_weights(ph->b, k, h, tb->c[i], &w->W[k][i]);
-        fb_mode_weights(ph->b, k, h, 1.0, &w->W[k][FB_P]);
+        for (int i = 0; i < FB_P; i++) fb_mode_weights(tb, ph->b, k, h, tb->c[i], &w->W[k][i]);
+        fb_mode_weights(tb, ph->b, k, h, 1.0, &w->W[k][FB_P]);
     }
     w->h = h;
+    w->tb = tb;
 }
 
 /* The state error (in units of ``tol``) a multiplier error ``L`` of pair ``l`` makes when it acts over the step as a
@@ -167,7 +169,7 @@ static double multiplier_effect(const fb_phase *ph, const fb_node *end, int l, i
  * to an underflow (a flexible bar held on two stops, fast_rtol 1e-9 and below). */
 static double multiplier_error(const fb_phase *ph, const fb_work *w, const fb_node *end, double h, double tol,
                                double xnorm, double err) {
-    const fb_tables *tb = fb_gauss();
+    const fb_tables *tb = ph->tb;
     double noise = MULTIPLIER_ROUNDOFF * DBL_EPSILON * xnorm / tol;
     for (int l = 0; l < ph->c.npairs; l++) {
         if (ph->c.friction && ph->c.stick[l]) {
@@ -194,11 +196,57 @@ static double multiplier_error(const fb_phase *ph, const fb_work *w, const fb_no
     return err;
 }
 
+/* The step's error estimate, squared (energy norm): the defect of the forcing interpolant at the step end (w->end,
+ * evaluated), d = f(t0 + h) - sum_j l_j(1) f_j ~ f^(p) h^p / p!, propagated as a forcing error: velocity
+ * h d / (p + 1), displacement d min(h^2 / ((p + 1)(p + 2)), 2 / w^2).  The collocation end state itself is
+ * superconvergent (order 2p), so this estimate is conservative.  Radau's nodes end at the step's end, where the
+ * collocation leaves no defect: theirs is taken at the step's start (one more evaluation), d = f(t0) -
+ * sum_j l_j(0) f_j, of the same order (the node polynomial's |prod_j c_j| = 0.0286 there against Gauss's 0.0143 at
+ * the end; their end state is of order 2p - 1). */
+static double defect_error2(const fb_phase *ph, fb_work *w, double t0, double h, const double *eta0, const double *v0,
+                            const double *f) {
+    const fb_tables *tb = ph->tb;
+    int N = ph->b->N, S = ph->c.npairs;
+    fb_node *at = &w->end;
+    const double *ld = tb->lend; /* l_j at the defect's point */
+    if (tb->c[FB_P - 1] == 1.0) {
+        at = &w->start;
+        fb_eval_node_acc(ph, t0, eta0, v0, FB_WANT_GAP, 1, at);
+        ld = tb->Vinv[0];
+    }
+    double Fe[FB_MAX_PAIRS], Fte[FB_MAX_PAIRS];
+    for (int l = 0; l < S; l++) {
+        Fe[l] = Fte[l] = 0.0;
+        if (ph->c.friction && ph->c.stick[l])
+            for (int j = 0; j < FB_P; j++) Fte[l] += ld[j] * w->Ft[l][j];
+        if (ph->c.mode[l] == FB_MODE_FORCE) {
+            Fe[l] = fb_law_force(ph->c.p[l], -at->gap[l].delta, -at->gap[l].rate, NULL, NULL, NULL);
+        } else if (ph->c.mode[l] == FB_MODE_CONSTRAINT) {
+            for (int j = 0; j < FB_P; j++) Fe[l] += ld[j] * w->F[l][j];
+        }
+        if (!ph->c.stick[l]) Fte[l] = fb_regularised_force(ph, at, l, Fe[l]); /* the regularised law's there */
+    }
+    double e2 = 0.0, lim0 = h * h / ((FB_P + 1.0) * (FB_P + 2.0));
+    for (int k = 0; k < N; k++) {
+        double d = at->smooth[k];
+        for (int l = 0; l < S; l++) {
+            if (ph->c.mode[l] != FB_MODE_NONE) d += at->b[l][k] * Fe[l];
+            if (fb_tangential_unknown(&ph->c, l)) d += at->bt[l][k] * Fte[l];
+        }
+        for (int j = 0; j < FB_P; j++) d -= ld[j] * f[j * N + k];
+        double om = ph->b->omega[k], lim = om > 0.0 ? fmin(lim0, 2.0 / (om * om)) : lim0;
+        double dv = h * fabs(d) / (FB_P + 1.0), de = fabs(d) * lim;
+        double ow = om > 0.0 ? om : ph->omega_rigid;
+        e2 += ow * ow * de * de + dv * dv;
+    }
+    return e2;
+}
+
 /* One step from (eta0, v0) over [t0, t0 + h].  f (FB_P x N) holds the guess of the nodal forcing and returns the
  * converged one, w->F the nodal contact forces.  Returns 0, or -1 for a non-finite state. */
 int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const double *eta0, const double *v0,
                  double *f, fb_step *out) {
-    const fb_tables *tb = fb_gauss();
+    const fb_tables *tb = ph->tb;
     int N = ph->b->N, S = ph->c.npairs;
     ensure_weights(ph, w, h);
     double g0[FB_MAX_PAIRS], g0t[FB_MAX_PAIRS];
@@ -256,37 +304,9 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
     fb_propagate(ph->b, &w->W[0][FB_P], FB_NPTS, eta0, v0, f, out->eta1, out->v1);
     for (int k = 0; k < N; k++)
         if (!isfinite(out->eta1[k]) || !isfinite(out->v1[k])) return -1;
-    /* error estimate: the defect of the forcing interpolant at the step end, d = f(t0 + h) - sum_j l_j(1) f_j
-     * ~ f^(p) h^p / p! (one more evaluation), propagated as a forcing error: velocity h d / (p + 1), displacement
-     * d min(h^2 / ((p + 1)(p + 2)), 2 / w^2).  The collocation end state itself is superconvergent (order 2p),
-     * so this estimate is conservative. */
     fb_node *end = &w->end;
     fb_eval_node_acc(ph, t0 + h, out->eta1, out->v1, FB_WANT_GAP, 1, end);
-    double Fe[FB_MAX_PAIRS], Fte[FB_MAX_PAIRS];
-    for (int l = 0; l < S; l++) {
-        Fe[l] = Fte[l] = 0.0;
-        if (ph->c.friction && ph->c.stick[l])
-            for (int j = 0; j < FB_P; j++) Fte[l] += fb_lagrange(j, 1.0) * w->Ft[l][j];
-        if (ph->c.mode[l] == FB_MODE_FORCE) {
-            Fe[l] = fb_law_force(ph->c.p[l], -end->gap[l].delta, -end->gap[l].rate, NULL, NULL, NULL);
-        } else if (ph->c.mode[l] == FB_MODE_CONSTRAINT) {
-            for (int j = 0; j < FB_P; j++) Fe[l] += fb_lagrange(j, 1.0) * w->F[l][j];
-        }
-        if (!ph->c.stick[l]) Fte[l] = fb_regularised_force(ph, end, l, Fe[l]); /* the regularised law's at the end */
-    }
-    double e2 = 0.0, lim0 = h * h / ((FB_P + 1.0) * (FB_P + 2.0));
-    for (int k = 0; k < N; k++) {
-        double d = end->smooth[k];
-        for (int l = 0; l < S; l++) {
-            if (ph->c.mode[l] != FB_MODE_NONE) d += end->b[l][k] * Fe[l];
-            if (fb_tangential_unknown(&ph->c, l)) d += end->bt[l][k] * Fte[l];
-        }
-        for (int j = 0; j < FB_P; j++) d -= tb->lend[j] * f[j * N + k];
-        double om = ph->b->omega[k], lim = om > 0.0 ? fmin(lim0, 2.0 / (om * om)) : lim0;
-        double dv = h * fabs(d) / (FB_P + 1.0), de = fabs(d) * lim;
-        double ow = om > 0.0 ? om : ph->omega_rigid;
-        e2 += ow * ow * de * de + dv * dv;
-    }
+    double e2 = defect_error2(ph, w, t0, h, eta0, v0, f);
     tol = fb_tolerance(ph, eta0, v0, out->eta1, out->v1);
     out->err = sqrt(e2) / tol;
     double xnorm = fmax(fb_energy_norm(ph, eta0, v0), fb_energy_norm(ph, out->eta1, out->v1));
@@ -296,11 +316,10 @@ int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const doub
 
 /* Values at the next step's nodes (1 + ratio c_i) of the interpolant through the nodal rows of f (N per node)
  * and of each pair's F. */
-void fb_extrapolate(int N, int S, double ratio, double *f, double F[][FB_P]) {
-    const fb_tables *tb = fb_gauss();
+void fb_extrapolate(const fb_tables *tb, int N, int S, double ratio, double *f, double F[][FB_P]) {
     double L[FB_P][FB_P], g[FB_P * FB_MAXN], G[FB_MAX_PAIRS][FB_P];
     for (int i = 0; i < FB_P; i++)
-        for (int j = 0; j < FB_P; j++) L[i][j] = fb_lagrange(j, 1.0 + ratio * tb->c[i]);
+        for (int j = 0; j < FB_P; j++) L[i][j] = fb_lagrange(tb, j, 1.0 + ratio * tb->c[i]);
     for (int i = 0; i < FB_P; i++) {
         for (int k = 0; k < S; k++) G[k][i] = 0.0;
         for (int q = 0; q < N; q++) g[i * N + q] = 0.0;

@@ -138,7 +138,7 @@ static void moments(const damped_step *ds, double *B, double *V) {
     for (int k = 1; k < p; k++) V[k] = k * B[k - 1];
 }
 
-void fb_weights_damped(double w, double d, double h, double s, fb_weight *out) {
+void fb_weights_damped(const fb_tables *tb, double w, double d, double h, double s, fb_weight *out) {
     double T = s * h, B[FB_P], V[FB_P];
     damped_step ds;
     setup(w, d, T, &ds);
@@ -147,7 +147,7 @@ void fb_weights_damped(double w, double d, double h, double s, fb_weight *out) {
     out->CV = ds.VV;
     out->SW = T * ds.eS;
     out->WS = w * w * T * ds.eS;
-    fb_weight_nodes(T, s, B, V, out);
+    fb_weight_nodes(tb, T, s, B, V, out);
 }
 
 void fb_hop_weights_damped(double w, double d, double T, fb_hop *out) {
@@ -166,11 +166,11 @@ void fb_hop_weights_damped(double w, double d, double T, fb_hop *out) {
 }
 
 /* Mode k's weights: damped when the basis has a damping coefficient for it, else propagation.c's. */
-void fb_mode_weights(const fb_basis *b, int k, double h, double s, fb_weight *out) {
+void fb_mode_weights(const fb_tables *tb, const fb_basis *b, int k, double h, double s, fb_weight *out) {
     if (b->damp && b->damp[k] > 0.0 && b->omega[k] > 0.0)
-        fb_weights_damped(b->omega[k], b->damp[k], h, s, out);
+        fb_weights_damped(tb, b->omega[k], b->damp[k], h, s, out);
     else
-        fb_weights(b->omega[k], h, s, out);
+        fb_weights(tb, b->omega[k], h, s, out);
 }
 
 void fb_mode_hop(const fb_basis *b, int k, double T, fb_hop *out) {
@@ -250,7 +250,7 @@ void fb_damping_books(const fb_phase *ph, const fb_work *w, double h, const doub
                       const double *eta1, const double *v1, const double *f, double *red) {
     const fb_basis *b = ph->b;
     if (!b->damp) return;
-    const fb_tables *tb = fb_gauss();
+    const fb_tables *tb = ph->tb;
     int N = b->N;
     double corr = 0.0;
     for (int k = 0; k < N; k++) {

@@ -18,14 +18,13 @@
 #include "surface.h"
 
 #define SAMPLES 16      /* gap samples per step when the nodes do not decide (refined x4 up to twice) */
-#define LEBESGUE 3.0    /* > max over [0, 1] of sum_j |l_j(s)| for the Gauss nodes (2.856 for p = 4) */
 #define SURFACE_NOISE 1e-9 /* [m] a start on the surface counts as crossing only this far beyond it */
 #define HERMITE_PTS 16  /* sub-intervals on which a Hermite-predicted dip is checked and searched */
 
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v) {
     int N = d->ph->b->N;
     fb_weight W[FB_MAXN];
-    for (int k = 0; k < N; k++) fb_mode_weights(d->ph->b, k, d->h, x, &W[k]);
+    for (int k = 0; k < N; k++) fb_mode_weights(d->tb, d->ph->b, k, d->h, x, &W[k]);
     fb_propagate(d->ph->b, W, 1, d->eta0, d->v0, d->f, eta, v);
 }
 
@@ -163,7 +162,7 @@ static double max_forcing(const fb_dense *d, int k) {
 }
 
 /* Is the obstacle out of reach within the step?  Each mode's velocity stays below its free amplitude
- * sqrt(v^2 + w^2 eta^2) plus h LEBESGUE max_j |f_jk| (a damped mode's too: its energy (v^2 + w^2 eta^2) / 2
+ * sqrt(v^2 + w^2 eta^2) plus h L max_j |f_jk|, L the nodes' Lebesgue constant (fb_tables; a damped mode's too: its energy (v^2 + w^2 eta^2) / 2
  * only decreases, and its impulse response's velocity stays below 1), so the gap's rate stays below
  * R = sum_k |j_k| (that bound)
  * (+ |J_theta| max|theta'| for a prescribed theta: the joint's rate_bound; |J_theta| <= |r_P|; + max|v_O| for an
@@ -176,7 +175,7 @@ static int far(const fb_dense *d, const double *jm, double gap0) {
     for (int k = 0; k < b->N; k++) {
         double om = b->omega[k];
         R += fabs(jm[k]) *
-             (sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]) + d->h * LEBESGUE * max_forcing(d, k));
+             (sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]) + d->h * d->tb->lebesgue * max_forcing(d, k));
     }
     const fb_model *m = d->ph->m;
     double given = fb_joint(m)->rate_bound(m, d->t0, d->t0 + d->h);
@@ -203,7 +202,7 @@ double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double
     for (int k = 0; k < b->N; k++) {
         if (jm[k] == 0.0) continue; /* adds nothing */
         fb_forcing fc;
-        fb_forcing_bound(d->f, b->N, k, &fc);
+        fb_forcing_bound(d->tb, d->f, b->N, k, &fc);
         double om = b->omega[k], fm = fc.max;
         double amp = om > 0.0 ? sqrt(d->eta0[k] * d->eta0[k] + (d->v0[k] / om) * (d->v0[k] / om)) : 0.0;
         if (om * T > 0.25 * FB_PI) {
@@ -359,7 +358,7 @@ double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, con
                 }
             return FB_UNDECIDED;
         }
-        if (!have_A) fb_monomial(d->f, N, A), have_A = 1;
+        if (!have_A) fb_monomial(d->tb, d->f, N, A), have_A = 1;
         m = levels[level++];
         dx = 1.0 / m;
         s = (int)fmin(floor(xa * m), m - 1);

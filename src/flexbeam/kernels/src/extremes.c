@@ -347,7 +347,7 @@ void fb_tip_slacks(const fb_model *m, const fb_basis *b, const double *records, 
         } else {
             while (cur < r1) {
                 memcpy(A[0], A[1], sizeof A[1]), memcpy(V[0], V[1], sizeof V[1]), memcpy(E[0], E[1], sizeof E[1]);
-                fb_tip_step_bounds(p.tip, b, records + (size_t)++cur * p.R, A[1], V[1], E[1]);
+                fb_tip_step_bounds(p.tip, b, records + (size_t)++cur * p.R, p.R, A[1], V[1], E[1]);
                 fb_tip_combine(p.tip, A[1], V[1], E[1], th, R, &own);
             }
             if (r0 < r1) { /* across the step's start: both steps' bounds */

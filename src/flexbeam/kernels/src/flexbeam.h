@@ -256,14 +256,18 @@ void fb_to_physical(const fb_basis *b, const double *eta, double *z);
 void fb_project(const fb_basis *b, const double *x, double *out); /* out = Psi^T x */
 void fb_project_abs(const fb_basis *b, const double *x, double *out); /* out = |Psi|^T x */
 
-/* Gauss-Legendre tables on (0, 1) for FB_P nodes: nodes c, weights w, the Vandermonde inverse (monomial
- * coefficients from nodal values), the projection on the top Legendre polynomial (the multiplier's error), and
- * the Lagrange basis polynomials' values at the step end. */
+/* A collocation's node set on [0, 1] for FB_P nodes -- Gauss-Legendre (fb_gauss, every phase but a resting
+ * contact's) or Radau IIA (fb_radau, a resting contact's: propagation.c) -- its nodes c, weights w, the Vandermonde
+ * inverse (monomial coefficients from nodal values), the projection on the top Legendre polynomial (the
+ * multiplier's error), the Lagrange basis polynomials' values at the step end, and a bound on their Lebesgue
+ * function (the largest factor from nodal values to the interpolant's on [0, 1]: events.c). */
 typedef struct {
     double c[FB_P], w[FB_P], Vinv[FB_P][FB_P], top[FB_P], lend[FB_P];
+    double lebesgue; /* > max over [0, 1] of sum_j |l_j(s)|: 3 for Gauss's (2.856), 3.5 for Radau's (3.447) */
 } fb_tables;
 
 const fb_tables *fb_gauss(void);
+const fb_tables *fb_radau(void);
 
 /* Propagation weights of one mode for the fraction s of a step h: free response and the response to
  * each nodal forcing value (see propagation.c). */
@@ -273,8 +277,8 @@ typedef struct {
     double RE[FB_P], RV[FB_P]; /* position and velocity response to nodal forcing values */
 } fb_weight;
 
-void fb_weights(double w, double h, double s, fb_weight *out);
-void fb_weight_nodes(double T, double s, const double *Sm, const double *Cm, fb_weight *out);
+void fb_weights(const fb_tables *tb, double w, double h, double s, fb_weight *out);
+void fb_weight_nodes(const fb_tables *tb, double T, double s, const double *Sm, const double *Cm, fb_weight *out);
 void fb_moments(double th, double *Cm, double *Sm);
 
 /* A hop of length T: free response and the responses to the monomials u^m of u in [0, 1]. */
@@ -284,17 +288,17 @@ typedef struct {
 
 void fb_hop_weights(double w, double T, fb_hop *out);
 /* The damped modes (damped.c): d = 2 zeta w, the basis's damp */
-void fb_weights_damped(double w, double d, double h, double s, fb_weight *out);
+void fb_weights_damped(const fb_tables *tb, double w, double d, double h, double s, fb_weight *out);
 void fb_hop_weights_damped(double w, double d, double T, fb_hop *out);
-void fb_mode_weights(const fb_basis *b, int k, double h, double s, fb_weight *out);
+void fb_mode_weights(const fb_tables *tb, const fb_basis *b, int k, double h, double s, fb_weight *out);
 void fb_mode_hop(const fb_basis *b, int k, double T, fb_hop *out);
 double fb_damping_force(const fb_model *m, const double *qd, double *Q, int off);
 void fb_damping_return(const fb_basis *b, const double *v, double *R);
 double fb_mode_dissipation(double w, double d, double h, const double *a, double e0, double v0, double e1, double v1);
-void fb_monomial(const double *f, int N, double *A);
+void fb_monomial(const fb_tables *tb, const double *f, int N, double *A);
 void fb_propagate(const fb_basis *b, const fb_weight *W, int stride, const double *eta0, const double *v0,
                   const double *f, double *eta, double *v);
-double fb_lagrange_integral(int j, double s);
-double fb_lagrange(int j, double s);
+double fb_lagrange_integral(const fb_tables *tb, int j, double s);
+double fb_lagrange(const fb_tables *tb, int j, double s);
 
 #endif

@@ -29,8 +29,7 @@
 
 #define ROUNDING 16.0 /* ulp of sum_m sum_j |Vinv_mj f_j| covering the coefficients' and Horner's rounding */
 
-double fb_forcing_coefficients(const double *f, int N, int k, double *a, double *mag) {
-    const fb_tables *tb = fb_gauss();
+double fb_forcing_coefficients(const fb_tables *tb, const double *f, int N, int k, double *a, double *mag) {
     double F = 0.0, G = 0.0;
     for (int m = 0; m < FB_P; m++) {
         double s = 0.0;
@@ -73,9 +72,9 @@ static int turning_points(const double *a, double *r) {
     return count;
 }
 
-void fb_forcing_bound(const double *f, int N, int k, fb_forcing *out) {
+void fb_forcing_bound(const fb_tables *tb, const double *f, int N, int k, fb_forcing *out) {
     double a[FB_P], mag, u[4], val[4];
-    fb_forcing_coefficients(f, N, k, a, &mag);
+    fb_forcing_coefficients(tb, f, N, k, a, &mag);
     int n = 1 + turning_points(a, u + 1);
     u[0] = 0.0, u[n] = 1.0;
     double err = ROUNDING * DBL_EPSILON * mag, top = 0.0, var = 0.0;

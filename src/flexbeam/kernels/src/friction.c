@@ -126,7 +126,7 @@ static double fb_find_stop(const fb_dense *d, double start) {
     fb_hops H;
     double A[FB_P * FB_MAXN], eta[FB_MAXN], v[FB_MAXN];
     fb_hops_fill(b, d->h / STOP_SAMPLES, &H);
-    fb_monomial(d->f, N, A);
+    fb_monomial(d->tb, d->f, N, A);
     memcpy(eta, d->eta0, sizeof(double) * N);
     memcpy(v, d->v0, sizeof(double) * N);
     for (int i = 1; i <= STOP_SAMPLES; i++) {
@@ -145,10 +145,11 @@ static double fb_find_stop(const fb_dense *d, double start) {
 }
 
 /* mu_s F - |lambda_t| of the nodal interpolants at x plus the band ``noise``, and lambda_t in *lam. */
-static double stick_margin(double mus, const double *F, const double *Ft, double noise, double x, double *lam) {
+static double stick_margin(const fb_tables *tb, double mus, const double *F, const double *Ft, double noise, double x,
+                           double *lam) {
     double f = 0.0, l = 0.0;
     for (int j = 0; j < FB_P; j++) {
-        double w = fb_lagrange(j, x);
+        double w = fb_lagrange(tb, j, x);
         f += w * F[j];
         l += w * Ft[j];
     }
@@ -168,9 +169,9 @@ double fb_find_unstick(const fb_phase *ph, int k, const double *F, const double 
         big = fmax(big, fmax(mus * F[j], fabs(Ft[j])));
         if (fabs(Ft[j]) > fabs(top)) top = Ft[j];
     }
-    double noise = fmax(UNSTICK_RTOL * ph->rtol, UNSTICK_NOISE) * big, prev = stick_margin(mus, F, Ft, noise, 0.0, &lam);
+    double noise = fmax(UNSTICK_RTOL * ph->rtol, UNSTICK_NOISE) * big, prev = stick_margin(ph->tb, mus, F, Ft, noise, 0.0, &lam);
     for (int i = 1; i <= UNSTICK_SAMPLES; i++) {
-        double x = (double)i / UNSTICK_SAMPLES, cur = stick_margin(mus, F, Ft, noise, x, &lam);
+        double x = (double)i / UNSTICK_SAMPLES, cur = stick_margin(ph->tb, mus, F, Ft, noise, x, &lam);
         if (cur >= 0.0) {
             prev = cur;
             continue;
@@ -182,12 +183,12 @@ double fb_find_unstick(const fb_phase *ph, int k, const double *F, const double 
         double lo = (i - 1.0) / UNSTICK_SAMPLES, hi = x;
         for (int it = 0; it < 55 && hi - lo > 1e-15; it++) {
             double mid = 0.5 * (lo + hi);
-            if (stick_margin(mus, F, Ft, noise, mid, &lam) >= 0.0)
+            if (stick_margin(ph->tb, mus, F, Ft, noise, mid, &lam) >= 0.0)
                 lo = mid;
             else
                 hi = mid;
         }
-        stick_margin(mus, F, Ft, noise, hi, &lam);
+        stick_margin(ph->tb, mus, F, Ft, noise, hi, &lam);
         *kind = lam > 0.0 ? FB_EVENT_UNSTICK_PLUS : FB_EVENT_UNSTICK_MINUS;
         return hi;
     }
@@ -237,7 +238,7 @@ static double slip_mass_x(const fb_dense *d, double x) {
  * of the step's nodes and end below it, bisected against the sample before it (the step's start: above, its phase
  * began so); FB_NO_EVENT if a stays above it. */
 static double find_painleve(const fb_dense *d, const fb_work *w) {
-    const fb_tables *tb = fb_gauss();
+    const fb_tables *tb = d->tb;
     int k = d->pair;
     double lo = 0.0;
     for (int j = 0; j <= FB_P; j++) {

@@ -124,12 +124,14 @@ PyObject *py_moments(PyObject *self, PyObject *args) {
     return Py_BuildValue("(dddd)(dddd)", Cm[0], Cm[1], Cm[2], Cm[3], Sm[0], Sm[1], Sm[2], Sm[3]);
 }
 
-/* weights(w, h, s) -> (C, SW, WS, RE (4), RV (4)) of one mode at the fraction s of a step h (for the tests) */
+/* weights(w, h, s[, radau]) -> (C, SW, WS, RE (4), RV (4)) of one mode at the fraction s of a step h, its forcing
+ * given at Gauss's nodes (radau: Radau IIA's; for the tests) */
 PyObject *py_weights(PyObject *self, PyObject *args) {
     double w, h, s;
-    if (!PyArg_ParseTuple(args, "ddd", &w, &h, &s)) return NULL;
+    int radau = 0;
+    if (!PyArg_ParseTuple(args, "ddd|p", &w, &h, &s, &radau)) return NULL;
     fb_weight W;
-    fb_weights(w, h, s, &W);
+    fb_weights(radau ? fb_radau() : fb_gauss(), w, h, s, &W);
     return Py_BuildValue("ddd(dddd)(dddd)", W.C, W.SW, W.WS, W.RE[0], W.RE[1], W.RE[2], W.RE[3], W.RV[0], W.RV[1],
                          W.RV[2], W.RV[3]);
 }
@@ -140,7 +142,7 @@ PyObject *py_damped_weights(PyObject *self, PyObject *args) {
     double w, d, h, s;
     if (!PyArg_ParseTuple(args, "dddd", &w, &d, &h, &s)) return NULL;
     fb_weight W;
-    fb_weights_damped(w, d, h, s, &W);
+    fb_weights_damped(fb_gauss(), w, d, h, s, &W);
     return Py_BuildValue("dddd(dddd)(dddd)", W.C, W.SW, -W.WS, W.CV, W.RE[0], W.RE[1], W.RE[2], W.RE[3], W.RV[0],
                          W.RV[1], W.RV[2], W.RV[3]);
 }
@@ -277,7 +279,8 @@ PyObject *py_dense_bounds(PyObject *self, PyObject *args) {
     fb_phase ph;
     memset(&ph, 0, sizeof ph);
     ph.b = &bs;
-    fb_dense d = {&ph, 0.0, h, PTR(b[2]), PTR(b[3]), PTR(b[4]), 0};
+    ph.tb = fb_gauss();
+    fb_dense d = {&ph, 0.0, h, PTR(b[2]), PTR(b[3]), PTR(b[4]), 0, ph.tb};
     double curve = fb_dense_bounds(&d, PTR(b[5]), gamma, dx, &fast);
     release(b, 6);
     return Py_BuildValue("(dd)", curve, fast);
@@ -286,9 +289,11 @@ fail:
     return NULL;
 }
 
-/* nodes() -> the Gauss nodes of the collocation on (0, 1) */
+/* nodes([radau]) -> the collocation's Gauss nodes on (0, 1) (radau: its Radau IIA nodes on (0, 1]) */
 PyObject *py_nodes(PyObject *self, PyObject *args) {
-    const fb_tables *t = fb_gauss();
+    int radau = 0;
+    if (!PyArg_ParseTuple(args, "|p", &radau)) return NULL;
+    const fb_tables *t = radau ? fb_radau() : fb_gauss();
     return Py_BuildValue("dddd", t->c[0], t->c[1], t->c[2], t->c[3]);
 }
 

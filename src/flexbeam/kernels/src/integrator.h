@@ -24,6 +24,7 @@ typedef struct {
     double rtol, atol;
     double omega_rigid; /* the frequency that weighs a rigid-mode angle error in the energy norm [rad/s] */
     int row0_q;         /* (M0^-1)_0q != 0: the Sherman-Morrison correction needs K0 z (hub frame) */
+    const fb_tables *tb; /* the collocation's nodes: Gauss's, Radau's for a resting contact (FB_CTRL_RADAU) */
 } fb_phase;
 
 void fb_phase_init(fb_phase *ph, const fb_model *m, const fb_basis *b, const fb_contacts *c, double rtol,
@@ -61,9 +62,11 @@ fb_gap fb_gap_at(const fb_phase *ph, int pair, double t, const double *eta, cons
 /* Work space of one phase: the step's weights (cached for its length h), the node evaluations. */
 typedef struct {
     double h;                      /* weights are for this step length */
+    const fb_tables *tb;           /* ... and these nodes */
     fb_weight W[FB_MAXN][FB_NPTS]; /* per mode: the FB_P nodes and the end */
     fb_node node[FB_P];
     fb_node end;                   /* the model at the step end (error estimate, events) */
+    fb_node start;                 /* the model at the step start (a Radau step's error estimate) */
     double F[FB_MAX_PAIRS][FB_P];  /* contact force (or multiplier) of each pair at the nodes */
     double Fk[FB_MAX_PAIRS][FB_P]; /* its elastic part (FORCE) */
     double Ft[FB_MAX_PAIRS][FB_P]; /* a sticking pair's tangential multiplier lambda_t (friction.c) */
@@ -92,7 +95,7 @@ void fb_nodal_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u, dou
 int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const double *eta0, const double *v0,
                  double *f, fb_step *out);
 /* The next step's first guess from the nodal values of the last (collocation.c) */
-void fb_extrapolate(int N, int S, double ratio, double *f, double F[][FB_P]);
+void fb_extrapolate(const fb_tables *tb, int N, int S, double ratio, double *f, double F[][FB_P]);
 
 /* Energy-norm helpers (stepcontrol.c) */
 double fb_energy_norm(const fb_phase *ph, const double *eta, const double *v);
@@ -116,6 +119,7 @@ typedef struct { /* a step's dense output, for the event search of one pair */
     double t0, h;
     const double *eta0, *v0, *f; /* f: FB_P x N nodal forcing */
     int pair;
+    const fb_tables *tb; /* the step's nodes (a record's: fb_record_tables) */
 } fb_dense;
 
 /* A step's forcing polynomial of one mode and the bound on the forced response (forcing_bound.c) */
@@ -124,8 +128,10 @@ typedef struct {
 } fb_forcing;
 /* a = the monomial coefficients of mode k's forcing (Vinv f_nodes); returns sum |a_m|; *mag (if not NULL):
  * sum_m sum_j |Vinv_mj f_jk| */
-double fb_forcing_coefficients(const double *f, int N, int k, double *a, double *mag);
-void fb_forcing_bound(const double *f, int N, int k, fb_forcing *out);
+/* The node set a step record of R floats was taken with (phase.c: its flag before the summary). */
+const fb_tables *fb_record_tables(const double *rec, int R);
+double fb_forcing_coefficients(const fb_tables *tb, const double *f, int N, int k, double *a, double *mag);
+void fb_forcing_bound(const fb_tables *tb, const double *f, int N, int k, fb_forcing *out);
 /* (max|f| + |f(0)| + V) / w^2: bounds the forced response from rest over the step, damped or not */
 double fb_forced_amplitude(const fb_forcing *fc, double w);
 void fb_dense_state(const fb_dense *d, double x, double *eta, double *v);
@@ -141,7 +147,7 @@ int fb_gap_far(const fb_dense *d, const double *jb, double gap0);
 double fb_dense_bounds(const fb_dense *d, const double *jm, double gamma, double dx, double *fast);
 double fb_find_gap_event(const fb_dense *d, int direction, const double *kx, const fb_gap *known,
                          const double *eta_known, const double *jm, const double *jb, double *beyond);
-double fb_find_release(const double *lam, int later);
+double fb_find_release(const fb_tables *tb, const double *lam, int later);
 double fb_find_kink(const fb_dense *d, const double *kx, const fb_gap *known, int count);
 
 /* Coulomb friction (friction.c) */

@@ -61,7 +61,7 @@ static void contact_response(const fb_phase *ph, const fb_work *w, const fb_unkn
  * multiplier keeps its slip velocity on g0t exp(-max(kappa, STICK_DECAY / h0) (t - t0)) (friction.c). */
 static void solve_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u, const double *A, const double *B,
                            double h, const double *g0, const double *g0t) {
-    const fb_tables *tb = fb_gauss();
+    const fb_tables *tb = ph->tb;
     int U = u->count;
     double kappa = ph->c.alpha, F0[MAXU], F[MAXU], d0[MAXU], r0[MAXU];
     double hd = w->stick_h > 0.0 ? w->stick_h : h; /* h0: the step first tried (phase.c), else this one */

@@ -31,7 +31,12 @@
 
 enum { EV_IMPACT = 1, EV_SEPARATION = 2, EV_RELEASE = 4 };
 
-int fb_record_size(int N, int S) { return 4 + 2 * N + FB_P * N + 2 * S * FB_P + 2 * FB_P + FB_RECORD_SUMMARY; }
+int fb_record_size(int N, int S) { return 4 + 2 * N + FB_P * N + 2 * S * FB_P + 2 * FB_P + 1 + FB_RECORD_SUMMARY; }
+
+/* The node set a record (of R floats) was taken with: its flag before the summary, 1 Radau's, 0 Gauss's. */
+const fb_tables *fb_record_tables(const double *rec, int R) {
+    return rec[R - FB_RECORD_SUMMARY - 1] != 0.0 ? fb_radau() : fb_gauss();
+}
 
 int fb_state_buffer_size(int N, int S) { return 5 + 2 * N + FB_P * N + 2 * S * FB_P + 1; }
 
@@ -46,7 +51,7 @@ static void reject(double *info, int cause) {
 static double find_events(const fb_phase *ph, fb_work *w, int events, double t, double h, const double *eta,
                           const double *v, const double *f, const fb_step *st, const fb_gap *gap0, int later,
                           int *kind, int *pair, double *beyond, double *kink) {
-    const fb_tables *tb = fb_gauss();
+    const fb_tables *tb = ph->tb;
     int N = ph->b->N, S = ph->c.npairs, need_jm = 0;
     double x = FB_NO_EVENT, ek[(FB_P + 2) * FB_MAXN];
     *beyond = 1.0;
@@ -61,7 +66,7 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
         if (j == 0 && need_jm) {
             fb_eval_node(ph, t + tb->c[j] * h, e, un[j], FB_WANT_JM, &w->node[j]);
             for (int k = 0; k < S; k++) { /* a free pair out of reach needs no samples (fb_find_gap_event) */
-                fb_dense dd = {ph, t, h, eta, v, f, k};
+                fb_dense dd = {ph, t, h, eta, v, f, k, ph->tb};
                 far[k] = ph->c.mode[k] == FB_MODE_NONE && fb_gap_far(&dd, w->node[0].jb[k], gap0[k].delta);
             }
         }
@@ -81,7 +86,7 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
         fb_gap known[FB_P + 2];
         known[0] = gap0[k], known[FB_P + 1] = w->end.gap[k];
         for (int j = 0; j < FB_P; j++) known[j + 1] = w->node[j].gap[k];
-        fb_dense dd = {ph, t, h, eta, v, f, k};
+        fb_dense dd = {ph, t, h, eta, v, f, k, ph->tb};
         const double *jm = ph->m->pairs[k].anywhere ? NULL : w->node[0].jm[k];
         if (mode == FB_MODE_NONE && (events & EV_IMPACT)) {
             xk = fb_find_gap_event(&dd, -1, kx, known, ek, jm, w->node[0].jb[k], &bk);
@@ -90,7 +95,7 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
             xk = fb_find_gap_event(&dd, 1, kx, known, ek, jm, w->node[0].jb[k], &bk);
             if (xk <= 1.0 && xk != FB_UNDECIDED && xk < x) x = xk, *kind = FB_EVENT_SEPARATION, *pair = k;
         } else if (mode == FB_MODE_CONSTRAINT && (events & EV_RELEASE)) {
-            xk = fb_find_release(w->F[k], later);
+            xk = fb_find_release(ph->tb, w->F[k], later);
             if (xk <= 1.0 && xk < x) x = xk, *kind = FB_EVENT_RELEASE, *pair = k;
         }
         int fk = 0; /* Coulomb friction's events (friction.c) */
@@ -107,7 +112,7 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
         fb_gap known[FB_P + 2];
         known[0] = gap0[k], known[FB_P + 1] = w->end.gap[k];
         for (int j = 0; j < FB_P; j++) known[j + 1] = w->node[j].gap[k];
-        fb_dense dd = {ph, t, h, eta, v, f, k};
+        fb_dense dd = {ph, t, h, eta, v, f, k, ph->tb};
         double xk = fb_find_kink(&dd, kx, known, FB_P + 2);
         if (xk > 1e-6 && xk * h > KINK_MIN_REL * fmax(fabs(t), 1.0) && xk < 1.0 - 1e-6 && xk < x && xk < *kink)
             *kink = xk;
@@ -139,8 +144,8 @@ static int plan_step(const fb_model *m, double t, double t_end, double hmax, dou
 }
 
 /* One step's record (layout: fb_record_size): [t, h, E_d, W, eta, v, the nodal forcing f, the pairs' nodal forces
- * F, the dissipation and drive-work rates at the nodes, the pairs' nodal tangential multipliers (stick), the summary
- * FB_RECORD_SUMMARY]; books = [E_d, W at the
+ * F, the dissipation and drive-work rates at the nodes, the pairs' nodal tangential multipliers (stick), the node
+ * set (1: Radau's, 0: Gauss's; fb_record_tables), the summary FB_RECORD_SUMMARY]; books = [E_d, W at the
  * step's start, their increments over it, the energy and the kinetic energy at its end].  A constrained pair's
  * multipliers raise the phase's multiplier scale. */
 static void write_record(const fb_phase *ph, fb_work *w, double *rec, double t, double h, const double *books,
@@ -160,7 +165,8 @@ static void write_record(const fb_phase *ph, fb_work *w, double *rec, double t, 
     memcpy(rF + S * FB_P, red, sizeof(double) * FB_P);
     memcpy(rF + S * FB_P + FB_P, rwd, sizeof(double) * FB_P);
     memcpy(rF + S * FB_P + 2 * FB_P, w->Ft, sizeof(double) * S * FB_P);
-    double *sum = rF + 2 * S * FB_P + 2 * FB_P; /* the step's summary: energy balance and tip at the end, tip at nodes */
+    rF[2 * S * FB_P + 2 * FB_P] = ph->tb == fb_radau(); /* the node set */
+    double *sum = rF + 2 * S * FB_P + 2 * FB_P + 1; /* the summary: energy balance and tip at the end, tip at nodes */
     sum[0] = E1 + (Ed + dEd) - (W + dW);
     sum[1] = T1;
     for (int j = 0; j < FB_P; j++) sum[2 + j] = fb_node_tip(ph, &w->node[j]);
@@ -269,6 +275,7 @@ static fb_work *begin_call(const fb_phase *ph, double *state, double t, const do
     fb_work *w = malloc(sizeof(fb_work));
     if (!w) return NULL;
     w->h = -1.0;
+    w->tb = NULL;
     w->stick_h = 0.0;
     if (state[4] == 0.0) { /* the phase starts */
         fb_start_guess(ph, t, eta, v, f, F);
@@ -291,6 +298,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
     fb_phase_init(&ph, m, b, &c, ctrl[0], ctrl[1], ctrl[3]);
     double hmax = ctrl[2], rate = fmax(ctrl[3], 1.0 / hmax); /* rate: the phase's characteristic rate [1/s] */
     int events = (int)ctrl[4], N = b->N, S = m->npairs, R = fb_record_size(N, S);
+    if (events & FB_CTRL_RADAU) ph.tb = fb_radau();
     double t = state[0], h = state[1], Ed = state[2], W = state[3];
     double *eta = state + 5, *v = eta + N, *f = v + N;
     double(*F)[FB_P] = (double(*)[FB_P])(f + FB_P * N); /* S rows F, then S rows of tangential multipliers */
@@ -372,8 +380,8 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
         }
         retry = 0;
         double hn = fb_next_step(h, st.err, 1);
-        fb_extrapolate(N, S, hn / h, f, F);
-        if (ph.c.friction) fb_extrapolate(0, S, hn / h, f, F + S); /* the tangential multipliers */
+        fb_extrapolate(ph.tb, N, S, hn / h, f, F);
+        if (ph.c.friction) fb_extrapolate(ph.tb, 0, S, hn / h, f, F + S); /* the tangential multipliers */
         h = hn;
     }
     state[0] = t, state[1] = h, state[2] = Ed, state[3] = W;

@@ -10,8 +10,10 @@ int fb_record_size(int N, int S);
 /* state buffer: [t, h, Ed, W, have_guess, eta (N), v (N), f (P x N), F (S x P), the tangential multipliers (S x P),
  * the largest multiplier so far] */
 int fb_state_buffer_size(int N, int S);
-/* control buffer: [rtol, atol, hmax, omega_rigid, events (bits), contacts (fb_contacts_unpack)] */
+/* control buffer: [rtol, atol, hmax, omega_rigid, events (bits; FB_CTRL_RADAU: the phase collocates at Radau IIA's
+ * nodes, a resting contact), contacts (fb_contacts_unpack)] */
 #define FB_CTRL_HEAD 5
+#define FB_CTRL_RADAU 128
 /* what fb_advance returns: t_end reached, an event, the records full, a step-size underflow, a non-finite state, a
  * phase that cannot make progress, a pair anywhere's contact point jumping to and fro (jumps.c, JUMP_*) */
 enum {

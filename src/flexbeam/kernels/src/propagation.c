@@ -1,5 +1,6 @@
 /* Exact propagation of the modal equations eta_k'' + w_k^2 eta_k = f_k(t) over a step for a forcing f that
- * is the polynomial interpolating its values at the FB_P Gauss-Legendre nodes of the step.
+ * is the polynomial interpolating its values at the FB_P nodes of the step (Gauss-Legendre, or Radau IIA for a
+ * resting contact: fb_gauss, fb_radau).
  *
  * Variation of constants (Hochbruck & Ostermann 2010, Acta Numerica 19, Sec. 2): over [0, T], T = s h, for
  * f = sum_m a_m (tau / h)^m,
@@ -16,23 +17,16 @@
 
 #define MOMENT_SERIES 1.0 /* below this th: power series and downward recurrence (else upward) */
 
-static fb_tables TABLES;
-static int TABLES_READY = 0;
-
-const fb_tables *fb_gauss(void) {
-    if (TABLES_READY) return &TABLES;
-    /* Gauss-Legendre, 4 nodes on (-1, 1) (Abramowitz & Stegun, Table 25.4) */
-    static const double x[FB_P] = {-0.86113631159405257522, -0.33998104358485626480, 0.33998104358485626480,
-                                   0.86113631159405257522};
-    static const double w[FB_P] = {0.34785484513745385737, 0.65214515486254614263, 0.65214515486254614263,
-                                   0.34785484513745385737};
-    fb_tables *t = &TABLES;
+/* The tables of a node set given on (-1, 1] by its nodes x and quadrature weights wq, and a bound on its Lebesgue
+ * function on [0, 1] (events.c; tests/unit/test_propagation.py). */
+static void build_tables(const double *x, const double *wq, double lebesgue, fb_tables *t) {
+    t->lebesgue = lebesgue;
     double V[FB_P * FB_P];
     for (int j = 0; j < FB_P; j++) {
         t->c[j] = 0.5 * (x[j] + 1.0);
-        t->w[j] = 0.5 * w[j];
+        t->w[j] = 0.5 * wq[j];
         /* P_3(x) = (5 x^3 - 3 x) / 2: the top Legendre coefficient of the interpolant is
-         * (2p - 1) sum_j w_j P_3(x_j) f_j (Gauss quadrature is exact for degree 2p - 2) */
+         * (2p - 1) sum_j w_j P_3(x_j) f_j (either quadrature is exact for degree 2p - 2) */
         double P3 = 0.5 * (5.0 * x[j] * x[j] * x[j] - 3.0 * x[j]);
         t->top[j] = (2.0 * FB_P - 1.0) * t->w[j] * P3;
     }
@@ -55,8 +49,36 @@ const fb_tables *fb_gauss(void) {
         for (int m = 0; m < FB_P; m++) acc += t->Vinv[m][j];
         t->lend[j] = acc;
     }
-    TABLES_READY = 1;
-    return t;
+}
+
+static fb_tables GAUSS, RADAU;
+static int GAUSS_READY = 0, RADAU_READY = 0;
+
+const fb_tables *fb_gauss(void) {
+    if (GAUSS_READY) return &GAUSS;
+    /* Gauss-Legendre, 4 nodes on (-1, 1) (Abramowitz & Stegun, Table 25.4) */
+    static const double x[FB_P] = {-0.86113631159405257522, -0.33998104358485626480, 0.33998104358485626480,
+                                   0.86113631159405257522};
+    static const double w[FB_P] = {0.34785484513745385737, 0.65214515486254614263, 0.65214515486254614263,
+                                   0.34785484513745385737};
+    build_tables(x, w, 3.0, &GAUSS); /* its Lebesgue function's maximum on [0, 1]: 2.856 */
+    GAUSS_READY = 1;
+    return &GAUSS;
+}
+
+/* Radau IIA, 4 nodes on (-1, 1]: the zeros of P_4(x) - P_3(x), weights (1 + x_i) / (16 P_3(x_i)^2) and 2 / 16 at
+ * x = 1 (Hairer & Wanner, Solving ODEs II, Sec. IV.5; computed to 30 digits with mpmath).  The step's end is a node,
+ * so the collocation is stiffly accurate and L-stable: a stiff mode in the collocated remainder that the step does
+ * not resolve -- a resting contact's spring -- is damped in the end state, where Gauss's nodes (|R(inf)| = 1) carry
+ * it on undamped and the error estimate sees it at every step whatever the tolerance (docs/performance.md, "A
+ * resting contact").  Order 2p - 1 = 7 at the step's end (Gauss: 2p = 8). */
+const fb_tables *fb_radau(void) {
+    if (RADAU_READY) return &RADAU;
+    static const double x[FB_P] = {-0.82282408097459210521, -0.18106627111853057827, 0.57531892352169411205, 1.0};
+    static const double w[FB_P] = {0.44092442235353675055, 0.77638693768634376156, 0.65768863996011948789, 0.125};
+    build_tables(x, w, 3.5, &RADAU); /* its Lebesgue function's maximum on [0, 1]: 3.447, at 0 */
+    RADAU_READY = 1;
+    return &RADAU;
 }
 
 /* Moments Cm[0..p-1], Sm[0..p-1] of the harmonic kernel at th >= 0 (cos th, sin th given). */
@@ -98,21 +120,20 @@ void fb_moments(double th, double *Cm, double *Sm) {
     osc_moments(th, c, s, Cm, Sm);
 }
 
-void fb_weights(double w, double h, double s, fb_weight *out) {
+void fb_weights(const fb_tables *tb, double w, double h, double s, fb_weight *out) {
     double T = s * h, th = w * T, c, sn, Cm[FB_P], Sm[FB_P];
     fb_sincos(th, &sn, &c);
     osc_moments(th, c, sn, Cm, Sm);
     out->C = out->CV = c;
     out->SW = w != 0.0 ? sn / w : T;
     out->WS = w * sn;
-    fb_weight_nodes(T, s, Sm, Cm, out);
+    fb_weight_nodes(tb, T, s, Sm, Cm, out);
 }
 
 /* The forcing weights RE, RV of a step fraction s (T = s h) from the moments Sm (position) and Cm (velocity) of
  * the step's kernel: the monomial coefficients' weights projected onto the nodal values (Vandermonde inverse).
  * Shared by the undamped and the damped modes (damped.c). */
-void fb_weight_nodes(double T, double s, const double *Sm, const double *Cm, fb_weight *out) {
-    const fb_tables *tb = fb_gauss();
+void fb_weight_nodes(const fb_tables *tb, double T, double s, const double *Sm, const double *Cm, fb_weight *out) {
     double spm = 1.0, pe[FB_P], pv[FB_P];
     for (int m = 0; m < FB_P; m++) {
         pe[m] = T * T * spm * Sm[m];
@@ -143,8 +164,7 @@ void fb_hop_weights(double w, double T, fb_hop *out) {
     }
 }
 
-void fb_monomial(const double *f, int N, double *A) {
-    const fb_tables *tb = fb_gauss();
+void fb_monomial(const fb_tables *tb, const double *f, int N, double *A) {
     for (int m = 0; m < FB_P; m++)
         for (int k = 0; k < N; k++) {
             double acc = 0.0;
@@ -213,8 +233,7 @@ void fb_propagate(const fb_basis *b, const fb_weight *W, int stride, const doubl
     }
 }
 
-double fb_lagrange(int j, double s) {
-    const fb_tables *tb = fb_gauss();
+double fb_lagrange(const fb_tables *tb, int j, double s) {
     double acc = 0.0, sp = 1.0;
     for (int m = 0; m < FB_P; m++) {
         acc += tb->Vinv[m][j] * sp;
@@ -223,8 +242,7 @@ double fb_lagrange(int j, double s) {
     return acc;
 }
 
-double fb_lagrange_integral(int j, double s) {
-    const fb_tables *tb = fb_gauss();
+double fb_lagrange_integral(const fb_tables *tb, int j, double s) {
     double acc = 0.0, sp = s;
     for (int m = 0; m < FB_P; m++) {
         acc += tb->Vinv[m][j] * sp / (m + 1);

@@ -73,10 +73,10 @@ void fb_tip_model_init(const fb_model *m, const fb_basis *b, fb_tip_model *tm) {
 }
 
 /* Mode k's bounds over the step of record rec (see above): |eta| <= *A, |eta'| <= *V, |eta''| <= *E. */
-static void mode_bounds(const fb_basis *b, const double *rec, int k, double *A, double *V, double *E) {
+static void mode_bounds(const fb_basis *b, const double *rec, int R, int k, double *A, double *V, double *E) {
     int N = b->N;
     const double *eta0 = rec + 4, *v0 = eta0 + N, *f = v0 + N;
-    double a[FB_P], F = fb_forcing_coefficients(f, N, k, a, NULL);
+    double a[FB_P], F = fb_forcing_coefficients(fb_record_tables(rec, R), f, N, k, a, NULL);
     double h = rec[1], w = b->omega[k], c = b->damp ? b->damp[k] : 0.0;
     *V = sqrt(v0[k] * v0[k] + w * w * eta0[k] * eta0[k]) + h * F;
     *A = fabs(eta0[k]) + h * *V;
@@ -87,8 +87,9 @@ static void mode_bounds(const fb_basis *b, const double *rec, int k, double *A, 
     *E = w * w * *A + F + c * *V;
 }
 
-void fb_tip_step_bounds(const fb_tip_model *tm, const fb_basis *b, const double *rec, double *A, double *V, double *E) {
-    for (int k = 0; k < tm->N; k++) mode_bounds(b, rec, k, &A[k], &V[k], &E[k]);
+void fb_tip_step_bounds(const fb_tip_model *tm, const fb_basis *b, const double *rec, int R, double *A, double *V,
+                        double *E) {
+    for (int k = 0; k < tm->N; k++) mode_bounds(b, rec, R, k, &A[k], &V[k], &E[k]);
 }
 
 void fb_tip_combine(const fb_tip_model *tm, const double *A, const double *V, const double *E, double theta_max,
@@ -118,7 +119,7 @@ void fb_tip_reach(const fb_tip_model *tm, const fb_basis *b, const double *recor
     int N = tm->N;
     double A[FB_MAXN] = {0}, V[FB_MAXN] = {0}, E[FB_MAXN] = {0}, a[FB_MAXN], v[FB_MAXN], e[FB_MAXN];
     for (int r = r0; r <= r1; r++) {
-        fb_tip_step_bounds(tm, b, records + (size_t)r * R, a, v, e);
+        fb_tip_step_bounds(tm, b, records + (size_t)r * R, R, a, v, e);
         for (int k = 0; k < N; k++) A[k] = fmax(A[k], a[k]), V[k] = fmax(V[k], v[k]), E[k] = fmax(E[k], e[k]);
     }
     fb_tip_combine(tm, A, V, E, theta_max, origin_max, out);

@@ -21,7 +21,8 @@ typedef struct {
 
 void fb_tip_model_init(const fb_model *m, const fb_basis *b, fb_tip_model *tm);
 /* Each mode's bounds over one step (its record): |eta| <= A, |eta'| <= V, |eta''| <= E. */
-void fb_tip_step_bounds(const fb_tip_model *tm, const fb_basis *b, const double *rec, double *A, double *V, double *E);
+void fb_tip_step_bounds(const fb_tip_model *tm, const fb_basis *b, const double *rec, int R, double *A, double *V,
+                        double *E);
 /* A bracket's bounds from its modes' bounds (the largest over its steps). */
 void fb_tip_combine(const fb_tip_model *tm, const double *A, const double *V, const double *E, double theta_max,
                     double origin_max, fb_tip_bracket *out);
