@@ -148,6 +148,32 @@ def test_long_phases_in_parts_and_a_long_contact_stretch_by_stretch(tmp_path, mo
     assert_same_metrics(streamed.metrics(), metrics, rel=1e-14)
 
 
+def test_a_resting_part_searches_no_tip_extreme_it_cannot_raise(tmp_path, monkeypatch):
+    """3 s of the seed case handed on in parts: the tip's extremes of each part are searched above those the run has
+    reached already, so the parts of the resting contact (its tip within ~1e-4 of the impacts' extremes, flat)
+    refine no bracket -- searched from scratch each part's flat tip left every interval within reach of the part's
+    own best: 17 s of a 40 s streamed run's 21 s.  The extremes equal the in-memory run's exactly."""
+    in_parts(monkeypatch)
+    from flexbeam.results.arrays import RunSource
+    from flexbeam.results.extremes import TIP
+
+    refine, late = RunSource.refine_max, []
+
+    def counted(self, seg, column, *args, **kwargs):
+        found = refine(self, seg, column, *args, **kwargs)
+        if seg.t0 > 1.0 and column == TIP:  # brackets refined, not skipped (value -inf); not the records' peaks
+            late.extend(found[1][np.isfinite(found[1])])
+        return found
+
+    monkeypatch.setattr(RunSource, "refine_max", counted)
+    case = seed(solver__t_end=3.0, output__interval=1e-3)
+    streamed = fb.simulate(case, stream=tmp_path / "streamed.nc").metrics()
+    assert not late
+    in_memory = fb.simulate(case).metrics()
+    assert streamed["tip_deflection_max"] == in_memory["tip_deflection_max"]
+    assert streamed["tip_deflection_min"] == in_memory["tip_deflection_min"]
+
+
 def _peak(case, path) -> int:
     tracemalloc.start()
     try:

@@ -7,7 +7,7 @@ x_P balance, F_s = m g L / (2 x_P), and the Hertz spring F = K d^n gives the pen
 beam is not still: its first bending mode pinned at O and propped at P (166 Hz) rings with a damping ratio ~1e-3
 (the contact point is near its node, the contact's dashpot barely damps it), the force +-5 % about F_s at t = 3 s.
 Once resting, the contact collocates at Radau IIA's nodes (kernels/src/propagation.c, fb_radau): the contact spring's
-own mode (1.4 kHz), which the resting steps do not resolve, is damped in the end state instead of floored the step.
+own mode (1.4 kHz), which the resting steps do not resolve, is damped in the end state instead of flooring the step.
 """
 
 import math

@@ -48,8 +48,8 @@ def step_nodes(records: np.ndarray) -> np.ndarray:
 
 
 def step_quadrature(records: np.ndarray, values: np.ndarray) -> float:
-    """sum over the steps of h x the step's quadrature of its nodal ``values`` (steps x 4), correctly rounded: each
-    step with its own nodes' weights (:func:`step_nodes`)."""
+    """sum over the steps of h x the step's quadrature of its nodal ``values`` (steps x 4), each step with its own
+    nodes' weights (:func:`step_nodes`), the steps' terms summed correctly rounded (so grouped by node set freely)."""
     _, w = gauss_nodes()
     radau = radau_steps(records)
     h = records[:, 1]

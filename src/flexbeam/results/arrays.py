@@ -271,10 +271,12 @@ class RunSource:
                     return tally.result()
         return tally.result()
 
-    def extremes(self, column: str, points_per_step: int = 4) -> tuple[float, float]:
-        """(min, max) of an output column over the run, located on the dense output
-        (:func:`flexbeam.results.extremes.column_extremes`)."""
-        return column_extremes(self, column, points_per_step)
+    def extremes(
+        self, column: str, points_per_step: int = 4, reached: tuple[float, float] | None = None
+    ) -> tuple[float, float]:
+        """(min, max) of an output column over the run, located on the dense output (``reached``: extremes reached
+        already, :func:`flexbeam.results.extremes.column_extremes`)."""
+        return column_extremes(self, column, points_per_step, reached)
 
     def _zoom_all(
         self,

@@ -211,7 +211,7 @@ class RunStream:
         src = self.source([seg])
         _, E, T = src.checkpoints
         self.energy.add(E, T)
-        lo, hi = src.extremes("tip_deflection")
+        lo, hi = src.extremes("tip_deflection", reached=(self.tip[0], self.tip[1]))
         if not math.isnan(lo):
             self.tip = [min(self.tip[0], lo), max(self.tip[1], hi)]
 

@@ -162,20 +162,19 @@ static double max_forcing(const fb_dense *d, int k) {
 }
 
 /* Is the obstacle out of reach within the step?  Each mode's velocity stays below its free amplitude
- * sqrt(v^2 + w^2 eta^2) plus h L max_j |f_jk|, L the nodes' Lebesgue constant (fb_tables; a damped mode's too: its energy (v^2 + w^2 eta^2) / 2
- * only decreases, and its impulse response's velocity stays below 1), so the gap's rate stays below
- * R = sum_k |j_k| (that bound)
- * (+ |J_theta| max|theta'| for a prescribed theta: the joint's rate_bound; |J_theta| <= |r_P|; + max|v_O| for an
- * obstacle fixed to the ground on a moving base, which comes at P with the base's speed); far
- * if gap0 > 2 R h (a factor 2 for the variation of J over the step). */
+ * sqrt(v^2 + w^2 eta^2) plus h L max_j |f_jk|, L a bound on the nodes' Lebesgue function (fb_tables; a damped
+ * mode's too: its energy (v^2 + w^2 eta^2) / 2 only decreases, and its impulse response's velocity stays below 1),
+ * so the gap's rate stays below R = sum_k |j_k| (that bound) (+ |J_theta| max|theta'| for a prescribed theta: the
+ * joint's rate_bound; |J_theta| <= |r_P|; + max|v_O| for an obstacle fixed to the ground on a moving base, which
+ * comes at P with the base's speed); far if gap0 > 2 R h (a factor 2 for the variation of J over the step). */
 static int far(const fb_dense *d, const double *jm, double gap0) {
     if (gap0 <= 0.0) return 0;
     const fb_basis *b = d->ph->b;
     double R = 0.0;
     for (int k = 0; k < b->N; k++) {
         double om = b->omega[k];
-        R += fabs(jm[k]) *
-             (sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]) + d->h * d->tb->lebesgue * max_forcing(d, k));
+        double amp = sqrt(d->v0[k] * d->v0[k] + om * om * d->eta0[k] * d->eta0[k]);
+        R += fabs(jm[k]) * (amp + d->h * d->tb->lebesgue * max_forcing(d, k));
     }
     const fb_model *m = d->ph->m;
     double given = fb_joint(m)->rate_bound(m, d->t0, d->t0 + d->h);
