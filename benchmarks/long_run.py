@@ -9,10 +9,10 @@ Each length runs in a fresh interpreter (``flexbeam run seed-experiment --stream
 reports its own peak resident memory (``getrusage``: everything the process held, the interpreter, numpy, xarray,
 netCDF4 and HDF5 included) and, sampled as the run goes (``/proc/self/statm`` at every segment it hands on), the
 resident memory at 10 % and at the end of the run, so that its growth shows.  The beam falls on its stop and ends
-resting there after 0.71 s: from then on one contact record lasts to the end of the run, at ~14 000 steps per
-simulated second, which an in-memory run would hold as dense output (``memory`` column: the estimate
-:func:`flexbeam.memory.estimate` gives the run held in memory, which a default ``solver.memory_limit`` refuses beyond
-a few hundred seconds).
+resting there after 0.71 s: from then on one contact record lasts to the end of the run (~520 steps per simulated
+second once it rests, on Radau IIA's nodes), which an in-memory run would hold as dense output (``memory`` column: the
+estimate :func:`flexbeam.memory.estimate` gives the run held in memory, an upper bound that counts the bounded
+~14 000 steps per second, which a default ``solver.memory_limit`` refuses beyond a few hundred seconds).
 
 Columns: ``t_end``; ``samples`` written; ``steps`` of the integrator; ``wall`` the whole run (integration, samples,
 file), ``integration`` the integrator's share (``metrics()["wall_time"]``); ``peak RSS`` the process's peak,
