@@ -227,6 +227,13 @@ def contact_law(case: Case, obstacle: Obstacle | None = None, pair: PairContact 
         radius = case.beam.radius if case.beam.section == "circle" else 0.0
         K = sphere_on_cylinder_stiffness(obstacle.radius, radius or 0.0, E_star)
         exponent = 1.5
+        if not 1e-300 < K < 1e300:  # (an obstacle's E of 5e-324 Pa made K = 0: a division by zero in the estimates)
+            k = next((k for k, o in enumerate(case.obstacles) if o is obstacle), None)
+            name = "obstacle" if k is None else _name(k + 1)
+            raise ParameterError(
+                f"{name}.youngs_modulus: gives a Hertz contact stiffness of {K:.3g} N/m^1.5, outside the positive "
+                "doubles (1e-300, 1e300) (or give contact.stiffness)"
+            )
     return make_law(pick("law"), K, exponent, pick("restitution"))
 
 
