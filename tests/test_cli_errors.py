@@ -103,6 +103,7 @@ SET_CASES = [
     ("initial.impact_velocity=nan", "initial.impact_velocity", "finite"),
     ("contact.position=5e-324", "initial.impact_velocity", "needs a hub rate above 10000 rad/s"),
     ("obstacle.youngs_modulus=5e-324", "obstacle.youngs_modulus", "Hertz contact stiffness of 0"),
+    ("beam.density=1e300", "beam.density", "less than or equal to 1000000"),
     # the axial modes
     ("model.axial_modes=-1", "model.axial_modes", "greater than or equal to 0"),
     ("model.axial_modes=53", "model.axial_modes", "model.modes + model.axial_modes must be at most 64"),

@@ -23,7 +23,9 @@ class Beam(Section):
     """
 
     length: Positive = Field(description="beam length L [m]")
-    density: Positive = Field(description="mass density rho [kg/m^3]")
+    density: Annotated[Positive, Field(le=1e6)] = Field(
+        description="mass density rho [kg/m^3] (at most 1e6, 44x osmium's: 1e300 overflowed the FE reference's sums)"
+    )
     youngs_modulus: Positive = Field(description="Young's modulus E [Pa]")
     poisson_ratio: Annotated[float, Field(gt=-1.0, lt=0.5)] = Field(
         0.3, description="Poisson ratio nu [-] (isotropic: -1 < nu < 1/2)"
