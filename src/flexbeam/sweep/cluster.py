@@ -211,6 +211,8 @@ def _start_local(n: int) -> None:
     import dask
     from dask.distributed import Client, LocalCluster
 
+    from .quiet_close import QuietClose
+
     close_local_cluster()
     stack = contextlib.ExitStack()
     try:
@@ -227,6 +229,7 @@ def _start_local(n: int) -> None:
                 )
             )
         client = stack.enter_context(Client(cluster, set_as_default=False))
+        client.register_plugin(QuietClose())
     except BaseException:
         stack.close()
         raise
