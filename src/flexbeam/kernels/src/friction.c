@@ -206,7 +206,7 @@ static double slip_stop(const fb_dense *d, const fb_work *w, int *kind) {
     fb_tangent_at(ph, k, d->t0, d->eta0, d->v0, &vt);
     lo = hi = sg * vt; /* slip_state at the step's start (x = 0: the dense output's state is eta0, v0) */
     for (int j = 0; j <= FB_P; j++) {
-        double f = sg * (j < FB_P ? w->node[j].vt[k] : w->end.vt[k]);
+        double f = sg * (j < FB_P ? w->node[j].vt[k] : w->end->vt[k]);
         lo = fmin(lo, f), hi = fmax(hi, f);
     }
     if (lo > STOP_CLEAR * (hi - lo)) return FB_NO_EVENT;
@@ -243,7 +243,7 @@ static double find_painleve(const fb_dense *d, const fb_work *w) {
     double lo = 0.0;
     for (int j = 0; j <= FB_P; j++) {
         double x = j < FB_P ? tb->c[j] : 1.0;
-        if (slip_mass(d->ph, j < FB_P ? &w->node[j] : &w->end, k) > 0.0) {
+        if (slip_mass(d->ph, j < FB_P ? &w->node[j] : w->end, k) > 0.0) {
             lo = x;
             continue;
         }

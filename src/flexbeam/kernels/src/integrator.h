@@ -65,8 +65,10 @@ typedef struct {
     const fb_tables *tb;           /* ... and these nodes */
     fb_weight W[FB_MAXN][FB_NPTS]; /* per mode: the FB_P nodes and the end */
     fb_node node[FB_P];
-    fb_node end;                   /* the model at the step end (error estimate, events) */
-    fb_node start;                 /* the model at the step start (a Radau step's error estimate) */
+    fb_node *end;                  /* the model at the step end (error estimate, events) */
+    fb_node *start;                /* the model at the step start (a Radau step's error estimate), when start_ok */
+    fb_node ends[2];               /* end and start point here: an accepted Radau step's end becomes the next start */
+    int start_ok;                  /* *start holds the model at the state of time start->t */
     double F[FB_MAX_PAIRS][FB_P];  /* contact force (or multiplier) of each pair at the nodes */
     double Fk[FB_MAX_PAIRS][FB_P]; /* its elastic part (FORCE) */
     double Ft[FB_MAX_PAIRS][FB_P]; /* a sticking pair's tangential multiplier lambda_t (friction.c) */
@@ -94,6 +96,7 @@ void fb_nodal_contacts(const fb_phase *ph, fb_work *w, const fb_unknowns *u, dou
 
 int fb_collocate(const fb_phase *ph, fb_work *w, double t0, double h, const double *eta0, const double *v0,
                  double *f, fb_step *out);
+void fb_next_start(const fb_phase *ph, fb_work *w);
 /* The next step's first guess from the nodal values of the last (collocation.c) */
 void fb_extrapolate(const fb_tables *tb, int N, int S, double ratio, double *f, double F[][FB_P]);
 

@@ -29,7 +29,7 @@ int fb_jump_storm(const fb_phase *ph, const fb_work *w, double t, double *xprev,
     int storm = ADV_END;
     for (int k = 0; k < m->npairs; k++) {
         if (!m->pairs[k].anywhere || ph->c.mode[k] == FB_MODE_NONE) continue;
-        double x = w->end.gap[k].x;
+        double x = w->end->gap[k].x;
         if (*have_x && fabs(x - xprev[k]) > reach) {
             if (jump[0] == 0.0 || t - jump[1] >= JUMP_SPAN) jump[0] = 0.0, jump[1] = t; /* a new window */
             jump[0] += 1.0, jump[2] = k, jump[3] = xprev[k], jump[4] = x;

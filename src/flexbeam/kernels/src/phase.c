@@ -84,7 +84,7 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
         int mode = ph->c.mode[k];
         double xk = FB_NO_EVENT, bk = 1.0;
         fb_gap known[FB_P + 2];
-        known[0] = gap0[k], known[FB_P + 1] = w->end.gap[k];
+        known[0] = gap0[k], known[FB_P + 1] = w->end->gap[k];
         for (int j = 0; j < FB_P; j++) known[j + 1] = w->node[j].gap[k];
         fb_dense dd = {ph, t, h, eta, v, f, k, ph->tb};
         const double *jm = ph->m->pairs[k].anywhere ? NULL : w->node[0].jm[k];
@@ -110,7 +110,7 @@ static double find_events(const fb_phase *ph, fb_work *w, int events, double t, 
     for (int k = 0; k < S; k++) { /* a kink of a law's force before any event */
         if (ph->c.mode[k] != FB_MODE_FORCE || (x <= 1.0 && x <= 1e-6)) continue;
         fb_gap known[FB_P + 2];
-        known[0] = gap0[k], known[FB_P + 1] = w->end.gap[k];
+        known[0] = gap0[k], known[FB_P + 1] = w->end->gap[k];
         for (int j = 0; j < FB_P; j++) known[j + 1] = w->node[j].gap[k];
         fb_dense dd = {ph, t, h, eta, v, f, k, ph->tb};
         double xk = fb_find_kink(&dd, kx, known, FB_P + 2);
@@ -265,7 +265,7 @@ static void move_to_end(int N, int S, const fb_work *w, const fb_step *st, const
     memcpy(f, trial, sizeof(double) * FB_P * N);
     memcpy(F, w->F, sizeof(double) * S * FB_P);
     memcpy(F + S, w->Ft, sizeof(double) * S * FB_P);
-    memcpy(gap0, w->end.gap, sizeof(fb_gap) * S);
+    memcpy(gap0, w->end->gap, sizeof(fb_gap) * S);
 }
 
 /* The work space of one call of fb_advance; at the phase's start (state[4] == 0) the first forcing guess, the start
@@ -277,6 +277,7 @@ static fb_work *begin_call(const fb_phase *ph, double *state, double t, const do
     w->h = -1.0;
     w->tb = NULL;
     w->stick_h = 0.0;
+    w->end = &w->ends[0], w->start = &w->ends[1], w->start_ok = 0;
     if (state[4] == 0.0) { /* the phase starts */
         fb_start_guess(ph, t, eta, v, f, F);
         info[FB_INFO_T0] = t;
@@ -331,10 +332,10 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
         }
         double E1, scale1, T1, dEd, dW, red[FB_P], rwd[FB_P], h_taken = h; /* h_taken: the step accepted */
         fb_step_books(&ph, w, t, h, eta, v, &st, trial, red, rwd, &dEd, &dW);
-        E1 = fb_node_energy_parts(&ph, &w->end, &scale1, &T1);
+        E1 = fb_node_energy_parts(&ph, w->end, &scale1, &T1);
         if (!have_E0) E0 = energy_at(&ph, t, eta, v, &scale0), have_E0 = 1;
         double balance =
-            fb_balance_error(&ph, E1 - E0 + dEd - dW, fmax(scale0, scale1), fb_rigid_load(&ph, &w->end),
+            fb_balance_error(&ph, E1 - E0 + dEd - dW, fmax(scale0, scale1), fb_rigid_load(&ph, w->end),
                              fabs(E1) + fabs(E0) + fabs(dEd) + fabs(dW));
         if (balance > 1.0) {
             h = fb_next_step(h, balance, 0);
@@ -354,7 +355,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             collocate_from(&ph, w, t, h, eta, v, f, F, trial, &st, info);
             fb_step_books(&ph, w, t, h, eta, v, &st, trial, red, rwd, &dEd, &dW);
             double scale_x;
-            E1 = fb_node_energy_parts(&ph, &w->end, &scale_x, &T1);
+            E1 = fb_node_energy_parts(&ph, w->end, &scale_x, &T1);
         } else if (event && x <= 0.0) {
             code = event_code(info, kind, pair, t, &h, h_taken);
             break;
@@ -378,6 +379,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
             code = event_code(info, kind, pair, t, &h, h_taken);
             break;
         }
+        fb_next_start(&ph, w);
         retry = 0;
         double hn = fb_next_step(h, st.err, 1);
         fb_extrapolate(ph.tb, N, S, hn / h, f, F);
