@@ -31,6 +31,7 @@ class StderrProgress:
             if time.perf_counter() - self.start < self.delay:
                 return
             from rich.console import Console
+            from rich.markup import escape
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
             counter = (
@@ -43,7 +44,7 @@ class StderrProgress:
                 console=Console(stderr=True), transient=True,
             )  # fmt: skip
             self.bar.start()
-            self.task = self.bar.add_task(self.label, total=total)
+            self.task = self.bar.add_task(escape(self.label), total=total)  # a case file's name as written
         self.bar.update(self.task, completed=done)
 
     def close(self) -> None:

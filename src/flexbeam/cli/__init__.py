@@ -44,6 +44,7 @@ from .sweep_calibrate import calibrate, sweep
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
+    rich_markup_mode=None,  # help as written: Rich markup took "[s]", "[px]", "[base]" for style tags and dropped them
     pretty_exceptions_enable=False,
     help="flexbeam: impact dynamics of flexible beams with large overall motion.",
 )

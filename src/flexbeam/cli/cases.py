@@ -16,7 +16,7 @@ from .runs import load
 if TYPE_CHECKING:
     import numpy as np
 
-cases_app = typer.Typer(add_completion=False, help="List or show the built-in cases.")
+cases_app = typer.Typer(add_completion=False, rich_markup_mode=None, help="List or show the built-in cases.")
 
 
 @cases_app.callback(invoke_without_command=True)

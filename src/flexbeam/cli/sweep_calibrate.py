@@ -139,7 +139,7 @@ def calibrate(
     ] = None,
     json_: Annotated[bool, typer.Option("--json", help="print the report as one JSON object")] = False,
 ) -> None:
-    """Fit case fields (e.g. contact stiffness and restitution) to measured histories or features."""
+    """Fit case fields (such as contact stiffness and restitution) to measured histories or features."""
     from ..calibrate import calibrate as run_calibrate
     from ..calibrate import parse_columns, parse_features
 

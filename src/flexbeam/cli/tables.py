@@ -1,5 +1,6 @@
 """The tables the commands print (Rich, imported when a table is printed): a run's metrics and a calibration's
-report."""
+report.  Every text is escaped from Rich's markup: a message's "[[obstacles]]" or a unit's "[s]" is printed as
+written, not taken for a style tag and dropped."""
 
 from __future__ import annotations
 
@@ -14,9 +15,10 @@ def print_metrics(metrics: dict[str, Any], title: str) -> None:
     (they are in ``--json``).
     """
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
-    table = Table(title=title)
+    table = Table(title=escape(title))
     table.add_column("metric")
     table.add_column("value", justify="right")
     for key, value in metrics.items():
@@ -24,7 +26,7 @@ def print_metrics(metrics: dict[str, Any], title: str) -> None:
             for p in value if len(value) > 1 else []:
                 peak = p["peak_force"]
                 text = contacts_text(p) + ", first peak " + ("-" if math.isnan(peak) else f"{peak:.6g} N")
-                table.add_row(f"pair {p['pair']} ({p['obstacle']})", text)
+                table.add_row(escape(f"pair {p['pair']} ({p['obstacle']})"), escape(text))
             continue
         if key in ("events", "episodes"):  # one per contact record / collision episode: in --json only
             continue
@@ -34,7 +36,7 @@ def print_metrics(metrics: dict[str, Any], title: str) -> None:
             text = ", ".join(f"{v:.4g}" for v in value)
         else:
             text = str(value)
-        table.add_row(key, text)
+        table.add_row(escape(key), escape(text))
     Console().print(table)
 
 
@@ -65,11 +67,11 @@ def print_calibration(report: dict[str, Any], title: str) -> None:
         table.add_column(col, justify="left" if col in ("parameter", "units") else "right")
     for key, p in report["parameters"].items():
         table.add_row(
-            key + (" (at bound)" if p["at_bound"] else ""),
+            escape(key + (" (at bound)" if p["at_bound"] else "")),
             num(p["initial"]),
             num(p["value"]),
             num(p["uncertainty"]),
-            p["units"],
+            escape(p["units"]),
         )
     console = Console()
     console.print(table)
@@ -78,17 +80,19 @@ def print_calibration(report: dict[str, Any], title: str) -> None:
         for col in ("feature", "measured", "initial model", "fitted model"):
             ft.add_column(col, justify="left" if col == "feature" else "right")
         for key, f in report["features"].items():
-            ft.add_row(key, num(f["measured"]), num(f["initial"]), num(f["fitted"]))
+            ft.add_row(escape(key), num(f["measured"]), num(f["initial"]), num(f["fitted"]))
         console.print(ft)
     if "data" in report:
         d = report["data"]
         for chan, rms in d["rms"].items():
-            console.print(f"{chan} residual rms: {num(rms)} (initial {num(d['rms_initial'][chan])})")
+            console.print(escape(f"{chan} residual rms: {num(rms)} (initial {num(d['rms_initial'][chan])})"))
         console.print(
-            f"time shift: {num(d['time_shift'])} s +- {num(d['time_shift_uncertainty'])} s, "
-            f"{d['samples']} samples of {d['file']}"
+            escape(
+                f"time shift: {num(d['time_shift'])} s +- {num(d['time_shift_uncertainty'])} s, "
+                f"{d['samples']} samples of {d['file']}"
+            )
         )
     r = report["residuals"]
     console.print(
-        f"residual sigma {num(r['sigma'])} (dof {r['dof']}), {report['nfev']} evaluations: {report['message']}"
+        escape(f"residual sigma {num(r['sigma'])} (dof {r['dof']}), {report['nfev']} evaluations: {report['message']}")
     )
