@@ -104,6 +104,11 @@ SET_CASES = [
     ("contact.position=5e-324", "initial.impact_velocity", "needs a hub rate above 10000 rad/s"),
     ("obstacle.youngs_modulus=5e-324", "obstacle.youngs_modulus", "Hertz contact stiffness of 0"),
     ("beam.density=1e300", "beam.density", "less than or equal to 1000000"),
+    # true or false where a number belongs (pydantic's lax mode read true as 1: a friction coefficient of 1, one mode)
+    ("contact.friction=true", "contact.friction", "must be a number, not true or false"),
+    ("model.modes=true", "model.modes", "must be a number, not true or false"),
+    ("solver.t_end=false", "solver.t_end", "must be a number, not true or false"),
+    ("output.measuring_points=[0.1, true]", "output.measuring_points", "must be a number, not true or false"),
     # the axial modes
     ("model.axial_modes=-1", "model.axial_modes", "greater than or equal to 0"),
     ("model.axial_modes=53", "model.axial_modes", "model.modes + model.axial_modes must be at most 64"),

@@ -159,3 +159,22 @@ def test_an_indexed_field_has_its_schema_limits_for_calibration():
 
     assert _field("obstacles[0].contact.restitution")[:2] == (0.0, 1.0)
     assert _field("obstacles[0].contact.stiffness")[3] == "N/m^n"
+
+
+@pytest.mark.parametrize(
+    "field, value",
+    [("contact.friction", True), ("model.modes", True), ("beam.density", False), ("initial.angle", True),
+     ("output.measuring_points", [0.2, True]),
+     ("obstacles", [{"kind": "sphere", "centre": [0.5, True], "radius": 0.01}])],
+)  # fmt: skip
+def test_true_or_false_where_a_number_belongs_is_refused_naming_the_field(field, value):
+    """Pydantic's lax mode read true as 1 (a friction coefficient of 1, one mode) and false as 0."""
+    with pytest.raises(ParameterError) as err:
+        fb.load_case("two-stops", {field: value})
+    assert "must be a number, not true or false" in str(err.value)
+    assert str(err.value).startswith(field if field != "obstacles" else "obstacles[0].centre"), str(err.value)
+
+
+def test_true_or_false_still_set_a_switch_and_integers_still_set_a_float():
+    case = fb.load_case("seed-experiment", {"contact.anywhere": True, "contact.restitution": 1, "model.modes": 3})
+    assert case.contact.anywhere is True and case.contact.restitution == 1.0 and case.model.modes == 3
