@@ -11,13 +11,16 @@ import typer
 
 from ..errors import ParameterError
 from .messages import one_line
-from .options import MethodOpt, SetOpt
+from .options import MethodOpt, SetOpt, out_file
 from .runs import load, simulate
 
 
 def animate(
     source: Annotated[str, typer.Argument(help="built-in case name, TOML file (simulated first) or a result.nc")],
-    out: Annotated[Path, typer.Option("--out", "-o", help="output file: .gif or .mp4 (MP4 needs flexbeam[video])")],
+    out: Annotated[
+        Path,
+        typer.Option("--out", "-o", callback=out_file, help="output file: .gif or .mp4 (MP4 needs flexbeam[video])"),
+    ],
     scale: Annotated[str, typer.Option("--scale", help="deflection magnification: auto or a number")] = "auto",
     window: Annotated[str | None, typer.Option("--window", help="time window t0,t1 [s] (default: all)")] = None,
     frames: Annotated[int, typer.Option("--frames", help="number of frames")] = 200,

@@ -11,7 +11,7 @@ from typing import Annotated
 import typer
 
 from ..errors import ParameterError
-from .options import MethodOpt, SetOpt
+from .options import MethodOpt, SetOpt, out_dir
 from .runs import load
 
 PARAM = re.compile(r"^base\.frequency=([^:]+):([^:]+):([^:]+)$")
@@ -35,7 +35,10 @@ def bifurcation(
     periods: Annotated[int, typer.Option("--periods", help="drive periods run at each frequency")],
     discard: Annotated[int, typer.Option("--discard", help="the first periods of each, the transient, left out")],
     out: Annotated[
-        Path, typer.Option("--out", "-o", help="store directory (branch-*.json, bifurcation.nc, bifurcation.png)")
+        Path,
+        typer.Option(
+            "--out", "-o", callback=out_dir, help="store directory (branch-*.json, bifurcation.nc, bifurcation.png)"
+        ),
     ],
     phase: Annotated[
         float, typer.Option("--phase", help="phase of the drive of the Poincaré section, in [0, 1)")

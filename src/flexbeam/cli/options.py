@@ -1,4 +1,6 @@
-"""The command-line options several commands share (``--method``, ``--set``, ``--out``, ``--json``)."""
+"""The command-line options several commands share (``--method``, ``--set``, ``--out``, ``--json``), and the check
+of an output directory or file (:func:`out_dir`, :func:`out_file`) that the commands' ``--out`` options run before
+anything else."""
 
 from __future__ import annotations
 
@@ -9,10 +11,32 @@ import typer
 
 from ..registry import METHOD_NAMES
 
+
+def out_dir(value: Path | None) -> Path | None:
+    """``--out DIR``: a directory, or one that can be made (:func:`flexbeam.results.files.check_output_dir`)."""
+    from ..results.files import check_output_dir
+
+    return None if value is None else check_output_dir(value, "--out")
+
+
+def out_file(value: Path) -> Path:
+    """``--out FILE``: a file whose directory is one, or can be made."""
+    from ..results.files import check_output_dir
+
+    check_output_dir(value.parent, "--out")
+    if value.is_dir():
+        from ..errors import ParameterError
+
+        raise ParameterError(f"--out: '{value}' is a directory; give a file name")
+    return value
+
+
 MethodOpt = Annotated[str, typer.Option("--method", "-m", help=f"impact method: {', '.join(METHOD_NAMES)}")]
 SetOpt = Annotated[
     list[str] | None,
     typer.Option("--set", "-s", help="override a case field: KEY=VALUE (dotted key, repeatable)"),
 ]
-OutOpt = Annotated[Path | None, typer.Option("--out", "-o", help="directory for result.nc, summary.json, plots")]
+OutOpt = Annotated[
+    Path | None, typer.Option("--out", "-o", callback=out_dir, help="directory for result.nc, summary.json, plots")
+]
 JsonOpt = Annotated[bool, typer.Option("--json", help="print the metrics as one JSON object")]

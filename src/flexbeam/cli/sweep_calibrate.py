@@ -12,7 +12,7 @@ import typer
 
 from ..errors import ParameterError
 from ..progress import StderrProgress
-from .options import MethodOpt, SetOpt
+from .options import MethodOpt, SetOpt, out_dir
 from .runs import load
 from .tables import print_calibration
 
@@ -22,7 +22,10 @@ def sweep(
     out: Annotated[
         Path,
         typer.Option(
-            "--out", "-o", help="store directory (cases/KEY.json, result.nc); a re-run computes only the missing cases"
+            "--out",
+            "-o",
+            callback=out_dir,
+            help="store directory (cases/KEY.json, result.nc); a re-run computes only the missing cases",
         ),
     ],
     grid: Annotated[
@@ -135,7 +138,12 @@ def calibrate(
     set_: SetOpt = None,
     out: Annotated[
         Path | None,
-        typer.Option("--out", "-o", help="directory for calibration.json, fitted.toml, overlay.png, residuals.csv"),
+        typer.Option(
+            "--out",
+            "-o",
+            callback=out_dir,
+            help="directory for calibration.json, fitted.toml, overlay.png, residuals.csv",
+        ),
     ] = None,
     json_: Annotated[bool, typer.Option("--json", help="print the report as one JSON object")] = False,
 ) -> None:

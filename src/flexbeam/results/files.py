@@ -1,4 +1,4 @@
-"""Files written atomically, and numbers made strict JSON."""
+"""Files written atomically, output directories checked before a run, and numbers made strict JSON."""
 
 from __future__ import annotations
 
@@ -10,6 +10,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from ..errors import ParameterError
 
 
 class atomic_path:
@@ -33,6 +35,22 @@ class atomic_path:
             os.replace(self.tmp, self.path)
         else:
             self.tmp.unlink(missing_ok=True)
+
+
+def check_output_dir(path: str | Path, field: str) -> Path:
+    """``path`` as a directory outputs can be written to: one already, or one that can be made (the nearest of its
+    ancestors that exists a directory this process may write in).  Otherwise a one-line
+    :class:`~flexbeam.errors.ParameterError` naming ``field``, before anything runs (a run's outputs were written
+    after it, and a file in the way ended the run in a traceback: ``FileExistsError``)."""
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ParameterError(f"{field}: '{path}' exists and is not a directory")
+    nearest = path if path.exists() else next((p for p in path.absolute().parents if p.exists()), Path("/"))
+    if not nearest.is_dir():
+        raise ParameterError(f"{field}: '{path}' lies under '{nearest}', which is a file, not a directory")
+    if not os.access(nearest, os.W_OK | os.X_OK):
+        raise ParameterError(f"{field}: cannot write in '{nearest}' (permission denied)")
+    return path
 
 
 def write_text_atomic(path: str | Path, text: str) -> Path:

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..errors import ParameterError
+from ..results.files import check_output_dir
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -22,9 +23,7 @@ class Store:
     """The on-disk store of a sweep (see the module docstring for the layout)."""
 
     def __init__(self, path: str | Path) -> None:
-        self.path = Path(path)
-        if self.path.exists() and not self.path.is_dir():
-            raise ParameterError(f"out: '{self.path}' exists and is not a directory")
+        self.path = check_output_dir(path, "out")
         self.cases = self.path / "cases"
 
     def record_path(self, key: str) -> Path:
