@@ -401,3 +401,17 @@ def test_a_subnormal_sample_step_is_refused_by_the_sample_limit():
         "--set", "solver.contact_sample_step=5e-324",
     )  # fmt: skip
     assert_one_line_error(r, "solver.contact_sample_step", "coarser")
+
+
+def test_files_that_are_not_utf8_text_are_refused_in_one_line(tmp_path):
+    """A binary file given as a case (a result.nc, say), a measured CSV or a base table: a UnicodeDecodeError's
+    traceback before (only OSError was caught)."""
+    binary = tmp_path / "case.toml"
+    binary.write_bytes(b"\xff\xfe\x00binary")
+    assert_one_line_error(flexbeam("run", str(binary)), "case", "not UTF-8 text")
+    table = tmp_path / "table.csv"
+    table.write_bytes(b"t,F\n0,1\n\xff,2\n3,4\n")
+    r = flexbeam("calibrate", "seed-experiment", "--fit", "contact.stiffness", "--data", str(table))
+    assert_one_line_error(r, "data", "not a CSV file: not UTF-8 text")
+    shaker = Path(__file__).resolve().parent / "validation" / "data" / "shaker-stop.toml"
+    assert_one_line_error(flexbeam("run", str(shaker), "-s", f"base.table={table}"), "base.table", "not UTF-8 text")

@@ -89,6 +89,10 @@ def read_measured(path: str | Path, columns: Mapping[str, str] | None = None) ->
             rows = [r for r in csv.reader(line for line in f if not line.lstrip().startswith("#")) if r]
     except OSError as exc:
         raise ParameterError(f"data: cannot read '{path}': {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise ParameterError(
+            f"data: '{path}' is not a CSV file: not UTF-8 text ({exc.reason} at byte {exc.start})"
+        ) from None
     if len(rows) < 3:
         raise ParameterError(f"data: '{path}' needs a header row and at least two data rows")
     header = [h.strip() for h in rows[0]]

@@ -49,6 +49,10 @@ def _read_source(source: str | Path) -> dict[str, Any]:
             text = path.read_text(encoding="utf-8")
         except OSError as exc:
             raise ParameterError(f"case: cannot read '{path}': {exc.strerror}") from None
+        except UnicodeDecodeError as exc:  # TOML is UTF-8 (a binary file, a result.nc given as a case)
+            raise ParameterError(
+                f"case: '{path}' is not a TOML file: not UTF-8 text ({exc.reason} at byte {exc.start})"
+            ) from None
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:

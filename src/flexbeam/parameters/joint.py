@@ -174,6 +174,10 @@ def read_table(path: Path) -> list[list[float]]:
         lines = path.read_text(encoding="utf-8").splitlines()
     except OSError as exc:
         raise ValueError(f"base.table: cannot read '{path}': {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise ValueError(
+            f"base.table: '{path}' is not a CSV file: not UTF-8 text ({exc.reason} at byte {exc.start})"
+        ) from None
     rows: list[list[float]] = []
     for number, line in enumerate(lines, 1):
         text = line.split("#", 1)[0].strip()
