@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import errno
 import json
 import math
 import os
@@ -15,12 +16,16 @@ from ..errors import ParameterError
 
 
 class atomic_path:
-    """Context manager giving a temporary path next to ``path``, renamed on success."""
+    """Context manager giving a temporary path next to ``path``, renamed on success.  A ``path`` that is a directory
+    is refused before anything is written (IsADirectoryError, as ``open`` would); the temporary file is removed
+    whenever the file does not arrive, the rename's own failure included (it was left beside the target)."""
 
     def __init__(self, path: Path) -> None:
         self.path = Path(path)
 
     def __enter__(self) -> Path:
+        if self.path.is_dir():
+            raise IsADirectoryError(errno.EISDIR, "is a directory, not a file to write", str(self.path))
         self.path.parent.mkdir(parents=True, exist_ok=True)
         fd, name = tempfile.mkstemp(prefix=f".{self.path.name}.", dir=self.path.parent)
         os.close(fd)
@@ -28,13 +33,17 @@ class atomic_path:
         return self.tmp
 
     def __exit__(self, exc_type, exc, tb) -> None:
-        if exc_type is None:
+        if exc_type is not None:
+            self.tmp.unlink(missing_ok=True)
+            return
+        try:
             umask = os.umask(0)
             os.umask(umask)
             os.chmod(self.tmp, 0o666 & ~umask)
             os.replace(self.tmp, self.path)
-        else:
+        except BaseException:
             self.tmp.unlink(missing_ok=True)
+            raise
 
 
 def check_output_dir(path: str | Path, field: str) -> Path:
