@@ -415,3 +415,8 @@ def test_files_that_are_not_utf8_text_are_refused_in_one_line(tmp_path):
     assert_one_line_error(r, "data", "not a CSV file: not UTF-8 text")
     shaker = Path(__file__).resolve().parent / "validation" / "data" / "shaker-stop.toml"
     assert_one_line_error(flexbeam("run", str(shaker), "-s", f"base.table={table}"), "base.table", "not UTF-8 text")
+
+
+def test_frequencies_of_a_free_beam_are_refused_in_one_line():
+    """A free beam has no hub to spin about (a ValueError's traceback before)."""
+    assert_one_line_error(flexbeam("frequencies", "rod-end"), "joint.kind", "clamped to a hub", "'free'")

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import eigh
 
+from ..errors import ParameterError
 from ..parameters.case import Case
 from .beam import ModalBeam, build_modal_beam
 
@@ -64,5 +65,12 @@ def hub_frame_beam(case: Case, coupling: str | None = None) -> ModalBeam:
 
 
 def case_frequencies(case: Case, spin: float, plane: str = "chordwise") -> dict[str, np.ndarray]:
-    """Frequencies of both coupling models for ``case`` at hub rate ``spin`` (hub held at constant speed)."""
+    """Frequencies of both coupling models for ``case`` at hub rate ``spin`` (hub held at constant speed).  A free
+    beam (``joint.kind = "free"``) has no hub to spin about: a one-line :class:`~flexbeam.errors.ParameterError`
+    (it ended in a ValueError's traceback)."""
+    if case.joint.kind != "revolute":
+        raise ParameterError(
+            f"joint.kind: natural frequencies about steady spin need the beam clamped to a hub (joint.kind = "
+            f"'revolute'); this case's beam is '{case.joint.kind}'"
+        )
     return {c: spin_frequencies(hub_frame_beam(case, c), spin, plane) for c in ("first-order", "zeroth-order")}
