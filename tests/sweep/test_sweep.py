@@ -310,6 +310,9 @@ def test_samples_are_reproducible_and_invalid_samples_are_cases():
         (lambda: plan(fb.load_case("seed-experiment"), grid={"contact.restitution": [2.0]}), "contact.restitution"),
         (lambda: plan(fb.load_case("seed-experiment"), samples={"contact.restitution": "uniform(0,1)"}), "n:"),
         (lambda: plan(fb.load_case("seed-experiment")), "grid"),
+        # a scalar or a string for a grid's values: a TypeError, or a sweep over the string's letters, before
+        (lambda: plan(fb.load_case("seed-experiment"), grid={"contact.restitution": 0.5}), "give a list of values"),
+        (lambda: plan(fb.load_case("seed-experiment"), grid={"contact.law": "hertz"}), "give a list of values"),
         (lambda: fb.sweep("seed-experiment", grid={"contact.restitution": [0.5]}, method="cfm"), "ccfm"),
     ],
 )

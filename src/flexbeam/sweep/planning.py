@@ -5,7 +5,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -96,6 +96,8 @@ def plan(
         if not grid:
             raise ParameterError("--grid: give at least one KEY=v1,v2,...")
         for key, values in grid.items():
+            if isinstance(values, (str, bytes, Mapping)) or not isinstance(values, Iterable):
+                raise ParameterError(f"--grid {key}: give a list of values, e.g. [{values!r}] (got {values!r})")
             values = list(values)
             if not values:
                 raise ParameterError(f"--grid {key}: no values")
