@@ -178,3 +178,14 @@ def test_true_or_false_where_a_number_belongs_is_refused_naming_the_field(field,
 def test_true_or_false_still_set_a_switch_and_integers_still_set_a_float():
     case = fb.load_case("seed-experiment", {"contact.anywhere": True, "contact.restitution": 1, "model.modes": 3})
     assert case.contact.anywhere is True and case.contact.restitution == 1.0 and case.model.modes == 3
+
+
+@pytest.mark.parametrize(
+    "source, overrides, says",
+    [(123, None, "case: a built-in case name, a TOML path"), (None, None, "case: a built-in case name"),
+     ("seed-experiment", ["model.modes=3"], "overrides: a mapping of dotted keys")],
+)  # fmt: skip
+def test_load_case_of_the_wrong_type_is_one_parameter_error(source, overrides, says):
+    """A TypeError or an AttributeError ('list' object has no attribute 'items') before."""
+    with pytest.raises(ParameterError, match=says):
+        fb.load_case(source, overrides)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import math
+import os
 import re
 import tomllib
 import typing
@@ -217,12 +218,19 @@ def load_case(source: str | Path | Case | Mapping[str, Any], overrides: dict[str
         Unknown case, key or section (named first, with its closest match, even when
         the field it was meant for is then missing), or a value outside its allowed range.
     """
+    if overrides is not None and not isinstance(overrides, Mapping):
+        raise ParameterError(
+            f"overrides: a mapping of dotted keys to values, e.g. {{'model.modes': 3}} (got {type(overrides).__name__}"
+            "; KEY=VALUE strings: parse_overrides)"
+        )
     if isinstance(source, Case):
         data = source.model_dump(exclude_none=True)
     elif isinstance(source, Mapping):
         data = copy.deepcopy(dict(source))
-    else:
+    elif isinstance(source, (str, os.PathLike)):
         data = _read_source(source)
+    else:
+        raise ParameterError(f"case: a built-in case name, a TOML path, a Case or a dict (got {type(source).__name__})")
     for key, value in (overrides or {}).items():
         set_dotted(data, key, value)
     return validate_case(data)
