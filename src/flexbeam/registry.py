@@ -24,19 +24,22 @@ IMPACT_METHODS: dict[str, tuple[type[ImpactMethod], str]] = {
 METHOD_NAMES = (*IMPACT_METHODS, "fem")
 
 
+def _unknown(name: object) -> ParameterError:
+    """The one-line error for a method name ``simulate`` does not accept (a closest match for a misspelt one)."""
+    hint = closest(name, METHOD_NAMES) if isinstance(name, str) else ""
+    shown = f"'{name}'" if isinstance(name, str) else f"{name!r} (not a name)"
+    return ParameterError(f"method: unknown impact method {shown}; allowed: {', '.join(METHOD_NAMES)}{hint}")
+
+
 def impact_method(name: str) -> type[ImpactMethod]:
     """The impact method class of ``name`` (a one-line ParameterError for an unknown name)."""
-    if name not in IMPACT_METHODS:
-        raise ParameterError(
-            f"method: unknown impact method '{name}'; allowed: {', '.join(METHOD_NAMES)}{closest(name, METHOD_NAMES)}"
-        )
+    if not isinstance(name, str) or name not in IMPACT_METHODS:
+        raise _unknown(name)
     return IMPACT_METHODS[name][0]
 
 
 def check_method(name: str) -> str:
     """``name`` if it is a method ``simulate`` accepts, else a one-line ParameterError."""
-    if name not in METHOD_NAMES:
-        raise ParameterError(
-            f"method: unknown impact method '{name}'; allowed: {', '.join(METHOD_NAMES)}{closest(name, METHOD_NAMES)}"
-        )
+    if not isinstance(name, str) or name not in METHOD_NAMES:
+        raise _unknown(name)
     return name

@@ -189,3 +189,11 @@ def test_load_case_of_the_wrong_type_is_one_parameter_error(source, overrides, s
     """A TypeError or an AttributeError ('list' object has no attribute 'items') before."""
     with pytest.raises(ParameterError, match=says):
         fb.load_case(source, overrides)
+
+
+@pytest.mark.parametrize("method", [None, 3, ["ccfm"], "cfm"])
+def test_simulate_with_a_method_that_is_no_name_is_one_parameter_error(method):
+    """None gave a TypeError ('NoneType' object is not iterable) before; a misspelt name keeps its closest match."""
+    with pytest.raises(ParameterError, match="method: unknown impact method") as err:
+        fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 1e-4}), method)
+    assert ("best matches: ccfm" in str(err.value)) == (method == "cfm")
