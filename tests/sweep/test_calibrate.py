@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 
@@ -165,6 +166,15 @@ def test_parameter_scaling_follows_the_field_ranges():
         (
             lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"], features={"peak_forc": 1.0}),
             "peak_force",
+        ),
+        # through Python, a feature that is no finite number reached scipy: "Residuals are not finite ..."
+        (
+            lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"], features={"peak_force": math.nan}),
+            "--features peak_force: must be a finite number",
+        ),
+        (
+            lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"], features={"peak_force": True}),
+            "--features peak_force: must be a finite number",
         ),
     ],
 )

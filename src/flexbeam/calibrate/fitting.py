@@ -92,11 +92,13 @@ def _check_measurements(
 ) -> None:
     """One-line :class:`ParameterError` for measurements a calibration cannot use: an unknown feature name, no
     measurement at all, a force history for IMM (which has no contact force), an alignment level outside (0, 1)."""
-    for k in features:
+    for k, v in features.items():
         if k not in FEATURES:
             raise ParameterError(
                 f"--features {k}: unknown feature; allowed: {', '.join(FEATURES)}{closest(k, FEATURES)}"
             )
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):  # (as parse_features)
+            raise ParameterError(f"--features {k}: must be a finite number (got {v!r})")
     if measured is None and not features:
         raise ParameterError("calibrate: give measured histories (--data) and/or features (--features)")
     if measured is not None and measured.force is not None and method == "imm":
