@@ -164,3 +164,20 @@ def test_bitround_rounds_to_nearest_even_and_keeps_what_is_not_finite():
     assert bitround(np.array([1.0 + 3 * 2.0**-24]), 23)[0] == 1.0 + 2.0**-22  # and up to the even one
     special = np.array([np.nan, np.inf, -np.inf, np.finfo(float).max])
     np.testing.assert_array_equal(bitround(special, 10), special)  # the largest double would round past inf
+
+
+@pytest.mark.parametrize("source", ["seed-experiment", "rod-end"])  # hub + beam modes; free-free and axial modes
+def test_modal_coordinates_carry_the_unit_of_a_displacement(source):
+    """The mode shapes are dimensionless -- normalised to int phi^2 dx = L, so the modal mass matrix is mu L I [kg]
+    -- and w = sum phi_i q_i makes q a length [m] and q' a velocity [m/s] (the file said '1' and '1/s')."""
+    from flexbeam.model.beam import build_modal_beam
+
+    case = fb.load_case(source)
+    beam = build_modal_beam(case)
+    mu_l = case.beam.line_density * case.beam.length
+    np.testing.assert_allclose(np.diag(beam.Mff), mu_l, rtol=1e-9)
+    if beam.axial is not None:  # the rod's axial modes alike
+        np.testing.assert_allclose(beam.axial.Maa, mu_l, rtol=1e-9)  # (its diagonal)
+    assert beam.n + beam.na == (2 + 32 if source == "rod-end" else 12)
+    ds = fb.simulate(fb.load_case(source, {"solver.t_end": 1e-5}), "ccfm").to_xarray()
+    assert ds["q"].attrs["units"] == "m" and ds["q_rate"].attrs["units"] == "m/s"

@@ -12,8 +12,9 @@ from dataclasses import dataclass
 VARIABLES: dict[str, tuple[str, str]] = {
     "theta": ("rad", "Hub angle"),
     "theta_rate": ("rad/s", "Hub angular velocity"),
-    "q": ("1", "Modal coordinate"),
-    "q_rate": ("1/s", "Modal velocity"),
+    # the mode shapes are dimensionless (int phi^2 dx = L, model/modes.py, model/axial.py): w = sum phi_i q_i, q in m
+    "q": ("m", "Modal coordinate"),
+    "q_rate": ("m/s", "Modal velocity"),
     "contact_force": ("N", "Contact force"),
     "gap": ("m", "Gap at the contact point"),
     "normal_velocity": ("m/s", "Normal velocity of the contact point"),
