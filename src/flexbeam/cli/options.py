@@ -9,24 +9,20 @@ from typing import Annotated
 
 import typer
 
+from ..errors import ParameterError
 from ..registry import METHOD_NAMES
+from ..results.files import check_output_dir
 
 
 def out_dir(value: Path | None) -> Path | None:
     """``--out DIR``: a directory, or one that can be made (:func:`flexbeam.results.files.check_output_dir`)."""
-    from ..results.files import check_output_dir
-
     return None if value is None else check_output_dir(value, "--out")
 
 
 def out_file(value: Path) -> Path:
     """``--out FILE``: a file whose directory is one, or can be made."""
-    from ..results.files import check_output_dir
-
     check_output_dir(value.parent, "--out")
     if value.is_dir():
-        from ..errors import ParameterError
-
         raise ParameterError(f"--out: '{value}' is a directory; give a file name")
     return value
 
