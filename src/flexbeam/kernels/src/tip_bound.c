@@ -60,14 +60,17 @@ void fb_tip_model_init(const fb_model *m, const fb_basis *b, fb_tip_model *tm) {
         if (al != 0.0) tm->nonlinear = 1;
     }
     if (!tm->nonlinear) return;
+    double HPsi[FB_MAXN * FB_MAXN]; /* H Psi_q (nb x N), formed once: O(nb^2 N + nb N^2), not O(nb^2 N^2) */
+    for (int i = 0; i < nb; i++)
+        for (int k = 0; k < N; k++) {
+            double row = 0.0;
+            for (int l = 0; l < nb; l++) row += tip->H[i * nb + l] * b->Psi[(off + l) * N + k];
+            HPsi[i * N + k] = row;
+        }
     for (int j = 0; j < N; j++) /* |Psi_q^T H Psi_q| */
         for (int k = 0; k < N; k++) {
             double acc = 0.0;
-            for (int i = 0; i < nb; i++) {
-                double row = 0.0;
-                for (int l = 0; l < nb; l++) row += tip->H[i * nb + l] * b->Psi[(off + l) * N + k];
-                acc += b->Psi[(off + i) * N + j] * row;
-            }
+            for (int i = 0; i < nb; i++) acc += b->Psi[(off + i) * N + j] * HPsi[i * N + k];
             tm->Habs[j * N + k] = fabs(acc);
         }
 }
