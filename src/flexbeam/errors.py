@@ -55,9 +55,17 @@ class SlenderBeamWarning(FlexbeamWarning):
 
 
 def closest(name: str, choices: Iterable[str]) -> str:
-    """Return ``" (best matches: a, b)"`` for an unknown ``name``, or ``""``."""
-    matches = difflib.get_close_matches(name, list(choices), n=3, cutoff=0.5)
-    return f" (best matches: {', '.join(matches)})" if matches else ""
+    """Return ``" (best matches: a, b)"`` for an unknown ``name``, or ``""``.
+
+    Compared case-insensitively, as :func:`did_you_mean` (``CCFM`` finds ``ccfm``, ``Hertz`` finds ``hertz``:
+    compared as typed, their similarity was 0 and no match was offered); the matches are shown as ``choices``
+    spell them.
+    """
+    by_lower: dict[str, str] = {}
+    for c in choices:
+        by_lower.setdefault(c.lower(), c)
+    matches = difflib.get_close_matches(name.lower(), list(by_lower), n=3, cutoff=0.5)
+    return f" (best matches: {', '.join(by_lower[m] for m in matches)})" if matches else ""
 
 
 def did_you_mean(name: str, choices: Iterable[str]) -> str:

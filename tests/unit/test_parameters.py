@@ -197,3 +197,15 @@ def test_simulate_with_a_method_that_is_no_name_is_one_parameter_error(method):
     with pytest.raises(ParameterError, match="method: unknown impact method") as err:
         fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 1e-4}), method)
     assert ("best matches: ccfm" in str(err.value)) == (method == "cfm")
+
+
+@pytest.mark.parametrize(
+    ("call", "says"),
+    [(lambda: fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 1e-4}), "CCFM"), "best matches: ccfm"),
+     (lambda: fb.load_case("SEED-EXPERIMENT"), "best matches: seed-experiment")],
+)  # fmt: skip
+def test_a_name_in_other_letter_case_is_refused_with_its_match(call, says):
+    """Names are case-sensitive (the CLI and --json contract), but the refusal offers the name as spelt: compared as
+    typed, 'CCFM' and 'ccfm' share no character and no match was offered."""
+    with pytest.raises(ParameterError, match=says):
+        call()
