@@ -2,13 +2,15 @@
 that continues from point to point (:mod:`~flexbeam.bifurcation.continuation`), stored point by point so that an
 interrupted diagram resumes where it stopped.
 
-The store (``out``) holds ``branch-up.json`` and ``branch-down.json`` (the points computed so far, each written
-atomically by the worker as it finishes it: the store is on a file system the workers share, as the sweep's is) and
-the result, ``bifurcation.nc`` (:func:`build_dataset`).
+The store (``out``) holds ``branch-up.json`` and ``branch-down.json`` (``{"key": ..., "points": [...]}``: the points
+computed so far, each written atomically by the worker as it finishes it -- the store is on a file system the
+workers share, as the sweep's is --, and the key of the settings they were computed with, :func:`branch_key`: a
+command with other settings computes its branches afresh) and the result, ``bifurcation.nc`` (:func:`build_dataset`).
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 from pathlib import Path
@@ -21,6 +23,7 @@ from ..errors import ParameterError
 from ..parameters.case import Case
 from ..parameters.io import validate_case
 from ..results.files import atomic_path, write_text_atomic
+from ..sweep.planning import case_key
 from .continuation import Point, branch
 
 BRANCHES = ("up", "down")
@@ -42,21 +45,45 @@ def check(case: Case, lo: float, hi: float, count: int, periods: int, discard: i
         raise ParameterError(f"--phase: a fraction of the drive period in [0, 1) (got {phase})")
 
 
+def branch_key(case: Case, method: str, periods: int, discard: int, phase: float) -> str:
+    """What a branch's points depend on besides their frequencies: the case (its own ``base.frequency`` aside, which
+    each point replaces), the method, ``periods``, ``discard`` and ``phase`` -- a hash (:func:`flexbeam.sweep.case_key`
+    of the case), so that a store made with other settings is not resumed."""
+    unset = case.model_copy(update={"base": case.base.model_copy(update={"frequency": None})})
+    text = json.dumps([case_key(unset, method), periods, discard, repr(float(phase))])
+    return hashlib.sha256(text.encode()).hexdigest()[:24]
+
+
+def stored_points(store: Path | None, key: str, frequencies: list[float]) -> list[Point]:
+    """The points of the branch store ``store`` made with the settings ``key``, as far as they follow
+    ``frequencies``; none from a store made with other settings (or unreadable, or of an earlier layout without the
+    key), which is then computed afresh and overwritten point by point."""
+    try:
+        stored = json.loads(store.read_text(encoding="utf-8")) if store is not None and store.exists() else None
+    except (OSError, ValueError):
+        stored = None
+    if not isinstance(stored, dict) or stored.get("key") != key:
+        return []
+    done = [Point.from_record(r) for r in stored["points"]]
+    return [p for p, f in zip(done, frequencies) if p.frequency == f]  # the same grid only
+
+
 def run_branch(data: dict[str, Any], method: str, frequencies: list[float], periods: int, discard: int, phase: float,
                path: str | None) -> list[dict[str, Any]]:  # fmt: skip
-    """On a worker: one branch, resumed from the records at ``path`` and each new point added there as it ends."""
+    """On a worker: one branch, resumed from the records at ``path`` (made with the same settings, :func:`branch_key`)
+    and each new point added there as it ends."""
     from ..simulation import simulate
 
     case = validate_case(data)
     store = Path(path) if path else None
-    done = [Point.from_record(r) for r in json.loads(store.read_text())] if store and store.exists() else []
-    done = [p for p, f in zip(done, frequencies) if p.frequency == f]  # the same grid only
+    key = branch_key(case, method, periods, discard, phase)
+    done = stored_points(store, key, frequencies)
     records = [p.record() for p in done]
     for i, point in enumerate(branch(case, method, frequencies, periods, discard, phase, simulate, done)):
         if i >= len(done):
             records.append(point.record())
             if store:
-                write_text_atomic(store, json.dumps(records))
+                write_text_atomic(store, json.dumps({"key": key, "points": records}))
     return records
 
 
@@ -112,11 +139,13 @@ def bifurcation(
 
 def build_dataset(results: dict[str, list[Point]], grid: list[float], case: Case, method: str, periods: int,
                   discard: int, phase: float) -> xr.Dataset:  # fmt: skip
-    """Dims ``branch`` (up, down), ``frequency`` (ascending), ``section`` (the periods after the transient) and
-    ``impact`` (the contact records after it, NaN-padded): the Poincaré samples ``tip`` [m] and ``velocity`` [m/s],
-    the impacts' ``impact_velocity`` [m/s] and ``impact_phase``, the frequency response ``amplitude`` [m] and each
-    point's ``status``."""
-    nb, nf, ns = len(BRANCHES), len(grid), periods - discard
+    """Dims ``branch`` (up, down), ``frequency`` (ascending), ``section`` (the sections k = ``discard`` ..
+    ``periods`` after the transient, the last at the run's end; NaN where a point has fewer: the first point of a
+    branch sampled at ``phase`` > 0 has no section at its end) and ``impact`` (the contact records after it,
+    NaN-padded): the Poincaré samples ``tip`` [m] and ``velocity`` [m/s], the impacts' ``impact_velocity`` [m/s] and
+    ``impact_phase``, the frequency response ``amplitude`` [m] (the largest |tip deflection| after the transient)
+    and each point's ``status``."""
+    nb, nf, ns = len(BRANCHES), len(grid), periods - discard + 1
     ni = max([1] + [p.impact_velocity.size for pts in results.values() for p in pts])
     tip, vel = np.full((nb, nf, ns), np.nan), np.full((nb, nf, ns), np.nan)
     iv, ip = np.full((nb, nf, ni), np.nan), np.full((nb, nf, ni), np.nan)
@@ -139,7 +168,8 @@ def build_dataset(results: dict[str, list[Point]], grid: list[float], case: Case
             "impact_velocity": (("branch", "frequency", "impact"), iv,
                                 {"units": "m/s", "long_name": "approach velocity of each impact (negative)"}),
             "impact_phase": (("branch", "frequency", "impact"), ip, {"units": "1", "long_name": "phase of the drive"}),
-            "amplitude": (("branch", "frequency"), amp, {"units": "m", "long_name": "largest |tip deflection|"}),
+            "amplitude": (("branch", "frequency"), amp,
+                          {"units": "m", "long_name": "largest |tip deflection| after the transient"}),
             "status": (("branch", "frequency"), status.astype(str)),
         },
         coords={"branch": list(BRANCHES), "frequency": ("frequency", np.asarray(grid), {"units": "Hz"})},

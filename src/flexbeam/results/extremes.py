@@ -28,28 +28,38 @@ TIP = OUTPUT_COLUMNS.index("tip_deflection")
 
 
 def column_extremes(
-    source: RunSource, column: str, points_per_step: int = 4, reached: tuple[float, float] | None = None
+    source: RunSource,
+    column: str,
+    points_per_step: int = 4,
+    reached: tuple[float, float] | None = None,
+    window: tuple[float, float] | None = None,
 ) -> tuple[float, float]:
     """(min, max) of output ``column`` over the run of ``source`` (NaN without a phase of positive length).  A rigid
     beam's tip (no bending modes) lies on its radial line: its deflection is 0, with nothing to search (a search
     through its round-off, flat at ~1e-17 m, found every sample a candidate: 9 s for a held rigid beam's 0.5 s).
     ``reached``: (min, max) reached already elsewhere (a streamed run's earlier parts): what cannot go beyond them is
     not searched, and the result includes them (a resting contact's parts, each searched from scratch, took 17 s of
-    40 s streamed: its flat tip left every interval within reach of the part's own best)."""
+    40 s streamed: its flat tip left every interval within reach of the part's own best).  ``window``: (t_a, t_b),
+    the extremes over that time interval only (a steady state after its transient): each phase's grid is cut to
+    it, its ends added as samples, so that every bracket lies inside it."""
     if column == "tip_deflection" and source.system.beam.n == 0:
-        return (0.0, 0.0) if any(seg.t1 > seg.t0 for seg in source.segments) else (math.nan, math.nan)
+        inside = any(_cut(seg.t0, seg.t1, window) for seg in source.segments)
+        return (0.0, 0.0) if inside else (math.nan, math.nan)
     grids = []
     for i, seg in enumerate(source.segments):
+        if not _cut(seg.t0, seg.t1, window):
+            continue
         if column == "tip_deflection" and hasattr(seg.dense, "tip_nodes"):
             if seg.t1 > seg.t0:  # (its breaks hold two points or more)
-                grids.append((seg, *tip_grid(source, i)))
+                grids.append(_windowed(source, seg, *tip_grid(source, i), column, window))
             continue
         b = seg.breaks()
         if b.size < 2:
             continue
         frac = np.linspace(0.0, 1.0, points_per_step + 1)[:-1]
         t = np.append((b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel(), b[-1])
-        grids.append((seg, t, source.evaluate(seg, t)[0][column]))
+        grids.append(_windowed(source, seg, t, source.evaluate(seg, t)[0][column], column, window))
+    grids = [g for g in grids if g[1].size]
     if not grids:
         return math.nan, math.nan
     out, slacks = [], {}
@@ -88,6 +98,24 @@ def _tip_between(source: RunSource, grids: list, sign: float, best: float, found
             found_best = source._zoom_all(seg, "tip_deflection", sign, t[idx], t[idx + 1], floor=best, reach=bound[idx])
             best = max(best, found_best)
     return best
+
+
+def _cut(t0: float, t1: float, window: tuple[float, float] | None) -> bool:
+    """Whether the phase [t0, t1] has a part of positive length in ``window`` (any phase without one)."""
+    return window is None or (t1 > t0 and t0 < window[1] and t1 > window[0])
+
+
+def _windowed(source: RunSource, seg, t: np.ndarray, v: np.ndarray, column: str, window: tuple[float, float] | None):
+    """The grid (seg, t, v) cut to ``window``, the window's ends inside the phase added as samples (their values from
+    the dense output); as it is without a window."""
+    if window is None:
+        return seg, t, v
+    keep = (t > window[0]) & (t < window[1])
+    ends = np.array([x for x in window if t[0] <= x <= t[-1]], float)
+    t_all = np.concatenate((t[keep], ends))
+    v_all = np.concatenate((v[keep], source.evaluate(seg, ends)[0][column] if ends.size else ends))
+    order = np.argsort(t_all, kind="stable")
+    return seg, t_all[order], v_all[order]
 
 
 def tip_grid(source: RunSource, i: int) -> tuple[np.ndarray, np.ndarray]:
