@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import json
 import math
+import signal
 import subprocess
 import sys
+import time
 import tracemalloc
 
 import numpy as np
@@ -264,3 +266,29 @@ def test_cli_stream_bad_use(tmp_path, args, field, fragment):
     assert r.stderr.splitlines() == [r.stderr.strip()] and r.stderr.startswith(f"error: {field}"), r.stderr
     assert fragment in r.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_a_terminated_streamed_run_leaves_no_file(tmp_path):
+    """SIGTERM (``kill``, ``timeout``, a job scheduler) ends a streamed run as Ctrl-C does: exit 143, one line, and
+    no file in --out (before: Python's default action for SIGTERM ended the process at once, exit -15, and left the
+    6 MB temporary file ``.result.nc.XXXX`` behind)."""
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "flexbeam.cli", "run", "seed-experiment", "--stream", "--out", str(out),
+         "--set", "solver.t_end=1000", "--set", "output.interval=1e-3"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    try:
+        deadline = time.monotonic() + 120
+        while not (out.is_dir() and any(out.iterdir())):  # the stream's temporary file, being written
+            assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+            time.sleep(0.05)
+        proc.send_signal(signal.SIGTERM)
+        _, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == 143, err
+    assert err.strip().splitlines()[-1] == "terminated"
+    assert not any(out.iterdir())

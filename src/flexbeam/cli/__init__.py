@@ -4,7 +4,8 @@ The command and ``--json`` key names are a contract users script against: add ne
 ones, never rename.  Exit codes: 0 for a complete run; 2 for bad input (one line on
 stderr naming the field); 1 when a run ends before ``solver.t_end`` (status "failed" or
 "max-contacts": the metrics are still printed, one line on stderr says why), a
-calibration does not converge, or a sweep leaves cases missing; 130 when interrupted.
+calibration does not converge, or a sweep leaves cases missing; 130 when interrupted (SIGINT, Ctrl-C), 143 when
+terminated (SIGTERM), either after cleaning up as for an error (no file half-written).
 
 This module holds the Typer :data:`app` and :func:`main`, which turns errors and flexbeam's warnings into one
 line on stderr and an exit code.  The commands are in the submodules:
@@ -37,7 +38,7 @@ from ..errors import FlexbeamError, FlexbeamWarning, ParameterError, SolverError
 from .animation import animate
 from .bifurcation import bifurcation
 from .cases import cases_app, frequencies
-from .messages import one_line
+from .messages import Terminated, interrupt_code, one_line, sigterm_as_interrupt
 from .run_compare import compare, run
 from .sweep_calibrate import calibrate, sweep
 
@@ -67,12 +68,13 @@ def main(argv: list[str] | None = None) -> None:
 
         warnings.simplefilter("default", FlexbeamWarning)  # whatever filters the caller set
         warnings.showwarning = show
-        _main(argv)
+        with sigterm_as_interrupt():
+            _main(argv)
 
 
 def _main(argv: list[str] | None) -> None:
     """Run the app on ``argv``; each error as one line on stderr and its exit code (2 bad input, 1 a solver
-    error, 130 interrupted)."""
+    error, 130 interrupted, 143 terminated)."""
     try:
         rc = app(args=argv, standalone_mode=False, prog_name="flexbeam")
         if isinstance(rc, int) and rc != 0:
@@ -94,6 +96,9 @@ def _main(argv: list[str] | None) -> None:
     except FlexbeamError as exc:
         sys.stderr.write(f"error: {one_line(exc)}\n")
         sys.exit(2)
+    except Terminated as exc:
+        sys.stderr.write("terminated\n")
+        sys.exit(interrupt_code(exc))
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")
         sys.exit(130)

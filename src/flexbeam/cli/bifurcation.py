@@ -11,6 +11,7 @@ from typing import Annotated
 import typer
 
 from ..errors import ParameterError
+from .messages import Terminated, interrupt_code
 from .options import MethodOpt, SetOpt, out_dir
 from .runs import load
 
@@ -63,9 +64,9 @@ def bifurcation(
     try:
         ds = run_diagram(c, lo, hi, count, periods, discard, method=method, phase=phase, out=out,
                          scheduler=scheduler, workers=workers)  # fmt: skip
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, Terminated) as exc:
         sys.stderr.write(f"interrupted: the finished points are kept in {out}; the same command resumes\n")
-        sys.exit(130)
+        sys.exit(interrupt_code(exc))
     png = plot_bifurcation(ds, out / "bifurcation.png")
     status = ds["status"].values.ravel().tolist()
     info = {

@@ -12,6 +12,7 @@ import typer
 
 from ..errors import ParameterError
 from ..progress import StderrProgress
+from .messages import Terminated, interrupt_code
 from .options import MethodOpt, SetOpt, out_dir
 from .runs import load
 from .tables import print_calibration
@@ -87,10 +88,10 @@ def sweep(
             progress=progress,
             batch_size=batch_size,
         )
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, Terminated) as exc:
         progress.close()
         sys.stderr.write(f"interrupted: the finished cases are kept in {out}; the same command resumes\n")
-        sys.exit(130)
+        sys.exit(interrupt_code(exc))
     finally:
         progress.close()
     info = summary(ds)
