@@ -181,3 +181,19 @@ def test_modal_coordinates_carry_the_unit_of_a_displacement(source):
     assert beam.n + beam.na == (2 + 32 if source == "rod-end" else 12)
     ds = fb.simulate(fb.load_case(source, {"solver.t_end": 1e-5}), "ccfm").to_xarray()
     assert ds["q"].attrs["units"] == "m" and ds["q_rate"].attrs["units"] == "m/s"
+
+
+def test_the_drive_work_names_the_moving_base():
+    """On the shaker (a joint prescribed at zero rate: no torque does work) drive_work is the moving base's work,
+    which the energy balance books in W (docs/formulation.md, "The base's work"); its long name said "Work of the
+    joint torque".  total_energy = T + V_e + V_g + U_c + E_d - W with W = drive_work, to round-off."""
+    from pathlib import Path
+
+    shaker = Path(__file__).resolve().parent / "validation" / "data" / "shaker-stop.toml"
+    ds = fb.simulate(fb.load_case(shaker, {"solver.t_end": 0.05}), "ccfm").to_xarray()
+    assert "moving base" in ds["drive_work"].attrs["long_name"]
+    assert float(np.max(np.abs(ds["drive_work"]))) > 1e-6  # the base works on the beam (J)
+    terms = sum(ds[k] for k in ("kinetic_energy", "elastic_energy", "gravitational_energy", "contact_energy",
+                                "dissipated_energy")) - ds["drive_work"]  # fmt: skip
+    scale = float(np.max(np.abs(ds["kinetic_energy"]))) + float(np.max(np.abs(ds["drive_work"])))
+    assert float(np.max(np.abs(terms - ds["total_energy"]))) <= 1e-6 * scale

@@ -167,6 +167,9 @@ def test_grid_result_has_a_dimension_per_field_and_a_variable_per_metric(referen
     ):
         assert name in ds
     assert ds["peak_force"].attrs["units"] == "N"
+    # the swept fields' units, as the case schema gives them (before: a long_name only)
+    assert ds["contact.stiffness"].attrs == {"long_name": "contact.stiffness", "units": "N/m^n"}
+    assert ds["contact.restitution"].attrs["units"] == "-"
     # a stiffer contact gives a higher, shorter pulse; more restitution a faster rebound
     assert np.all(np.diff(ds["peak_force"].values, axis=1) > 0)
     assert np.all(np.diff(ds["contact_duration"].values, axis=1) < 0)
@@ -255,6 +258,7 @@ def test_samples_have_a_case_dimension_and_more_samples_reuse_the_first(cluster,
     )
     first = fb.sweep("seed-experiment", n=3, **kw)
     assert first["peak_force"].dims == ("case",) and first.sizes["case"] == 3
+    assert first["contact.stiffness"].attrs["units"] == "N/m^n" and "units" not in first["case"].attrs
     e = first["contact.restitution"].values
     assert np.all((e >= 0.5) & (e <= 0.9))
     more = fb.sweep("seed-experiment", n=5, **kw)

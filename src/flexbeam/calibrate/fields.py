@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import re
 import types
 import typing
 from collections.abc import Sequence
@@ -12,7 +11,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..parameters.case import Case
-from ..parameters.io import schema_field
+from ..parameters.io import field_units, schema_field
 
 
 def parse_fit(text: str | Sequence[str]) -> list[str]:
@@ -59,8 +58,7 @@ def _field(key: str) -> tuple[float, float, bool, str]:
         elif isinstance(m, (Le, Lt)):
             hi = min(hi, float(m.le if isinstance(m, Le) else m.lt))
     is_real = float in bases and not any(isinstance(b, type) and issubclass(b, BaseModel) for b in bases)
-    found = re.search(r"\[([^\]]+)\]", info.description or "")
-    return lo, hi, is_real, found.group(1) if found else ""
+    return lo, hi, is_real, field_units(key)
 
 
 @dataclass

@@ -158,6 +158,13 @@ def schema_field(key: str):
     raise AssertionError("unreachable")
 
 
+def field_units(key: str) -> str:
+    """The units of the dotted case field ``key`` as its description gives them, in brackets (``[rad]`` -> ``rad``,
+    ``[-]`` -> ``-``), "" where it gives none; a one-line ParameterError for an unknown field (:func:`schema_field`)."""
+    found = re.search(r"\[([^\]]+)\]", schema_field(key).description or "")
+    return found.group(1) if found else ""
+
+
 def unknown_field_message(path: list[str], section: bool, key: str | None = None) -> str:
     """One-line message for an unknown case field or section, naming it first.
 

@@ -24,8 +24,9 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "gravitational_energy": ("J", "Gravitational energy"),
     "contact_energy": ("J", "Contact potential energy"),
     "dissipated_energy": ("J", "Energy dissipated by contact (and the support's dashpot)"),
-    "drive_work": ("J", "Work of the joint torque"),
-    "total_energy": ("J", "Total energy including dissipated and drive work"),
+    # W of docs/formulation.md: the drive's work, the moving base's (W_b) and a moving ground obstacle's (W_g)
+    "drive_work": ("J", "Work done on the beam: joint torque or prescribed drive, moving base, moving ground obstacle"),
+    "total_energy": ("J", "Total energy T + V_e + V_g + U_c + E_d - W (W: drive_work), conserved by the equations"),
     "joint_torque": ("N m", "Joint torque"),
     "tip_deflection": ("m", "Tip deflection in the rotating frame"),
     "support_displacement": ("m", "Displacement s of the compliant obstacle along its support axis"),

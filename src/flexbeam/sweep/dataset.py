@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..errors import ParameterError
+from ..parameters.io import field_units
 from ..results.metrics import METRICS as REGISTRY
 from ..results.metrics import SCALARS
 from .planning import Plan, plain
@@ -41,13 +42,13 @@ def build_dataset(
     if spec["kind"] == "grid":
         dims = tuple(spec["keys"])
         shape = tuple(len(spec["grid"][k]) for k in dims)
-        coords: dict[str, Any] = {k: (k, _coord(spec["grid"][k]), {"long_name": k}) for k in dims}
+        coords: dict[str, Any] = {k: (k, _coord(spec["grid"][k]), _field_attrs(k)) for k in dims}
     else:
         dims = ("case",)
         shape = (len(keys),)
         values = plan_.coords if plan_ is not None else spec["values"]
         coords = {"case": ("case", np.arange(len(keys)), {"long_name": "Case index"})}
-        coords.update({k: ("case", _coord(values[k]), {"long_name": k}) for k in spec["keys"]})
+        coords.update({k: ("case", _coord(values[k]), _field_attrs(k)) for k in spec["keys"]})
     names = list(METRICS)
     extra = sorted(
         {
@@ -98,6 +99,15 @@ def build_dataset(
         "missing": n_missing,
     }
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def _field_attrs(key: str) -> dict[str, str]:
+    """A swept case field's coordinate attributes: its dotted name and, where the case schema gives them, its units."""
+    try:
+        units = field_units(key)
+    except ParameterError:  # (a store written by another version, whose field this one does not know)
+        units = ""
+    return {"long_name": key, "units": units} if units else {"long_name": key}
 
 
 def _coord(values: Sequence[Any]) -> Any:
