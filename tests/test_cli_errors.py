@@ -113,6 +113,9 @@ SET_CASES = [
     ("model.axial_modes=-1", "model.axial_modes", "greater than or equal to 0"),
     ("model.axial_modes=53", "model.axial_modes", "model.modes + model.axial_modes must be at most 64"),
     ("initial.axial_displacement=[1e-6]", "initial.axial_displacement", "1 values for model.axial_modes = 0"),
+    # a value of the wrong shape says what the field holds (pydantic said "Input should be a valid tuple" only)
+    ("obstacle.centre=0.3", "obstacle.centre", "expected a list of 2 numbers, obstacle centre [m]"),
+    ("initial.modal_velocity=3", "initial.modal_velocity", "expected initial modal velocities"),
 ]
 
 

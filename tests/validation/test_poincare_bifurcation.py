@@ -56,6 +56,14 @@ def test_section_times_are_the_phase_of_every_period():
     assert k.tolist() == [2, 3, 4]
 
 
+@pytest.mark.parametrize("discard", [-1, 1.5, True])
+def test_a_poincare_section_discards_a_whole_number_of_periods(discard):
+    """discard = -1 gave the sections from period 0 on, as 0 does; 1.5 compared as a number."""
+    sol = fb.simulate(fb.load_case(SHAKER, {"solver.t_end": 0.2}), "ccfm")
+    with pytest.raises(ValueError, match="discard"):
+        sol.poincare(discard=discard)
+
+
 def test_a_poincare_section_needs_a_shaken_base():
     sol = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 0.01}), "ccfm")
     with pytest.raises(ValueError, match="base.frequency"):
@@ -134,6 +142,10 @@ def test_the_bifurcation_command_writes_the_diagram(tmp_path):
         (("--param", "base.frequency=12:20:2", "--periods", "5", "--discard", "5"), "--discard"),
         (("--param", "base.frequency=0:20:2", "--periods", "5", "--discard", "1"), "--param"),
         (("--param", "contact.stiffness=1:2:3", "--periods", "5", "--discard", "1"), "--param"),
+        # an up branch that went down, a count that dropped hi, twice the same frequency (they ran before)
+        (("--param", "base.frequency=16:14:2", "--periods", "5", "--discard", "1"), "--param"),
+        (("--param", "base.frequency=14:16:1", "--periods", "5", "--discard", "1"), "--param"),
+        (("--param", "base.frequency=14:14:2", "--periods", "5", "--discard", "1"), "--param"),
     ],
 )
 def test_bad_bifurcation_input_is_one_line(tmp_path, args, field):

@@ -37,6 +37,8 @@ def check(case: Case, lo: float, hi: float, count: int, periods: int, discard: i
         raise ParameterError(f"--param: the frequencies must be finite and > 0 Hz (got {lo!r}:{hi!r})")
     if not 1 <= count <= 100_000:
         raise ParameterError(f"--param: the number of frequencies must be 1 to 100000 (got {count})")
+    if (count == 1) != (lo == hi) or lo > hi:  # (the up branch climbs from lo to hi; N frequencies, ends included)
+        raise ParameterError(f"--param: lo < hi for N >= 2 frequencies, lo = hi for N = 1 (got {lo!r}:{hi!r}:{count})")
     if not 1 <= periods <= 1_000_000:
         raise ParameterError(f"--periods: must be 1 to 1000000 (got {periods})")
     if not 0 <= discard < periods:

@@ -92,8 +92,28 @@ def _format_validation_error(exc: ValidationError) -> str:
     if loc and not msg.startswith(loc.split(".")[0] + "."):
         got = err.get("input")
         got_txt = f" (got {got!r})" if got is not None and not isinstance(got, dict) else ""
-        return f"{loc}: {msg}{got_txt}"
+        return f"{loc}: {msg}{got_txt}{_shape_hint(err['type'], loc)}"
     return msg
+
+
+#: pydantic's errors of a value of the wrong shape (a number for a pair, a list too short), whose own text does not
+#: say what the field holds
+_SHAPE_ERRORS = ("tuple_type", "list_type", "too_short", "too_long")
+
+
+def _shape_hint(kind: str, loc: str) -> str:
+    """For an error of :data:`_SHAPE_ERRORS`, "; expected: " and the field's description (``base.acceleration = 1.0``
+    said "Input should be a valid tuple" only); else ""."""
+    if kind not in _SHAPE_ERRORS:
+        return ""
+    try:
+        info = schema_field(loc)
+    except ParameterError:
+        return ""
+    args = [a for a in typing.get_args(info.annotation) if typing.get_origin(a) is tuple] or [info.annotation]
+    items = typing.get_args(args[0]) if typing.get_origin(args[0]) is tuple else ()
+    shape = f"a list of {len(items)} numbers, " if items and Ellipsis not in items else ""
+    return f"; expected {shape}{info.description}" if info.description else ""
 
 
 _INDEXED = re.compile(r"^(\w+)\[(\d+)\]$")

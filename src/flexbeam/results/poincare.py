@@ -62,10 +62,13 @@ def poincare(sol: Solution, phase: float = 0.0, discard: int = 0) -> dict[str, n
     Raises
     ------
     ValueError
-        Without a moving base with a frequency, or without the run's dense output, or a phase outside [0, 1).
+        Without a moving base with a frequency, or without the run's dense output, or a phase outside [0, 1), or a
+        ``discard`` that is not a whole number >= 0.
     """
     if not 0.0 <= phase < 1.0:
         raise ValueError(f"phase: a fraction of the drive period in [0, 1), not {phase!r}")
+    if isinstance(discard, bool) or not isinstance(discard, (int, np.integer)) or discard < 0:
+        raise ValueError(f"discard: a number of periods >= 0, not {discard!r}")
     f = drive_frequency(sol)
     if not math.isfinite(f):
         raise ValueError(
