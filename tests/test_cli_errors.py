@@ -423,3 +423,9 @@ def test_files_that_are_not_utf8_text_are_refused_in_one_line(tmp_path):
 def test_frequencies_of_a_free_beam_are_refused_in_one_line():
     """A free beam has no hub to spin about (a ValueError's traceback before)."""
     assert_one_line_error(flexbeam("frequencies", "rod-end"), "joint.kind", "clamped to a hub", "'free'")
+
+
+@pytest.mark.parametrize("methods", ["", " , "])
+def test_compare_without_a_method_is_refused(methods):
+    """It ran nothing, printed an empty table and exited 0."""
+    assert_one_line_error(flexbeam("compare", "seed-experiment", "--methods", methods), "--methods", "at least one")

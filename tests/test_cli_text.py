@@ -29,6 +29,9 @@ def _flat(text: str) -> str:
         (["calibrate", "--help"], "velocity columns [s, N, m/s]"),
         (["frequencies", "--help"], "hub spin rate Omega [rad/s]"),
         (["--help"], "Natural frequencies [rad/s]"),
+        # what compare writes and prints (it shared run's "result.nc, summary.json, plots" and "one JSON object")
+        (["compare", "--help"], "directory for comparison.json, comparison.md and the figures"),
+        (["compare", "--help"], "as a JSON list"),
     ],
 )
 def test_help_prints_units_and_keys_as_written(command, text):

@@ -4,13 +4,14 @@ against the paper's table)."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 from typing import Annotated
 
 import typer
 
 from ..errors import ParameterError
 from ..registry import METHOD_NAMES
-from .options import JsonOpt, MethodOpt, OutOpt, SetOpt
+from .options import JsonOpt, MethodOpt, OutOpt, SetOpt, out_dir
 from .runs import exit_unless_complete, load, run_progress, simulate
 from .tables import print_metrics
 
@@ -51,9 +52,21 @@ def run(
 def compare(
     case: Annotated[str, typer.Argument(help="built-in case name or TOML file")],
     set_: SetOpt = None,
-    out: OutOpt = None,
+    out: Annotated[
+        Path | None,
+        typer.Option(
+            "--out", "-o", callback=out_dir, help="directory for comparison.json, comparison.md and the figures"
+        ),
+    ] = None,
     methods: Annotated[str, typer.Option("--methods", help="comma-separated methods")] = "ccfm,ccm,fem",
-    json_: JsonOpt = False,
+    json_: Annotated[
+        bool,
+        typer.Option(
+            "--json",
+            help="print the table's rows, one per method, as a JSON list (force_peaks: how many "
+            "force maxima the first contact has)",
+        ),
+    ] = False,
 ) -> None:
     """Run CCFM, CCM and the FE reference on one case; figures and a table against the paper."""
     from ..parameters.io import reference_data
@@ -62,6 +75,8 @@ def compare(
 
     c = load(case, set_)
     chosen = tuple(m.strip() for m in methods.split(",") if m.strip())
+    if not chosen:
+        raise ParameterError(f"--methods: give at least one method of {', '.join(METHOD_NAMES)} (got {methods!r})")
     for m in chosen:
         if m not in METHOD_NAMES:
             raise ParameterError(f"--methods: unknown method '{m}'; allowed: {', '.join(METHOD_NAMES)}")

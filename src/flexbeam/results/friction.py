@@ -13,7 +13,7 @@ from ..model.system import BeamSystem
 
 
 def has_friction(segments: list[Segment]) -> bool:
-    """Did some phase of the run carry Coulomb friction (CCFM)?"""
+    """Did some phase of the run carry friction (CCFM's and CCM's contacts, IMM's held pairs)?"""
     return any(s.phase.friction is not None for s in segments)
 
 
