@@ -116,6 +116,8 @@ SET_CASES = [
     # a value of the wrong shape says what the field holds (pydantic said "Input should be a valid tuple" only)
     ("obstacle.centre=0.3", "obstacle.centre", "expected a list of 2 numbers, obstacle centre [m]"),
     ("initial.modal_velocity=3", "initial.modal_velocity", "expected initial modal velocities"),
+    # an exponent without a stiffness (Hertz theory's 1.5 replaced it without a word)
+    ("contact.exponent=1.4", "contact.exponent", "1.4 needs a stiffness K [N/m^n] (contact.stiffness)"),
 ]
 
 
@@ -429,3 +431,9 @@ def test_frequencies_of_a_free_beam_are_refused_in_one_line():
 def test_compare_without_a_method_is_refused(methods):
     """It ran nothing, printed an empty table and exited 0."""
     assert_one_line_error(flexbeam("compare", "seed-experiment", "--methods", methods), "--methods", "at least one")
+
+
+def test_an_obstacles_exponent_without_a_stiffness_names_its_pair():
+    """two-stops' second stop under Hertz theory (no stiffness anywhere) given its own exponent: its field is named."""
+    r = flexbeam("run", "two-stops", "--set", "obstacles[0].contact.exponent=1.2")
+    assert_one_line_error(r, "obstacles[0].contact.exponent", "1.2 needs a stiffness")

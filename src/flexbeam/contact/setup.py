@@ -226,9 +226,14 @@ def contact_law(case: Case, obstacle: Obstacle | None = None, pair: PairContact 
         )
         radius = case.beam.radius if case.beam.section == "circle" else 0.0
         K = sphere_on_cylinder_stiffness(obstacle.radius, radius or 0.0, E_star)
-        exponent = 1.5
+        k = next((k for k, o in enumerate(case.obstacles) if o is obstacle), None)
+        if exponent != 1.5:  # (it was replaced by 1.5 without a word: --set contact.exponent=1.0 changed nothing)
+            field = "contact" if pair is None or pair.exponent is None or k is None else _contact_field(k + 1)
+            raise ParameterError(
+                f"{field}.exponent: {exponent:g} needs a stiffness K [N/m^n] (contact.stiffness): with it omitted, "
+                "Hertz theory gives K d^1.5, exponent 1.5"
+            )
         if not 1e-300 < K < 1e300:  # (an obstacle's E of 5e-324 Pa made K = 0: a division by zero in the estimates)
-            k = next((k for k, o in enumerate(case.obstacles) if o is obstacle), None)
             name = "obstacle" if k is None else _name(k + 1)
             raise ParameterError(
                 f"{name}.youngs_modulus: gives a Hertz contact stiffness of {K:.3g} N/m^1.5, outside the positive "
