@@ -151,6 +151,19 @@ def test_parameter_scaling_follows_the_field_ranges():
     assert K.value(np.log(0.5)) == pytest.approx(0.5 * K.x0)
 
 
+def test_an_obstacles_field_is_fitted_by_its_index():
+    """``obstacles[0].contact.stiffness`` as --set and sweep take it (an AttributeError traceback before): two-stops'
+    second stop is a sphere like its first (radius 10 mm, E = 68.95 GPa) under the same beam, so its Hertz stiffness
+    is the first stop's, ~4.43e9 N/m^1.5 (the seed's, above); a value given is its start."""
+    case = fb.load_case("two-stops")
+    K = Parameter.of(case, "obstacles[0].contact.stiffness")
+    assert K.log and K.x0 == pytest.approx(4.43e9, rel=1e-2) and K.units.startswith("N/m")
+    given = Parameter.of(fb.load_case("two-stops", {"obstacles[0].contact.stiffness": 3e9}), K.key)
+    assert given.x0 == 3e9
+    with pytest.raises(ParameterError, match=r"obstacles\[3\].contact.stiffness: obstacles\[3\] does not exist"):
+        Parameter.of(case, "obstacles[3].contact.stiffness")
+
+
 @pytest.mark.parametrize(
     ("call", "match"),
     [

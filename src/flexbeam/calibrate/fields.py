@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 import types
 import typing
 from collections.abc import Sequence
@@ -11,7 +12,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..parameters.case import Case
-from ..parameters.io import field_units, schema_field
+from ..parameters.io import field_units, get_dotted, schema_field
 
 
 def parse_fit(text: str | Sequence[str]) -> list[str]:
@@ -78,11 +79,13 @@ class Parameter:
         lo, hi, is_real, units = _field(key)
         if not is_real:
             raise ParameterError(f"--fit {key}: not a real-valued field (only numbers can be fitted)")
-        x0 = _get(case, key)
-        if x0 is None and key == "contact.stiffness":
+        x0 = get_dotted(case, key)
+        pair = re.fullmatch(r"(?:obstacles\[(\d+)\]\.)?contact\.stiffness", key)
+        if x0 is None and pair:  # Hertz theory's stiffness of that pair, the law it runs with
             from ..contact.setup import contact_law
 
-            x0 = contact_law(case).stiffness
+            ob = None if pair.group(1) is None else case.obstacles[int(pair.group(1))]
+            x0 = contact_law(case, ob, None if ob is None else ob.contact).stiffness
         if x0 is None:
             raise ParameterError(f"--fit {key}: the case gives no value; give a starting value with --set {key}=VALUE")
         x0 = float(x0)
@@ -103,10 +106,3 @@ class Parameter:
             lo = math.log(self.lower / self.x0) if self.lower > 0 else -math.inf
             return lo, math.inf
         return (self.lower - self.x0) / self.scale, (self.upper - self.x0) / self.scale
-
-
-def _get(case: Case, key: str) -> Any:
-    obj: Any = case
-    for part in key.split("."):
-        obj = getattr(obj, part)
-    return obj

@@ -102,8 +102,8 @@ _SHAPE_ERRORS = ("tuple_type", "list_type", "too_short", "too_long")
 
 
 def _shape_hint(kind: str, loc: str) -> str:
-    """For an error of :data:`_SHAPE_ERRORS`, "; expected: " and the field's description (``base.acceleration = 1.0``
-    said "Input should be a valid tuple" only); else ""."""
+    """For an error of :data:`_SHAPE_ERRORS`, "; expected " with the field's shape (a tuple's number of items) and
+    description (``base.acceleration = 1.0`` said "Input should be a valid tuple" only); else ""."""
     if kind not in _SHAPE_ERRORS:
         return ""
     try:
@@ -301,6 +301,21 @@ def set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
             node = node.setdefault(name, {})
             if not isinstance(node, dict):
                 raise ParameterError(f"{key}: '{where}' is not a section")
+
+
+def get_dotted(case: Case, key: str) -> Any:
+    """The value of the dotted field ``key`` of ``case`` (``obstacles[0].contact.stiffness`` as :func:`set_dotted`
+    takes it); a one-line ParameterError for an unknown path or a missing entry."""
+    schema_field(key)
+    node: Any = case
+    for part in key.split("."):
+        name, index = _split(part)
+        node = getattr(node, name)
+        if index is not None:
+            if index >= len(node):
+                raise ParameterError(f"{key}: {name}[{index}] does not exist (the case has {len(node)} {name})")
+            node = node[index]
+    return node
 
 
 def parse_value(text: str) -> Any:
