@@ -61,7 +61,7 @@ def calibrate(
     align_fraction
         Force level, as a fraction of the measured peak, at which data and model are aligned.
     out
-        Directory for ``calibration.json``, ``fitted.toml``, ``overlay.png``, ``residuals.csv``.
+        Directory for ``calibration.json``, ``fitted.toml``, ``overlay.png`` and, with ``data``, ``residuals.csv``.
 
     Returns
     -------

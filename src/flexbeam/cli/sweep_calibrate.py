@@ -143,7 +143,7 @@ def calibrate(
             "--out",
             "-o",
             callback=out_dir,
-            help="directory for calibration.json, fitted.toml, overlay.png, residuals.csv",
+            help="directory for calibration.json, fitted.toml, overlay.png, residuals.csv (with --data)",
         ),
     ] = None,
     json_: Annotated[bool, typer.Option("--json", help="print the report as one JSON object")] = False,

@@ -271,13 +271,8 @@ class RunSource:
                     return tally.result()
         return tally.result()
 
-    def extremes(
-        self,
-        column: str,
-        points_per_step: int = 4,
-        reached: tuple[float, float] | None = None,
-        window: tuple[float, float] | None = None,
-    ) -> tuple[float, float]:
+    def extremes(self, column: str, points_per_step: int = 4, reached: tuple[float, float] | None = None,
+                 window: tuple[float, float] | None = None) -> tuple[float, float]:  # fmt: skip
         """(min, max) of an output column over the run (``window``: over that time interval), located on the dense
         output (``reached``: extremes reached already, :func:`flexbeam.results.extremes.column_extremes`)."""
         return column_extremes(self, column, points_per_step, reached, window)

@@ -22,6 +22,7 @@ from ..kernels import OUTPUT_COLUMNS
 from .peaks import peak_candidates
 
 if TYPE_CHECKING:
+    from ..integrate.loop import Segment
     from .arrays import RunSource
 
 TIP = OUTPUT_COLUMNS.index("tip_deflection")
@@ -105,7 +106,9 @@ def _cut(t0: float, t1: float, window: tuple[float, float] | None) -> bool:
     return window is None or (t1 > t0 and t0 < window[1] and t1 > window[0])
 
 
-def _windowed(source: RunSource, seg, t: np.ndarray, v: np.ndarray, column: str, window: tuple[float, float] | None):
+def _windowed(
+    source: RunSource, seg: Segment, t: np.ndarray, v: np.ndarray, column: str, window: tuple[float, float] | None
+) -> tuple[Segment, np.ndarray, np.ndarray]:
     """The grid (seg, t, v) cut to ``window``, the window's ends inside the phase added as samples (their values from
     the dense output); as it is without a window."""
     if window is None:
