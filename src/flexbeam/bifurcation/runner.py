@@ -145,7 +145,7 @@ def build_dataset(results: dict[str, list[Point]], grid: list[float], case: Case
     ``periods`` after the transient, the last at the run's end; NaN where a point has fewer: the first point of a
     branch sampled at ``phase`` > 0 has no section at its end) and ``impact`` (the contact records after it,
     NaN-padded): the Poincaré samples ``tip`` [m] and ``velocity`` [m/s], the impacts' ``impact_velocity`` [m/s] and
-    ``impact_phase``, the frequency response ``amplitude`` [m] (the largest |tip deflection| after the transient)
+    ``impact_phase``, the frequency response ``amplitude`` [m] (the largest absolute tip deflection after the transient)
     and each point's ``status``."""
     nb, nf, ns = len(BRANCHES), len(grid), periods - discard + 1
     ni = max([1] + [p.impact_velocity.size for pts in results.values() for p in pts])
