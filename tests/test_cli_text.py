@@ -32,6 +32,7 @@ def _flat(text: str) -> str:
         # what compare writes and prints (it shared run's "result.nc, summary.json, plots" and "one JSON object")
         (["compare", "--help"], "directory for comparison.json, comparison.md and the figures"),
         (["compare", "--help"], "as a JSON list"),
+        (["frequencies", "--help"], "spin, the first-order and zeroth-order frequencies [rad/s]"),
     ],
 )
 def test_help_prints_units_and_keys_as_written(command, text):

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from ..errors import ParameterError
-from .options import JsonOpt, SetOpt
+from .options import SetOpt
 from .runs import load
 
 if TYPE_CHECKING:
@@ -42,7 +42,14 @@ def frequencies(
     spin: Annotated[float, typer.Option("--spin", help="hub spin rate Omega [rad/s]")] = 0.0,
     modes: Annotated[int | None, typer.Option("--modes", help="number of assumed modes")] = None,
     set_: SetOpt = None,
-    json_: JsonOpt = False,
+    json_: Annotated[
+        bool,
+        typer.Option(
+            "--json",
+            help="print one JSON object: spin, the first-order and zeroth-order frequencies "
+            "[rad/s], stable (per model), note",
+        ),
+    ] = False,
 ) -> None:
     """Natural frequencies [rad/s] of in-plane vibration about steady spin, hub clamped."""
     from ..model.frequencies import case_frequencies

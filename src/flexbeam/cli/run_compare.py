@@ -69,7 +69,7 @@ def compare(
     ] = False,
 ) -> None:
     """Run CCFM, CCM and the FE reference on one case; figures and a table against the paper."""
-    from ..parameters.io import reference_data
+    from ..parameters.io import reference_for
     from ..views.report import compare as run_compare
     from ..views.report import markdown_table
 
@@ -86,5 +86,5 @@ def compare(
 
         typer.echo(json.dumps(jsonable(rows), indent=2))
     else:
-        typer.echo(markdown_table(rows, reference_data(c.name)), nl=False)
+        typer.echo(markdown_table(rows, reference_for(c)), nl=False)
     exit_unless_complete(solutions)

@@ -122,6 +122,12 @@ class Case(Section):
                 f"output.interval: {interval:g} s is longer than the run; allowed: 0 < output.interval <= "
                 f"solver.t_end = {self.solver.t_end:g} s"
             )
+        step = self.fem.time_step
+        if step is not None and not step <= self.solver.t_end:  # (1 s for 1 ms: two steps, a "success" 5x the peak)
+            raise ValueError(
+                f"fem.time_step: {step:g} s is longer than the run; allowed: 0 < fem.time_step <= solver.t_end = "
+                f"{self.solver.t_end:g} s (omitted = automatic, a contact's duration / 200)"
+            )
         if len(self.obstacles) > 7:
             raise ValueError(f"obstacles: at most 7 more obstacles (got {len(self.obstacles)})")
         for i, ob in enumerate(self.obstacles):

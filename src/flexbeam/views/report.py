@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 from ..parameters.case import Case
-from ..parameters.io import reference_data
+from ..parameters.io import reference_for
 from ..results.files import jsonable, write_text_atomic
 from ..results.solution import Solution
 
@@ -20,7 +20,7 @@ def write_run_outputs(sol: Solution, case: Case, out: str | Path) -> dict[str, P
     if sol.file is None:  # the output samples first: too many for the memory limit, they are refused before any file
         _ = sol.time
     out.mkdir(parents=True, exist_ok=True)
-    reference = reference_data(case.name)
+    reference = reference_for(case)
     summary = {
         "metrics": sol.metrics(),
         "provenance": sol.provenance,
@@ -74,6 +74,9 @@ def markdown_table(rows: list[dict], reference: dict) -> str:
     def fmt(v, scale=1.0, digits=4):
         return "-" if v is None or v != v else f"{v * scale:.{digits}g}"
 
+    def pct(v):  # a relative error in per cent; "-" without one (no reference, no value)
+        return "-" if v is None or v != v else f"{fmt(v, 100, 3)} %"
+
     exp = reference.get("experiment", {})
     lines = [
         "| method | peak [N] | error | 2nd peak [N] | error | duration [ms] | error | peaks | contacts | "
@@ -82,9 +85,9 @@ def markdown_table(rows: list[dict], reference: dict) -> str:
     ]
     for r in rows:
         lines.append(
-            f"| {r['method']} | {fmt(r['peak_force'])} | {fmt(r.get('peak_force_error'), 100, 3)} % | "
-            f"{fmt(r['second_peak_force'])} | {fmt(r.get('second_peak_force_error'), 100, 3)} % | "
-            f"{fmt(r['contact_duration'], 1e3)} | {fmt(r.get('contact_duration_error'), 100, 3)} % | "
+            f"| {r['method']} | {fmt(r['peak_force'])} | {pct(r.get('peak_force_error'))} | "
+            f"{fmt(r['second_peak_force'])} | {pct(r.get('second_peak_force_error'))} | "
+            f"{fmt(r['contact_duration'], 1e3)} | {pct(r.get('contact_duration_error'))} | "
             f"{r['force_peaks']} | {r['contacts']} | {r['micro_impacts']} | {fmt(r['wall_time'])} | "
             f"{fmt(r.get('paper_peak_force'))} |"
         )
@@ -111,7 +114,7 @@ def compare(
         finally:
             if progress is not None:
                 progress.close()
-    reference = reference_data(case.name)
+    reference = reference_for(case)
     rows = compare_table(solutions, reference)
     if out is not None:
         from .plotting import plot_contact_force, plot_normal_velocity
