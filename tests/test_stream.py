@@ -268,10 +268,13 @@ def test_cli_stream_bad_use(tmp_path, args, field, fragment):
     assert not (tmp_path / "out").exists()
 
 
-def test_a_terminated_streamed_run_leaves_no_file(tmp_path):
+@pytest.mark.parametrize(
+    ("signum", "code", "line"), [(signal.SIGTERM, 143, "terminated"), (signal.SIGINT, 130, "interrupted")]
+)
+def test_a_terminated_streamed_run_leaves_no_file(tmp_path, signum, code, line):
     """SIGTERM (``kill``, ``timeout``, a job scheduler) ends a streamed run as Ctrl-C does: exit 143, one line, and
     no file in --out (before: Python's default action for SIGTERM ended the process at once, exit -15, and left the
-    6 MB temporary file ``.result.nc.XXXX`` behind)."""
+    6 MB temporary file ``.result.nc.XXXX`` behind).  Ctrl-C (SIGINT): exit 130 and one line too (before: none)."""
     out = tmp_path / "out"
     proc = subprocess.Popen(
         [sys.executable, "-m", "flexbeam.cli", "run", "seed-experiment", "--stream", "--out", str(out),
@@ -283,12 +286,12 @@ def test_a_terminated_streamed_run_leaves_no_file(tmp_path):
         while not (out.is_dir() and any(out.iterdir())):  # the stream's temporary file, being written
             assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
             time.sleep(0.05)
-        proc.send_signal(signal.SIGTERM)
+        proc.send_signal(signum)
         _, err = proc.communicate(timeout=60)
     finally:
         if proc.poll() is None:
             proc.kill()
             proc.communicate()
-    assert proc.returncode == 143, err
-    assert err.strip().splitlines()[-1] == "terminated"
+    assert proc.returncode == code, err
+    assert err.strip().splitlines()[-1:] == [line], err
     assert not any(out.iterdir())

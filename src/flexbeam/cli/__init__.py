@@ -77,6 +77,8 @@ def _main(argv: list[str] | None) -> None:
     error, 130 interrupted, 143 terminated)."""
     try:
         rc = app(args=argv, standalone_mode=False, prog_name="flexbeam")
+        if rc == 130:  # (Typer's return for a KeyboardInterrupt inside a command: no line said so)
+            sys.stderr.write("interrupted\n")
         if isinstance(rc, int) and rc != 0:
             sys.exit(rc)
     except typer.Exit as exc:
