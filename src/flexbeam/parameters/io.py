@@ -44,31 +44,39 @@ def reference_data(name: str) -> dict[str, Any]:
 
 
 #: the fields that describe the experiment a preset's reference numbers were measured on (the beam and its hub, the
-#: obstacles and where they are struck, the start, the joint and its drive, the base, gravity); the others -- the
-#: contact law and its parameters, the modes, the solver, the outputs -- are the model's choices a comparison is about
-SET_UP = ("beam", "hub", "obstacle", "obstacles", "initial", "joint", "drive", "base", "model.gravity",
-          "contact.position", "contact.side")  # fmt: skip
+#: obstacles' geometry and material and where they are struck, the start, the joint and its drive, the base,
+#: gravity); the others -- the contact law and its parameters, an obstacle's support (the sensor's compliance the
+#: calibrated preset fits), the modes, the solver, the outputs -- are the model's choices a comparison is about
+SET_UP = ("beam", "hub", "initial", "joint", "drive", "base", "model.gravity", "contact.position", "contact.side")
+OBSTACLE_SET_UP = ("kind", "centre", "radius", "normal", "youngs_modulus", "poisson_ratio", "fixed_to")
+
+
+def _set_up(data: dict[str, Any]) -> dict[str, Any]:
+    """The :data:`SET_UP` and :data:`OBSTACLE_SET_UP` fields of a case's dump."""
+    view: dict[str, Any] = {}
+    for key in SET_UP:
+        node: Any = data
+        for part in key.split("."):
+            node = node.get(part) if isinstance(node, dict) else None
+        view[key] = node
+    view["obstacle"] = {k: data["obstacle"].get(k) for k in OBSTACLE_SET_UP}
+    view["obstacles"] = [
+        ({k: o.get(k) for k in OBSTACLE_SET_UP}, o["contact"].get("position"), o["contact"].get("side"))
+        for o in data["obstacles"]
+    ]
+    return view
 
 
 def reference_for(case: Case) -> dict[str, Any]:
     """:func:`reference_data` of ``case``'s name if ``case`` is the experiment they were measured on -- its
-    :data:`SET_UP` fields those of the built-in case of that name (of its base case for ``NAME-calibrated``) -- else
-    {} (a case named like a preset but with another beam, obstacle or start was scored against the preset's
-    experiment: ``--set beam.length=1.5`` gave a 597 % "error")."""
+    set-up (:func:`_set_up`) that of the built-in case of that name -- else {} (a case named like a preset but with
+    another beam, obstacle or start was scored against the preset's experiment: ``--set beam.length=1.5`` gave a
+    597 % "error")."""
     reference = reference_data(case.name)
-    if not reference:
+    if not reference or case.name not in builtin_cases():
         return {}
-    preset = next((n for n in (case.name, case.name.removesuffix("-calibrated")) if n in builtin_cases()), None)
-    if preset is None:
-        return {}
-    mine, theirs = case.model_dump(mode="json"), load_case(preset).model_dump(mode="json")
-    for key in SET_UP:
-        a, b = mine, theirs
-        for part in key.split("."):
-            a, b = a.get(part) if isinstance(a, dict) else None, b.get(part) if isinstance(b, dict) else None
-        if a != b:
-            return {}
-    return reference
+    same = _set_up(case.model_dump(mode="json")) == _set_up(load_case(case.name).model_dump(mode="json"))
+    return reference if same else {}
 
 
 def _read_source(source: str | Path) -> dict[str, Any]:
