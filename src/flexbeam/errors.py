@@ -54,6 +54,12 @@ class SlenderBeamWarning(FlexbeamWarning):
     frequency (:mod:`flexbeam.parameters.slenderness`)."""
 
 
+def not_text(field: str, path: object, kind: str, exc: UnicodeDecodeError) -> str:
+    """The one-line message for a file of ``field`` that should be ``kind`` text and is not UTF-8 (a binary file, a
+    result.nc given as a case): where its first undecodable byte lies."""
+    return f"{field}: '{path}' is not a {kind} file: not UTF-8 text ({exc.reason} at byte {exc.start})"
+
+
 def closest(name: str, choices: Iterable[str]) -> str:
     """Return ``" (best matches: a, b)"`` for an unknown ``name``, or ``""``.
 

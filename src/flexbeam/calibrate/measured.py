@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..errors import ParameterError, closest
+from ..errors import ParameterError, closest, not_text
 from ..parameters.io import parse_value
 
 if TYPE_CHECKING:
@@ -90,9 +90,7 @@ def read_measured(path: str | Path, columns: Mapping[str, str] | None = None) ->
     except OSError as exc:
         raise ParameterError(f"data: cannot read '{path}': {exc.strerror}") from None
     except UnicodeDecodeError as exc:
-        raise ParameterError(
-            f"data: '{path}' is not a CSV file: not UTF-8 text ({exc.reason} at byte {exc.start})"
-        ) from None
+        raise ParameterError(not_text("data", path, "CSV", exc)) from None
     if len(rows) < 3:
         raise ParameterError(f"data: '{path}' needs a header row and at least two data rows")
     header = [h.strip() for h in rows[0]]

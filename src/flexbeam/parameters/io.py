@@ -15,7 +15,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from ..errors import ParameterError, closest, did_you_mean
+from ..errors import ParameterError, closest, did_you_mean, not_text
 from .case import Case
 
 _PRESETS = "flexbeam.parameters.presets"
@@ -87,9 +87,7 @@ def _read_source(source: str | Path) -> dict[str, Any]:
         except OSError as exc:
             raise ParameterError(f"case: cannot read '{path}': {exc.strerror}") from None
         except UnicodeDecodeError as exc:  # TOML is UTF-8 (a binary file, a result.nc given as a case)
-            raise ParameterError(
-                f"case: '{path}' is not a TOML file: not UTF-8 text ({exc.reason} at byte {exc.start})"
-            ) from None
+            raise ParameterError(not_text("case", path, "TOML", exc)) from None
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:

@@ -10,6 +10,7 @@ from typing import Literal
 import numpy as np
 from pydantic import Field, field_validator, model_validator
 
+from ..errors import not_text
 from .fields import Bounded, Finite, Positive, Rate, Section
 
 
@@ -175,9 +176,7 @@ def read_table(path: Path) -> list[list[float]]:
     except OSError as exc:
         raise ValueError(f"base.table: cannot read '{path}': {exc.strerror}") from None
     except UnicodeDecodeError as exc:
-        raise ValueError(
-            f"base.table: '{path}' is not a CSV file: not UTF-8 text ({exc.reason} at byte {exc.start})"
-        ) from None
+        raise ValueError(not_text("base.table", path, "CSV", exc)) from None
     rows: list[list[float]] = []
     for number, line in enumerate(lines, 1):
         text = line.split("#", 1)[0].strip()
