@@ -229,3 +229,20 @@ def test_the_experiment_is_the_reference_of_its_own_set_up_only():
     sol = fb.simulate(fb.load_case("seed-experiment", {"beam.length": 1.5, "solver.t_end": 1e-4}), "ccfm")
     table = markdown_table(compare_table([sol], {}), {})
     assert "%" not in table and "Experiment" not in table  # no error against nothing ("- %" before)
+
+
+def test_an_instantaneous_impact_gets_no_duration_error():
+    """IMM's impact has no duration: ``compare`` reported its 0 ms as a -100 % error against the experiment's 0.6 ms
+    (its peak, NaN, got none).  No error for a quantity the method does not resolve; CCFM's errors unchanged."""
+    from flexbeam.parameters.io import reference_for
+    from flexbeam.views.report import compare_table, markdown_table
+
+    case = fb.load_case("seed-experiment", {"solver.t_end": 2e-3})
+    ref = reference_for(case)
+    rows = compare_table([fb.simulate(case, "imm"), fb.simulate(case, "ccfm")], ref)
+    imm, ccfm = rows
+    assert imm["contact_duration"] == 0.0 and "contact_duration_error" not in imm and "peak_force_error" not in imm
+    measured = ref["experiment"]["contact_duration"]
+    assert ccfm["contact_duration_error"] == (ccfm["contact_duration"] - measured) / measured
+    imm_line = next(line for line in markdown_table(rows, ref).splitlines() if line.startswith("| imm"))
+    assert "%" not in imm_line and "-100" not in imm_line
