@@ -116,6 +116,26 @@ def test_a_bar_on_an_incline_below_the_friction_angle_stays_put():
     assert energy_drift(sol) <= 1e-7 * MASS * G * STEEL["length"]
 
 
+@pytest.mark.parametrize("method", ["ccm", "imm"])
+def test_a_group_of_sticking_pairs_shares_its_friction_by_the_normal_forces(method):
+    """The rigid bar at rest on an incline, tan(alpha) = 0.4 < mu_s = 0.5: both stops stick, one multiplier holds
+    the group (their tangential rows are equal: :func:`flexbeam.methods.coulomb.grouped`).  Statics: the group's
+    friction is m g sin(alpha) and its normal forces m g cos(alpha), so the share in proportion to the normal forces
+    (:mod:`flexbeam.results.friction`) is F_t,i = -tan(alpha) F_i at each stop (t = (-1, 0) turned by alpha, the bar
+    pulled down the incline), and each record's tangential impulse is -tan(alpha) times its normal impulse.  Written
+    whole to the holder before: abs(F_t) / F = 0.77 there against mu_s = 0.5, 0 at the follower.  Measured 8.5e-11
+    (samples: the collocated multipliers' error, the run held by them at fast_rtol) and 4.3e-15 (records); bounds 1e-8
+    and 1e-12."""
+    ta = 0.4
+    sol = run(bar_on_stops(0.45, 0.0, 0.05, alpha=math.atan(ta), mu_s=0.5), method)
+    F, Ft = sol["pair_contact_force"], sol["pair_tangential_force"]
+    assert np.all(sol["pair_friction_state"] == 2.0) and np.all(F > 0.0)
+    np.testing.assert_allclose(Ft / F, -ta, rtol=1e-8)
+    assert sorted(c.pair for c in sol.contacts) == [0, 1]
+    for c in sol.contacts:
+        assert c.tangential_impulse == pytest.approx(-ta * c.impulse, rel=1e-12)
+
+
 def test_a_bar_on_an_incline_above_the_friction_angle_slides_at_the_closed_form():
     """tan(alpha) = 0.5 > mu_s = 0.3: it slides down with the acceleration g (sin(alpha) - mu_k cos(alpha)): the
     velocity and distance after 0.05 s within fast_rtol; friction power <= 0; the work of gravity equals the kinetic

@@ -5,6 +5,7 @@ and searched in the kernels (``kernels/src/bookkeeping.c``, ``extremes.c``) only
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from functools import cached_property
 from typing import TYPE_CHECKING
 
@@ -150,6 +151,15 @@ class ModalDense:
         N, S = self.stepper.basis.N, self.stepper.system.pairs
         off = 4 + 6 * N + 4 * S + 8 + 4 * pair
         return sigma * self.impulse(pair) + step_quadrature(self.records, self.records[:, off : off + 4])
+
+    def shared_tangential_impulse(self, holder: int, share: Callable[[np.ndarray], np.ndarray]) -> float:
+        """int share lambda_t dt over the phase: a group's multiplier (its ``holder``'s, nodal) times a pair's share
+        of it, ``share`` of the nodal normal forces (steps x 4 x pairs), by each step's quadrature of the nodal
+        products (:mod:`flexbeam.results.friction`)."""
+        N, S = self.stepper.basis.N, self.stepper.system.pairs
+        off = 4 + 6 * N + 4 * S + 8 + 4 * holder
+        F = np.stack([self._forces(k) for k in range(S)], axis=-1)
+        return step_quadrature(self.records, self.records[:, off : off + 4] * share(F))
 
     def multipliers(self, pair: int, times: np.ndarray) -> np.ndarray:
         """A pair's tangential multiplier lambda_t (stick; zero otherwise) at ``times`` inside the phase: the Lagrange

@@ -42,6 +42,7 @@ import numpy as np
 
 from .. import numerics as nm
 from ..integrate.phases import ContactMode, EventKind, Phase
+from ..model.delassus import inverse_mass
 from ..model.system import BeamSystem
 
 #: [m/s] a contact whose slip speed at its onset is below this starts sticking (the stick's multiplier then decides)
@@ -88,17 +89,6 @@ def onset_row(system: BeamSystem, t: float, y: np.ndarray, pair: int) -> np.ndar
     if abs(r) <= p.friction_static:  # the stick's ratio lambda_t / F (Stronge's stick condition)
         return np.array([0.0, 1.0, p.friction_static, 0.0, 0.0])
     return slip_row(p.friction, p.friction_static, -float(np.sign(r)))
-
-
-def inverse_mass(system: BeamSystem, t: float, y: np.ndarray, pairs: list[int]) -> np.ndarray:
-    """[J_t; J] M^-1 [J_t; J]^T of ``pairs`` (their tangential rows first, then their normal rows) over the coordinates
-    solved for (bordered by the support's mass m_s with a compliant support)."""
-    rows = [system.tangent(t, y, k) for k in pairs]
-    J = np.array([r[4] for r in rows] + [r[3] for r in rows])
-    M = system.mass_matrix(t, y)
-    g = system.ngiven
-    J, M = J[:, g:], M[g:, g:]
-    return nm.matmul(J, nm.solve(M, np.ascontiguousarray(J.T)))
 
 
 def after_event(system: BeamSystem, event: EventKind, pair: int) -> np.ndarray:

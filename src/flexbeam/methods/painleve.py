@@ -46,8 +46,8 @@ import numpy as np
 
 from .. import numerics as nm
 from ..errors import FlexbeamWarning
+from ..model.delassus import inverse_mass
 from ..model.system import BeamSystem
-from . import coulomb
 from .impulse import _apply
 
 #: the slip's a is resolved where it falls to this share of W_nn (the kernel's PAINLEVE_SHARE, friction.c): the
@@ -58,7 +58,7 @@ SHARE = 1e-3
 
 def slip_inverse_mass(system: BeamSystem, t: float, y: np.ndarray, pair: int, sigma: float) -> tuple[float, float]:
     """(a, W_nn) of a held pair slipping with the tangential force sigma lambda_n, a = W_nn + sigma W_nt [1/kg]."""
-    W = coulomb.inverse_mass(system, t, y, [pair])  # [[W_tt, W_tn], [W_nt, W_nn]]
+    W = inverse_mass(system, t, y, [pair])  # [[W_tt, W_tn], [W_nt, W_nn]]
     return float(W[1, 1] + sigma * W[1, 0]), float(W[1, 1])
 
 

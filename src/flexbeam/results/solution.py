@@ -153,7 +153,7 @@ class Solution:
         if end > ev.onset:
             ev.impulse = (ev.jump_impulse if jumped else 0.0) + src.impulse(ev.onset, end, ev.pair)
             # friction under CCFM and CCM: int F_t dt over the contact, after CCM's onset jump (and Painlevé's)
-            held = tangential_impulse(getattr(src, "segments", []), ev.onset, end, ev.pair)
+            held = tangential_impulse(src.system, src.segments, ev.onset, end, ev.pair)
             if math.isnan(ev.tangential_impulse):
                 ev.tangential_impulse = held
             elif not math.isnan(held):
