@@ -189,6 +189,25 @@ def test_an_obstacles_field_is_fitted_by_its_index():
             lambda: fb.calibrate("seed-experiment", fit=["contact.restitution"], features={"peak_force": True}),
             "--features peak_force: must be a finite number",
         ),
+        # a negative duration was "fitted" (exit 0); a zero peak ran the whole fit, then named a trial value
+        (
+            lambda: fb.calibrate("seed-experiment", fit=["contact.stiffness"], features={"contact_duration": -6e-4}),
+            r"--features contact_duration: must be > 0 s \(got -0.0006\)",
+        ),
+        (
+            lambda: fb.calibrate("seed-experiment", fit=["contact.stiffness"], features={"peak_force": 0.0}),
+            r"--features peak_force: must be > 0 N",
+        ),
+        # CCM has no contact law: its stiffness and restitution move nothing, and the fit read "success", nfev 1
+        (
+            lambda: fb.calibrate(
+                "seed-experiment",
+                fit=["contact.stiffness", "contact.restitution"],
+                method="ccm",
+                features={"peak_force": 584.0, "contact_duration": 6e-4, "impulse": 0.3},
+            ),
+            "--fit contact.stiffness, contact.restitution: changes none of the fitted quantities under ccm",
+        ),
     ],
 )
 def test_bad_input_names_the_field(call, match):
@@ -219,3 +238,14 @@ def test_missing_column_is_one_line_exit_2(tmp_path):
     )
     assert r.returncode == 2
     assert r.stderr.count("\n") == 1 and "--columns force" in r.stderr and "force" in r.stderr
+
+
+def test_imm_restitution_fits_the_closed_form_of_its_impulse():
+    """IMM's impulse at a given pre-impact state is (1 + e) m_eff v, so the restitution that gives a measured impulse
+    P is e = (1 + e0) P / P0 - 1 (P0 the case's at e0).  ``calibrate --method imm`` stopped at once before: the first
+    record is instantaneous (end = onset = 0), and the window cut to end + 2 x duration set solver.t_end = 0.
+    Measured 2.3e-10 from the closed form (scipy's default tolerances, 1e-8 relative); bound 1e-6."""
+    e0 = fb.load_case("seed-experiment").contact.restitution
+    P0 = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 2e-3}), "imm").contacts[0].impulse
+    fit = fb.calibrate("seed-experiment", fit=["contact.restitution"], features={"impulse": 0.06}, method="imm")
+    assert fit.values[0] == pytest.approx((1.0 + e0) * 0.06 / P0 - 1.0, abs=1e-6)

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 from ..errors import ParameterError, closest
 from ..parameters.case import Case
 from ..parameters.io import load_case
-from ..results.metrics import FEATURES
+from ..results.metrics import FEATURES, METRICS, POSITIVE_FEATURES
 from .fields import Parameter, parse_fit
 from .measured import Measured, read_measured
 from .problem import ResidualProblem, covariance
@@ -99,6 +99,8 @@ def _check_measurements(
             )
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):  # (as parse_features)
             raise ParameterError(f"--features {k}: must be a finite number (got {v!r})")
+        if k in POSITIVE_FEATURES and not v > 0.0:  # a force, a duration or an impulse measured
+            raise ParameterError(f"--features {k}: must be > 0 {METRICS[k].units} (got {v:g})")
     if measured is None and not features:
         raise ParameterError("calibrate: give measured histories (--data) and/or features (--features)")
     if measured is not None and measured.force is not None and method == "imm":
@@ -128,6 +130,12 @@ def _least_squares(problem: ResidualProblem, max_nfev: int) -> tuple[OptimizeRes
     res = least_squares(
         problem.residuals, z0, bounds=(lo, hi), method="trf", diff_step=1e-3, x_scale=1.0, max_nfev=max_nfev
     )
+    dead = [p.key for p, column in zip(params, res.jac.T) if not np.any(column)]
+    if dead:  # (under CCM no contact law acts: its stiffness moved nothing, and the "fit" read as a success)
+        raise ParameterError(
+            f"--fit {', '.join(dead)}: changes none of the fitted quantities under {problem.method}, so it cannot be "
+            "fitted (not identifiable)"
+        )
     return res, r0
 
 

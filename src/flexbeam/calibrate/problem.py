@@ -139,7 +139,7 @@ class ResidualProblem:
             if t_try >= t_case or (ended and need <= t_try):
                 break
             t_try = min(t_case, max(4.0 * t_try, need))
-        if not whole and ended and need < t_try:
+        if not whole and ended and sol.contacts[0].end < need < t_try:  # (IMM's impact has no duration: no cut)
             self.case = load_case(self.base, {"solver.t_end": need})
             self.cache.clear()
             sol = self.simulate(x0)

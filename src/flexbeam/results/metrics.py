@@ -118,3 +118,7 @@ FEATURES = tuple(k for k, m in METRICS.items() if m.fittable and m.kind in ("num
 FIRST_CONTACT_FEATURES = tuple(k for k in FEATURES if METRICS[k].scope in ("first contact", "sensor"))
 #: features that read 0 when a trial's force has a single peak
 SECOND_PEAKS = tuple(k for k, m in METRICS.items() if m.second_peak)
+#: features that a measurement gives > 0: the first contact's forces, duration and impulse, the sensor pulse's
+POSITIVE_FEATURES = tuple(
+    k for k in FIRST_CONTACT_FEATURES if METRICS[k].units in ("N", "N s") or k.endswith("duration")
+)
