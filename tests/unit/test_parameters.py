@@ -246,3 +246,21 @@ def test_an_instantaneous_impact_gets_no_duration_error():
     assert ccfm["contact_duration_error"] == (ccfm["contact_duration"] - measured) / measured
     imm_line = next(line for line in markdown_table(rows, ref).splitlines() if line.startswith("| imm"))
     assert "%" not in imm_line and "-100" not in imm_line
+
+
+def test_a_support_axis_left_to_its_default_away_from_an_impact_start_is_warned():
+    """The default axis of a compliant support is the outward contact normal of the straight beam at
+    initial.impact_angle, at the pair's point: where an ``impact`` start strikes [obstacle].  A ``state`` start (a
+    sensor added under spinning-stop's sphere, struck at 0.951 rad) or an obstacle of [[obstacles]] is struck
+    elsewhere -- 26.7 degrees off there -- and the schema promised "its outward contact normal at impact"."""
+    import warnings
+
+    from flexbeam.errors import FlexbeamWarning
+
+    sensor = {"obstacle.support.stiffness": 2e7, "obstacle.support.mass": 0.02}
+    with pytest.warns(FlexbeamWarning, match=r"obstacle.support.direction: omitted"):
+        fb.load_case("spinning-stop", sensor)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fb.load_case("spinning-stop", {**sensor, "obstacle.support.direction": [0.8, -0.6]})
+        fb.load_case("seed-experiment-calibrated")  # an impact start: the default is the normal where it strikes

@@ -12,10 +12,12 @@ naming the field.
 from __future__ import annotations
 
 import math
+import warnings
 
 from pydantic import Field, model_validator
 
 from ..contact.laws import NEEDS_RESTITUTION
+from ..errors import FlexbeamWarning
 from .body import Beam, Hub, Model
 from .contact import SIDES, Contact, ExtraObstacle, Obstacle, PairContact, Support
 from .fields import CONTACT_LAWS, Section
@@ -149,7 +151,23 @@ class Case(Section):
                     f"obstacles[{i}].contact.stiffness: required for a half-plane obstacle (a cylinder on a plane "
                     f"is a line contact, not a Hertzian point contact)"
                 )
+        self._support_axis()
         return self
+
+    def _support_axis(self) -> None:
+        """Warn where a compliant support's default axis -- the outward contact normal of the straight beam at
+        ``initial.impact_angle``, at the contact point (:func:`flexbeam.contact.setup.obstacle_geometry`) -- is not
+        taken where the obstacle is struck: a start other than ``impact``.  A sensor under spinning-stop's sphere (a
+        ``state`` start, struck at 0.951 rad) moved 26.7 degrees off the contact normal there by default."""
+        sup = self.obstacle.support
+        if self.initial.kind != "impact" and sup.compliant and sup.direction is None:
+            warnings.warn(
+                "obstacle.support.direction: omitted, so the support moves along the contact normal of the straight "
+                f"beam at initial.impact_angle = {self.initial.impact_angle:g} rad, which need not be where a "
+                f"'{self.initial.kind}' start strikes it; give the axis (a unit vector)",
+                FlexbeamWarning,
+                stacklevel=2,
+            )
 
     def _axial(self) -> None:
         """The axial modes' initial values and what does not model them yet, and a base table that does not cover the

@@ -26,7 +26,10 @@ class Support(Section):
     mass: Positive | None = Field(None, description="moving mass m_s of the obstacle [kg]")
     damping: NonNegative = Field(0.0, description="support damping c_s [N s/m]")
     direction: tuple[Finite, Finite] | None = Field(
-        None, description="unit axis u along which the obstacle moves (default: its outward contact normal at impact)"
+        None,
+        description="unit axis u along which the obstacle moves (default: its outward contact normal at the pair's "
+        "point of the straight beam at initial.impact_angle, where an 'impact' start strikes it; a warning for "
+        "other starts)",
     )
 
     @model_validator(mode="after")
