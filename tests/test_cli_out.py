@@ -67,3 +67,30 @@ def test_an_out_directory_that_does_not_exist_yet_is_made(tmp_path):
     code, _, stderr = _cli(["run", "seed-experiment", *SHORT, "--out", str(out)])
     assert code == 0, stderr
     assert (out / "result.nc").is_file() and (out / "summary.json").is_file()
+
+
+@pytest.mark.parametrize(
+    ("command", "blocked", "says"),
+    [
+        ("run", "result.nc", "is a directory, where the file result.nc is written"),
+        ("run", "summary.json", "is a directory, where the file summary.json is written"),
+        ("run --stream", "result.nc", "is a directory, where the file result.nc is written"),
+        ("sweep", "sweep.json", "is a directory, where the file sweep.json is written"),
+        ("sweep", "cases", "is a file, where the directory cases/ is written"),
+    ],
+)
+def test_an_output_in_the_way_inside_out_is_refused_first(tmp_path, command, blocked, says):
+    """A directory where a file is written (or a file where the sweep's cases/ goes) inside --out ended the command
+    in a 48-line traceback, exit 1 -- for a run held in memory after the whole integration, with result.nc already
+    written beside the failure."""
+    out = tmp_path / "out"
+    out.mkdir()
+    if blocked == "cases":
+        (out / blocked).write_text("x")
+    else:
+        (out / blocked).mkdir()
+    code, stdout, stderr = _cli([*COMMANDS[command], "--out", str(out)])
+    lines = stderr.splitlines()
+    assert code == 2 and stdout == "" and len(lines) == 1, (code, stderr)
+    assert lines[0].startswith("error: ") and says in lines[0], lines[0]
+    assert sorted(p.name for p in out.iterdir()) == [blocked]  # nothing written

@@ -46,14 +46,21 @@ class atomic_path:
             raise
 
 
-def check_output_dir(path: str | Path, field: str) -> Path:
+def check_output_dir(path: str | Path, field: str, files: tuple[str, ...] = (), dirs: tuple[str, ...] = ()) -> Path:
     """``path`` as a directory outputs can be written to: one already, or one that can be made (the nearest of its
-    ancestors that exists a directory this process may write in).  Otherwise a one-line
-    :class:`~flexbeam.errors.ParameterError` naming ``field``, before anything runs (a run's outputs were written
-    after it, and a file in the way ended the run in a traceback: ``FileExistsError``)."""
+    ancestors that exists a directory this process may write in), in which none of the ``files`` to be written is a
+    directory and none of the ``dirs`` a file.  Otherwise a one-line :class:`~flexbeam.errors.ParameterError` naming
+    ``field``, before anything runs (a run's outputs were written after it, and a file in the way ended the run in a
+    traceback: ``FileExistsError``, ``IsADirectoryError``)."""
     path = Path(path)
     if path.exists() and not path.is_dir():
         raise ParameterError(f"{field}: '{path}' exists and is not a directory")
+    for name in files:
+        if (path / name).is_dir():
+            raise ParameterError(f"{field}: '{path / name}' is a directory, where the file {name} is written")
+    for name in dirs:
+        if (path / name).exists() and not (path / name).is_dir():
+            raise ParameterError(f"{field}: '{path / name}' is a file, where the directory {name}/ is written")
     nearest = path if path.exists() else next((p for p in path.absolute().parents if p.exists()), Path("/"))
     if not nearest.is_dir():
         raise ParameterError(f"{field}: '{path}' lies under '{nearest}', which is a file, not a directory")

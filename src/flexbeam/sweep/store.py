@@ -23,7 +23,7 @@ class Store:
     """The on-disk store of a sweep (see the module docstring for the layout)."""
 
     def __init__(self, path: str | Path) -> None:
-        self.path = check_output_dir(path, "out")
+        self.path = check_output_dir(path, "out", files=("result.nc", "sweep.json"), dirs=("cases",))
         self.cases = self.path / "cases"
 
     def record_path(self, key: str) -> Path:

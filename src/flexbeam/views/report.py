@@ -10,6 +10,9 @@ from ..parameters.io import reference_for
 from ..results.files import jsonable, write_text_atomic
 from ..results.solution import Solution
 
+#: the files ``run --out`` writes (:func:`write_run_outputs`)
+RUN_FILES = ("result.nc", "summary.json", "contact_force.png", "normal_velocity.png")
+
 
 def write_run_outputs(sol: Solution, case: Case, out: str | Path) -> dict[str, Path]:
     """Write ``result.nc`` (a streamed run wrote it already), ``summary.json``, ``contact_force.png`` and
