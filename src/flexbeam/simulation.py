@@ -11,7 +11,7 @@ import numpy as np
 
 from .contact.setup import OBSTACLE_PLANE
 from .errors import ModelError, ParameterError
-from .integrate.loop import PhaseMethod, RunResult, Stop, run_phases
+from .integrate.loop import PhaseMethod, RunResult, Segment, Stop, run_phases
 from .integrate.modal import ModalStepper
 from .memory import check as check_memory
 from .methods.base import ImpactMethod
@@ -153,7 +153,7 @@ def simulate(
         return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
     run = run_phases(impact, stepper, y0, case.solver.t_end, progress)
     if run.status == "failed":
-        run.message += lying_flat_advice(system, run)
+        run.message += lying_flat_advice(system, run.t_final, run.segments[-1] if run.segments else None)
     return collect(run, impact, system, case, info, stepper)
 
 
@@ -161,14 +161,14 @@ def simulate(
 FLAT_ANGLE = 0.01
 
 
-def lying_flat_advice(system: BeamSystem, run) -> str:
-    """What a failed run's message adds when a free beam ended lying along a half-plane that a pair anywhere alone
-    touches: that pair holds one point per surface, which jumps between the beam's ends (docs/free-beam.md, *A bar
-    that comes to rest on a floor*); else ""."""
-    if system.case.joint.kind != "free" or not run.segments:
+def lying_flat_advice(system: BeamSystem, t_final: float, last: Segment | None) -> str:
+    """What a failed run's message adds when a free beam ended (at ``t_final``, in segment ``last``) lying along a
+    half-plane that a pair anywhere alone touches: that pair holds one point per surface, which jumps between the
+    beam's ends (docs/free-beam.md, *A bar that comes to rest on a floor*); else "".  Held in memory or streamed
+    alike (a streamed run's message lacked it)."""
+    if system.case.joint.kind != "free" or last is None:
         return ""
-    seg = run.segments[-1]
-    theta = system.joint.frame(run.t_final, seg.y1, system.n)[0]
+    theta = system.joint.frame(t_final, last.y1, system.n)[0]
     axis = np.array([np.cos(theta), np.sin(theta)])
     obstacles = system.contact.obstacles
     for pair in system.contact.pairs:  # (a pair anywhere is its surface's only one: setup.check_overlaps)
@@ -236,6 +236,8 @@ def _streamed(
     sink = RunStream(path, system, case, impact.contacts, provenance(stepper.name, impact, system, case, info, stepper))
     try:
         run = run_phases(impact, stepper, y0, case.solver.t_end, progress, sink=sink)
+        if run.status == "failed":  # (the sink holds the last segment: a streamed run keeps none)
+            run.message += lying_flat_advice(system, run.t_final, sink.window[-1][1] if sink.window else None)
         return sink.finish(run, {"steps": run.steps, "nfev": run.nfev, "wall_time": run.wall_time})
     except BaseException:
         sink.abort()

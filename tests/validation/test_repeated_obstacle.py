@@ -110,14 +110,17 @@ def test_a_bar_on_three_points_of_a_floor_shares_its_weight_as_beam_theory_says(
     np.testing.assert_allclose(force, [(W - R) / 2, (W - R) / 2, R], rtol=5e-4)
 
 
+@pytest.mark.parametrize("streamed", [False, True], ids=["in memory", "streamed"])
 @pytest.mark.parametrize("method", ["ccfm", "ccm"])
-def test_a_single_pair_anywhere_fails_where_the_bar_lies_flat_and_says_why(method):
+def test_a_single_pair_anywhere_fails_where_the_bar_lies_flat_and_says_why(method, streamed, tmp_path):
     """The limit the repeated floor lifts: the free-bar drop with a dissipative law (one pair anywhere on the floor),
     run to 1 s, fails once the bar settles flat (CCFM: a step-size underflow at ~0.84 s; CCM: no progress at ~0.67
-    s), and its message names the cause and the remedy.  When a pair anywhere can hold both ends, this test changes."""
+    s), and its message names the cause and the remedy -- streamed to its file as well (that message lacked the
+    advice, found by a helper's hunt).  When a pair anywhere can hold both ends, this test changes."""
     overrides = {"contact.law": "lankarani_nikravesh", "contact.restitution": 0.5, "solver.t_end": 1.0,
                  "output.interval": 1e-3}  # fmt: skip
-    sol = fb.simulate(fb.load_case(DATA / "free-bar-drop.toml", overrides), method)
+    stream = tmp_path / "result.nc" if streamed else None
+    sol = fb.simulate(fb.load_case(DATA / "free-bar-drop.toml", overrides), method, stream=stream)
     assert sol.status == "failed"
     assert "lies flat on obstacle" in sol.message and "[[obstacles]]" in sol.message
 
