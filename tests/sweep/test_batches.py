@@ -93,6 +93,19 @@ def test_a_failing_case_in_a_batch_does_not_lose_the_others(tmp_path):
     assert ds.attrs["failed"] == 2 and ds.attrs["missing"] == 0
 
 
+def test_a_case_stopped_by_the_zeno_guard_is_counted_as_incomplete(tmp_path):
+    """A case that solver.max_contacts stops (status 'max-contacts', its metrics up to there) is no failure, but it
+    did not reach solver.t_end: the summary counts it as ``incomplete`` (0 failed, 0 missing and nothing else said
+    before, so a sweep read it as complete), beside the failures."""
+    from flexbeam.sweep.dataset import summary
+
+    over = {**BASE, "solver.t_end": 0.1}  # (2 modes: contacts at 0, 0.030 and 0.078 s; the third stops it)
+    ds = fb.sweep("seed-experiment", grid={"solver.max_contacts": [3, 1000]}, overrides=over, out=tmp_path / "s")
+    assert ds["status"].values.tolist() == ["max-contacts", "success"]
+    info = summary(ds)
+    assert ds.attrs["incomplete"] == 1 and info["incomplete"] == 1 and info["failed"] == 0 and info["failures"] == []
+
+
 def test_the_local_cluster_is_started_once_and_reused(tmp_path):
     small = {"contact.restitution": [0.6, 0.7, 0.8]}
     _sweep(small, out=tmp_path / "a", batch_size=1)

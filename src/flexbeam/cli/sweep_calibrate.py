@@ -112,6 +112,8 @@ def _print_sweep(info: dict[str, Any]) -> None:
         f"{info['cases']} cases: {info['computed']} computed, {info['reused']} reused, "
         f"{info['failed']} failed, {info['missing']} missing -> {info['result']}"
     )
+    if info["incomplete"]:
+        typer.echo(f"  {info['incomplete']} ended before solver.t_end (max-contacts: the Zeno guard)")
     for f in info["failures"][:20]:
         where = ", ".join(f"{k}={v}" for k, v in f["parameters"].items())
         typer.echo(f"  {f['status']}: {where}: {f['error']}")

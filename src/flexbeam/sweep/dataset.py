@@ -12,7 +12,7 @@ from ..parameters.io import field_units
 from ..results.metrics import METRICS as REGISTRY
 from ..results.metrics import SCALARS
 from .planning import Plan, plain
-from .store import FAILED, Store
+from .store import FAILED, INCOMPLETE, Store
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -86,6 +86,7 @@ def build_dataset(
     )
     n_missing = int(np.count_nonzero(status == "missing"))
     n_failed = int(sum(1 for s in status if s in FAILED))
+    n_incomplete = int(sum(1 for s in status if s in INCOMPLETE))
     attrs = {
         "title": "flexbeam sweep",
         "method": spec["method"],
@@ -96,6 +97,7 @@ def build_dataset(
         "flexbeam_version": __version__,
         "cases": len(keys),
         "failed": n_failed,
+        "incomplete": n_incomplete,
         "missing": n_missing,
     }
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
@@ -130,10 +132,13 @@ def load(store: str | Path) -> xr.Dataset:
 
 
 def summary(ds: xr.Dataset) -> dict[str, Any]:
-    """Counts of a sweep result and its failed cases with their swept values and errors."""
+    """Counts of a sweep result and its failed cases with their swept values and errors; ``incomplete`` counts the
+    cases that ended before solver.t_end without failing (status ``max-contacts``: reported as complete before)."""
     import numpy as np
 
-    info: dict[str, Any] = {k: int(ds.attrs.get(k, 0)) for k in ("cases", "computed", "reused", "failed", "missing")}
+    names = ("cases", "computed", "reused", "failed", "missing")
+    info: dict[str, Any] = {k: int(ds.attrs.get(k, 0)) for k in names}
+    info["incomplete"] = int(np.isin(ds["status"].values, INCOMPLETE).sum())
     swept = json.loads(ds.attrs["swept"])
     status = ds["status"].values
     failures = []

@@ -17,6 +17,9 @@ if TYPE_CHECKING:
 
 #: statuses that count as a failed case
 FAILED = ("failed", "error", "invalid")
+#: statuses of a case that ran but ended before solver.t_end without failing (the Zeno guard, solver.max_contacts):
+#: its metrics cover the run up to there
+INCOMPLETE = ("max-contacts",)
 
 
 class Store:
