@@ -300,6 +300,10 @@ def test_samples_are_reproducible_and_invalid_samples_are_cases():
     assert all(p.overrides["contact.restitution"] > 1 or p.overrides["contact.restitution"] < 0 for p in invalid)
 
 
+#: a grid of 160 000 cases (refused before any is planned)
+WIDE = {"contact.restitution": [0.5 + 1e-3 * i for i in range(400)], "contact.stiffness": [1e9 + i for i in range(400)]}
+
+
 @pytest.mark.parametrize(
     ("call", "field"),
     [
@@ -318,6 +322,18 @@ def test_samples_are_reproducible_and_invalid_samples_are_cases():
         (lambda: plan(fb.load_case("seed-experiment"), grid={"contact.restitution": 0.5}), "give a list of values"),
         (lambda: plan(fb.load_case("seed-experiment"), grid={"contact.law": "hertz"}), "give a list of values"),
         (lambda: fb.sweep("seed-experiment", grid={"contact.restitution": [0.5]}, method="cfm"), "ccfm"),
+        # a plan of 1e9 cases was built before anything ran: 21 GB, killed by the operating system (1e5 at most)
+        (lambda: parse_grid(["contact.restitution=linspace(0.5,0.9,1e9)"]), "allowed 1 <= n <= 100000"),
+        (
+            lambda: plan(fb.load_case("seed-experiment"), samples={"contact.restitution": "uniform(0,1)"}, n=10**9),
+            "n: 1000000000 samples; allowed 1 <= n <= 100000",
+        ),
+        (
+            lambda: plan(fb.load_case("seed-experiment"), grid=WIDE),
+            "--grid: 400 x 400 = 160000 cases; at most 100000",
+        ),
+        # 4 and 4.0 are one case: two rows with the same case_key before
+        (lambda: plan(fb.load_case("seed-experiment"), grid={"model.modes": [4, 4.0]}), "repeated values"),
     ],
 )
 def test_bad_input_names_the_field(call, field):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
+import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -12,7 +13,7 @@ from typing import Any
 from ..errors import ParameterError
 from ..parameters.case import Case
 from ..parameters.io import set_dotted, validate_case
-from .spec import Distribution
+from .spec import MAX_CASES, Distribution
 
 
 def case_key(case: Case, method: str) -> str:
@@ -101,9 +102,15 @@ def plan(
             values = list(values)
             if not values:
                 raise ParameterError(f"--grid {key}: no values")
-            if len({json.dumps(v, default=str) for v in values}) != len(values):
+            if len({_same(v) for v in values}) != len(values):
                 raise ParameterError(f"--grid {key}: repeated values {values}")
             coords[key] = [plain(v) for v in values]
+        total = math.prod(len(v) for v in coords.values())
+        if total > MAX_CASES:
+            raise ParameterError(
+                f"--grid: {' x '.join(str(len(v)) for v in coords.values())} = {total} cases; at most {MAX_CASES} in "
+                "one sweep (split it into several stores)"
+            )
         spec.update(kind="grid", keys=list(coords), grid=coords)
         for combo in itertools.product(*coords.values()):
             points.append(_point(base, dict(zip(coords, combo)), method, strict=True))
@@ -113,6 +120,10 @@ def plan(
             raise ParameterError("--sample: give at least one KEY=DIST")
         if n is None or isinstance(n, bool) or not isinstance(n, int) or n < 1:
             raise ParameterError(f"n: the number of samples must be an integer >= 1 (got {n!r})")
+        if n > MAX_CASES:
+            raise ParameterError(
+                f"n: {n} samples; allowed 1 <= n <= {MAX_CASES} in one sweep (split it into several stores)"
+            )
         if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
             raise ParameterError(f"seed: must be an integer >= 0 (got {seed!r})")
         dists = {k: d if isinstance(d, Distribution) else Distribution.parse(str(d), k) for k, d in samples.items()}
@@ -130,6 +141,14 @@ def plan(
             points.append(_point(base, {k: draws[k][i] for k in dists}, method, strict=False))
     spec["cases"] = [p.key for p in points]
     return Plan(spec, points, coords)
+
+
+def _same(value: Any) -> str:
+    """What two grid values that make the same case share: a number's value (4 and 4.0: one case, two rows of the
+    Dataset before), anything else its JSON text."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return repr(float(value))
+    return json.dumps(value, default=str)
 
 
 def plain(value: Any) -> Any:
