@@ -53,7 +53,7 @@ on it is estimated as one that is not.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -101,6 +101,8 @@ class MemoryEstimate:
     max_step_bound: bool = False  #: ``solver.max_step`` sets the step count
     streamed: bool = False  #: streamed to disk: the estimate does not grow with ``t_end``
     sample_field: str = "solver.sample_step"  #: the case field that spaces the samples counted
+    #: the same run streamed to its file would fit the limit (offered as a way out only then)
+    stream_fits: bool = True
 
     @property
     def total(self) -> float:
@@ -126,12 +128,15 @@ class MemoryEstimate:
                 f"its length, more than the limit of {_size(self.limit)} ({self.limit_source}); raise "
                 f"solver.memory_limit [B]"
             )
-        way = f"allowed here: solver.t_end <= {self.max_t_end:.3g} s"
+        shorter = self.max_t_end > 0.0  # (else the phases, which solver.max_contacts bounds, fill it)
+        ways = [f"solver.t_end <= {self.max_t_end:.3g} s" if shorter else "a smaller solver.max_contacts"]
         if self.max_step_bound:
-            way += ", or a larger solver.max_step"
+            ways.append("a larger solver.max_step")
         if self.samples > self.records:
-            way += f", or a coarser {self.sample_field}"
-        way += ", or stream the run to its file (flexbeam run --stream --out DIR; simulate(case, stream=path))"
+            ways.append(f"a coarser {self.sample_field}")
+        if self.stream_fits:
+            ways.append("stream the run to its file (flexbeam run --stream --out DIR; simulate(case, stream=path))")
+        way = "allowed here: " + ", or ".join(ways)
         return (
             f"solver.t_end: a run of {self.t_end:g} s would hold about {_size(self.total)} in memory ({parts}), more "
             f"than the limit of {_size(self.limit)} ({self.limit_source}); {way}, or raise solver.memory_limit [B]"
@@ -213,14 +218,21 @@ def estimate(case: Case, method: str = "ccfm", outputs: bool = False, stream: bo
         from .results.export import TIME_CHUNK
         from .results.stream import WINDOW_RECORDS
 
-        samples = sample_bytes(case, pairs, 3 * TIME_CHUNK)
+        # (never more than the same run held in memory: a short run's whole samples are fewer than its buffers')
+        samples = min(sample_bytes(case, pairs, 3 * TIME_CHUNK), _whole_samples(case, pairs))
         if exponential:
             steps = min(steps, WINDOW_RECORDS + STREAM_BLOCKS * BLOCK_RECORDS)
         return MemoryEstimate(t_end, steps * record, phases * SEGMENT_BYTES, samples, limit, source, bound, True)
     if outputs:  # the samples every run has: no instant is sampled more sparsely than this
-        samples = sample_bytes(case, pairs, t_end / max(case.sample_steps()))
+        samples = _whole_samples(case, pairs)
     field = case.sample_step_field(case.sample_steps()[1] > case.sample_steps()[0])
-    return MemoryEstimate(t_end, steps * record, phases * SEGMENT_BYTES, samples, limit, source, bound, False, field)
+    held = MemoryEstimate(t_end, steps * record, phases * SEGMENT_BYTES, samples, limit, source, bound, False, field)
+    return replace(held, stream_fits=estimate(case, method, outputs, stream=True).total <= limit)
+
+
+def _whole_samples(case: Case, pairs: int) -> float:
+    """The bytes of a whole run's output samples: no instant is sampled more sparsely than the sparser spacing."""
+    return sample_bytes(case, pairs, case.solver.t_end / max(case.sample_steps()))
 
 
 def _fe_step(case: Case, contact: ContactSetup, touching: bool) -> float:

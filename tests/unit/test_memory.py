@@ -166,3 +166,18 @@ def test_samples_of_a_finished_run_are_counted_before_they_are_evaluated():
     with pytest.raises(ParameterError, match=r"^solver\.contact_sample_step: the \d+ output samples of this run"):
         _ = sol.arrays
     assert math.isfinite(fb.simulate(fb.load_case(case, {"solver.memory_limit": 1e9})).time[-1])
+
+
+def test_the_refusal_offers_only_ways_out_that_fit():
+    """A limit the phases alone exceed said "allowed here: solver.t_end <= 0 s" (t_end must be > 0) and offered the
+    stream, whose estimate was larger still; the 0.1 s seed run streamed was refused at 100 MB where the run held in
+    memory with all its outputs passed: the stream counted 3 chunks of 32 768 samples where the whole run has 23 571.
+    A stream never holds more samples than the whole run, and is offered only when it fits."""
+    tight = memory.estimate(fb.load_case("seed-experiment", {"solver.memory_limit": 3e7}), outputs=True)
+    msg = tight.message()
+    assert tight.total > tight.limit and "t_end <= " not in msg and "--stream" not in msg
+    assert "a smaller solver.max_contacts" in msg
+    case = fb.load_case("seed-experiment", {"solver.memory_limit": 1e8})
+    held, streamed = memory.estimate(case, outputs=True), memory.estimate(case, outputs=True, stream=True)
+    assert streamed.samples <= held.samples and streamed.total <= held.total <= held.limit
+    memory.check(case, outputs=True, stream=True)
