@@ -295,3 +295,27 @@ def test_a_terminated_streamed_run_leaves_no_file(tmp_path, signum, code, line):
     assert proc.returncode == code, err
     assert err.strip().splitlines()[-1:] == [line], err
     assert not any(out.iterdir())
+
+
+def test_a_streamed_run_whose_file_was_replaced_refuses_to_read_it(tmp_path):
+    """Two runs streamed to one path in turn: the first's arrays, read afterwards, were the second's samples (988 N
+    metrics against a 487 N force), and its to_netcdf copied them under its name.  Its file is checked to be the
+    one it wrote (inode, size, time), before the samples and before each array is read."""
+    path = tmp_path / "same.nc"
+    a = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 2e-3}), stream=path)
+    _ = a.time  # the samples' index read; the arrays are read one by one, later
+    fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 2e-3, "initial.impact_velocity": -0.2}), stream=path)
+    for read_it in (lambda: a["contact_force"], lambda: a.to_netcdf(tmp_path / "copy.nc"), a.to_xarray):
+        with pytest.raises(RuntimeError, match="was replaced or removed since it was written"):
+            read_it()
+    assert not (tmp_path / "copy.nc").exists()
+
+
+def test_a_streamed_run_cannot_be_written_unrounded(tmp_path):
+    """``to_netcdf(path, quantize=False)`` of a streamed run copied its rounded file (quantization_nsb 23, 5.9e-8
+    off the exact force): its samples were rounded as they were written, so it is refused; the default copy is
+    the file."""
+    sol = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 2e-3}), stream=tmp_path / "s.nc")
+    with pytest.raises(ValueError, match="quantize=False: this run was streamed"):
+        sol.to_netcdf(tmp_path / "exact.nc", quantize=False)
+    assert sol.to_netcdf(tmp_path / "copy.nc").read_bytes() == (tmp_path / "s.nc").read_bytes()

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -244,12 +244,18 @@ def to_netcdf(sol: Solution, path: str | Path, time_chunk: int = TIME_CHUNK, qua
     chunks.  With ``quantize`` (the default) the :data:`QUANTIZED` outputs are rounded to the precision of the run's
     integrator (:func:`precision_bits`, :func:`bitround`: 23 significant bits for the compiled integrator's rtol =
     1e-6, a relative change <= 6e-8) and carry the CF attributes ``quantization``, ``quantization_nsb`` and a
-    ``precision`` in words; everything else is stored exactly (``quantize=False``: everything).  ``phase`` is stored
+    ``precision`` in words; everything else is stored exactly (``quantize=False``: everything, but for a run
+    streamed to its file, rounded as it was written: a ValueError).  ``phase`` is stored
     as characters (variable-length strings cannot be compressed) and reads back as strings.  The seed experiment's
     result: 11.3 MB uncompressed, 5.6 MB deflated, 2.7 MB rounded to the integrator's precision.
     """
     path = Path(path)
-    if getattr(sol, "file", None) is not None:  # streamed: the file is written already
+    if getattr(sol, "file", None) is not None:  # streamed: the file is written already (its chunks as written)
+        if not quantize and _quantized(sol.stored_file()):
+            raise ValueError(
+                "quantize=False: this run was streamed to its file, whose samples were rounded as they were written; "
+                "the exact samples need the run held in memory (simulate without stream=)"
+            )
         return _copy_stored(sol, path)
     ds = sol.to_xarray()
     nsb = precision_bits(sol.provenance) if quantize else None
@@ -280,11 +286,20 @@ def variable_encoding(var, time_chunk: int) -> dict[str, Any]:
     return {**enc, "chunksizes": tuple(chunks)}
 
 
+def _quantized(path: Path) -> bool:
+    """Does the result file at ``path`` hold samples rounded to the integrator's precision (its
+    :data:`QUANTIZATION_INFO` variable)?"""
+    import xarray as xr
+
+    with xr.open_dataset(path) as ds:
+        return QUANTIZATION_INFO in ds.variables
+
+
 def _copy_stored(sol: Solution, path: Path) -> Path:
     """A streamed run's file at ``path`` (itself when it is there already)."""
     import shutil
 
-    src = Path(sol.file)
+    src = sol.stored_file()
     if path.resolve() == src.resolve():
         return path
     with atomic_path(path) as tmp:
@@ -292,23 +307,27 @@ def _copy_stored(sol: Solution, path: Path) -> Path:
     return path
 
 
-def read_samples(path: str | Path) -> tuple[np.ndarray, np.ndarray, LazyArrays]:
-    """(time, phase, arrays) of a result file; each array read when first asked for."""
+def read_samples(
+    path: str | Path, checked: Callable[[], Path] | None = None
+) -> tuple[np.ndarray, np.ndarray, LazyArrays]:
+    """(time, phase, arrays) of a result file; each array read when first asked for (``checked``: as
+    :class:`LazyArrays`)."""
     import xarray as xr
 
     with xr.open_dataset(path) as ds:
         time = ds["time"].values
         phase = ds["phase"].values.astype(object)
         names = [n for n in ds.data_vars if "time" in ds[n].dims and n != "phase"]
-    return time, phase, LazyArrays(Path(path), names)
+    return time, phase, LazyArrays(Path(path), names, checked)
 
 
 class LazyArrays(Mapping):
     """The sampled variables of a result file by name, each read on first access (a long run's file may hold more
     than the memory: read what is needed)."""
 
-    def __init__(self, path: Path, names: list[str]) -> None:
+    def __init__(self, path: Path, names: list[str], checked: Callable[[], Path] | None = None) -> None:
         self.path, self.names, self._read = path, list(names), {}
+        self.checked = checked  #: the path again, checked to be the same file (a streamed run's, before each read)
 
     def __getitem__(self, name: str) -> np.ndarray:
         if name not in self.names:
@@ -316,7 +335,7 @@ class LazyArrays(Mapping):
         if name not in self._read:
             import xarray as xr
 
-            with xr.open_dataset(self.path) as ds:
+            with xr.open_dataset(self.path if self.checked is None else self.checked()) as ds:
                 self._read[name] = ds[name].values
         return self._read[name]
 

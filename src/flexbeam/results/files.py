@@ -69,6 +69,13 @@ def check_output_dir(path: str | Path, field: str, files: tuple[str, ...] = (), 
     return path
 
 
+def file_stamp(path: str | Path) -> tuple[int, int, int]:
+    """(inode, size, modification time [ns]) of the file at ``path``: what changes when another file is written over
+    it (an atomic write renames a new file onto the path: a new inode)."""
+    st = os.stat(path)
+    return st.st_ino, st.st_size, st.st_mtime_ns
+
+
 def write_text_atomic(path: str | Path, text: str) -> Path:
     """Write text to ``path`` atomically."""
     path = Path(path)

@@ -21,6 +21,7 @@ import numpy as np
 from . import export, summary
 from .counts import ContactCounts
 from .episodes import Episode, find_episodes, is_free
+from .files import file_stamp
 from .friction import tangential_impulse
 from .peaks import PEAK_XTOL, golden_max, interior_maxima
 from .records import ContactEvent
@@ -84,6 +85,8 @@ class Solution:
         if source is None and file is None and (time is None or phase is None or arrays is None):
             raise ValueError("Solution: give time, phase and arrays, a source or a file")
         self.file = None if file is None else Path(file)
+        #: the file as this run wrote it (:func:`~flexbeam.results.files.file_stamp`; set by the stream that wrote it)
+        self.file_stamp: tuple[int, int, int] | None = None
         self.summaries = dict(summaries or {})
         given = source is None and file is None
         self._samples = (np.asarray(time), np.asarray(phase), arrays) if given else None
@@ -104,8 +107,7 @@ class Solution:
             if self.source is not None:
                 self._samples = self.source.samples
             else:
-                assert self.file is not None
-                self._samples = export.read_samples(self.file)
+                self._samples = export.read_samples(self.stored_file(), self.stored_file)
         return self._samples
 
     @property
@@ -328,8 +330,19 @@ class Solution:
         if self.file is not None:
             import xarray as xr
 
-            return xr.open_dataset(self.file)
+            return xr.open_dataset(self.stored_file())
         return export.to_xarray(self)
+
+    def stored_file(self) -> Path:
+        """A streamed run's result file, checked to be the one it wrote: a RuntimeError if another was written over
+        it since (two runs streamed to one path in turn: the first's arrays read the second's samples, silently)."""
+        assert self.file is not None
+        if self.file_stamp is not None and (not self.file.exists() or file_stamp(self.file) != self.file_stamp):
+            raise RuntimeError(
+                f"{self.file}: the result file this run streamed to was replaced or removed since it was written; "
+                "its samples are gone (stream each run to its own path)"
+            )
+        return self.file
 
     def to_netcdf(self, path: str | Path, time_chunk: int = export.TIME_CHUNK, quantize: bool = True) -> Path:
         """Write :meth:`to_xarray` to NetCDF-4 atomically, the outputs of the integrated state rounded to the

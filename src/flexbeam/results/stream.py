@@ -38,6 +38,7 @@ from ..parameters.case import Case
 from . import export
 from .arrays import RunSource, centre_columns, sample_grid, total_energy
 from .episode_stream import STREAMED, EpisodeStream
+from .files import file_stamp
 from .friction import friction_columns
 from .long_contact import LongContact
 from .parts import part_states
@@ -301,7 +302,7 @@ class RunStream:
             summaries=summaries,
         )
         sol._peaks.update(self.peaks)
-        self.file.close(sol)
+        sol.file_stamp = file_stamp(self.file.close(sol))
         return sol
 
     def abort(self) -> None:
