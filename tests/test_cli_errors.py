@@ -74,7 +74,11 @@ SET_CASES = [
     # the output interval: in (0, solver.t_end]
     ("output.interval=0", "output.interval", "must be in 0 < output.interval <= solver.t_end"),
     ("output.interval=-1e-3", "output.interval", "must be in 0 < output.interval <= solver.t_end"),
-    ("output.interval=inf", "output.interval", "finite"),
+    # NaN, inf and text were named without the range ("must be a finite number", "Input should be a valid number");
+    # inf's expected text was "finite" before
+    ("output.interval=nan", "output.interval", "must be in 0 < output.interval <= solver.t_end"),
+    ("output.interval=abc", "output.interval", "must be in 0 < output.interval <= solver.t_end"),
+    ("output.interval=inf", "output.interval", "must be in 0 < output.interval <= solver.t_end"),
     ("output.interval=0.5", "output.interval", "allowed: 0 < output.interval <= solver.t_end = 0.1 s"),
     ("solver.max_step=0", "solver.max_step", "greater than 0"),
     ("solver.rtol=0", "solver.rtol", "greater than 0"),

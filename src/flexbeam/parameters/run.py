@@ -3,23 +3,26 @@ options."""
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Literal
 
 from pydantic import BeforeValidator, Field, model_validator
 
-from .fields import MAX_RATE, Angle, Bounded, Finite, NonNegative, Positive, Rate, Section, _finite_first
+from .fields import MAX_RATE, Angle, Bounded, Finite, NonNegative, Positive, Rate, Section
 
 
 def _interval_range(value: object) -> object:
-    """A zero or negative output interval is named with the whole range it must lie in (its upper end,
-    ``solver.t_end``, is checked with the case: :class:`~flexbeam.parameters.case.Case`)."""
-    if isinstance(value, (int, float)) and not isinstance(value, bool) and value <= 0:
+    """An output interval that is no number > 0 (zero, negative, NaN, inf, text, a bool) is named with the whole
+    range it must lie in (its upper end, ``solver.t_end``, is checked with the case:
+    :class:`~flexbeam.parameters.case.Case`)."""
+    number = isinstance(value, (int, float)) and not isinstance(value, bool)
+    if not number or not 0.0 < value < math.inf:
         raise ValueError("must be in 0 < output.interval <= solver.t_end [s]")
     return value
 
 
 #: a spacing of the output samples [s]: finite and > 0
-Interval = Annotated[float, BeforeValidator(_interval_range), BeforeValidator(_finite_first), Field(gt=0)]
+Interval = Annotated[float, BeforeValidator(_interval_range), Field(gt=0)]
 
 
 class Initial(Section):
