@@ -264,3 +264,13 @@ def test_a_support_axis_left_to_its_default_away_from_an_impact_start_is_warned(
         warnings.simplefilter("error")
         fb.load_case("spinning-stop", {**sensor, "obstacle.support.direction": [0.8, -0.6]})
         fb.load_case("seed-experiment-calibrated")  # an impact start: the default is the normal where it strikes
+
+
+def test_an_impact_start_anywhere_against_a_surface_along_the_beam_says_why():
+    """tip-wall's wall lies along the straight beam: with contact.anywhere every point is nearest and the tie falls
+    at x = 0, the joint, which moves 0 m per radian -- the refusal blamed impact_velocity and contact.position (0.7 m,
+    which moves 0.7 m per radian) alone.  It names the nearest point and the ways out (a helper's hunt)."""
+    from flexbeam.errors import ParameterError
+
+    with pytest.raises(ParameterError, match=r"with contact.anywhere P is the straight beam's nearest .* x = 0 m"):
+        fb.simulate(fb.load_case("tip-wall", {"contact.anywhere": True, "solver.t_end": 1e-4}))

@@ -160,7 +160,18 @@ class RevoluteJoint(Joint):
         if init.kind == "impact":
             y = system.state(init.impact_angle, 0.0)
             J_theta = system.gap(0.0, y)[3][0]
-            y = system.state(init.impact_angle, init.impact_rate(J_theta))
+            try:
+                rate = init.impact_rate(J_theta)
+            except ParameterError as exc:
+                if not system.contact.pairs[0].anywhere:
+                    raise
+                x = system.contact_coordinate(0.0, y, 0)  # (P is the nearest point, not contact.position)
+                raise ParameterError(
+                    f"{exc}; with contact.anywhere P is the straight beam's nearest point to the obstacle, here x = "
+                    f"{x:.3g} m (a surface along the beam is nearest everywhere): start with initial.kind = 'state' "
+                    "or 'release', or without contact.anywhere"
+                ) from None
+            y = system.state(init.impact_angle, rate)
             return y, {"impact_rate": float(y[system.n + 1])}
         angle = init.release_angle
         info: dict[str, float] = {}
