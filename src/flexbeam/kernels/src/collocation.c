@@ -160,8 +160,9 @@ static double multiplier_effect(const fb_phase *ph, const fb_node *end, int l, i
  * pair's tangential one (friction.c) -- unless L moves the step's end state by less than ``noise`` (in units of the
  * tolerance: MULTIPLIER_ROUNDOFF ulps of the state's energy norm; :func:`multiplier_effect`).  Against a compliant
  * support a held pair's L is also held to its effect on the state (multiplier_effect <= 1): the multiplier drives
- * the support's mass, so its error is the support's motion's, where a rigid obstacle's constraint fixes the motion
- * whatever the multiplier's error (under MULTIPLIER_RTOL alone the calibrated sensor's first contact under CCM
+ * the support's mass, so its error is the support's motion's, where against a rigid obstacle MULTIPLIER_RTOL alone
+ * holds the motion within its tolerance (not whatever the multiplier's error: uncontrolled, the seed's onsets moved
+ * by 2.7e-6 s, docs/performance.md) (under MULTIPLIER_RTOL alone the calibrated sensor's first contact under CCM
  * dissipated 1.1e-4 more than the reference integrator's, its duration 2.3e-6 longer; with it 1.7e-5 and 2.4e-7,
  * converging with fast_rtol as the rigid stop's CCM does).  A multiplier is a
  * velocity defect over the step's response ~ h / m_eff, so the state's round-off puts ~ m_eff eps |x| / h into its
