@@ -101,7 +101,7 @@ class MemoryEstimate:
     max_step_bound: bool = False  #: ``solver.max_step`` sets the step count
     streamed: bool = False  #: streamed to disk: the estimate does not grow with ``t_end``
     sample_field: str = "solver.sample_step"  #: the case field that spaces the samples counted
-    #: the same run streamed to its file would fit the limit (offered as a way out only then)
+    #: the same run streamed to its file would fit the limit (offered as a way out only then; :func:`check` asks)
     stream_fits: bool = True
 
     @property
@@ -226,8 +226,7 @@ def estimate(case: Case, method: str = "ccfm", outputs: bool = False, stream: bo
     if outputs:  # the samples every run has: no instant is sampled more sparsely than this
         samples = _whole_samples(case, pairs)
     field = case.sample_step_field(case.sample_steps()[1] > case.sample_steps()[0])
-    held = MemoryEstimate(t_end, steps * record, phases * SEGMENT_BYTES, samples, limit, source, bound, False, field)
-    return replace(held, stream_fits=estimate(case, method, outputs, stream=True).total <= limit)
+    return MemoryEstimate(t_end, steps * record, phases * SEGMENT_BYTES, samples, limit, source, bound, False, field)
 
 
 def _whole_samples(case: Case, pairs: int) -> float:
@@ -270,6 +269,8 @@ def check(case: Case, method: str = "ccfm", outputs: bool = False, stream: bool 
     """:func:`estimate`, and a one-line :class:`~flexbeam.errors.ParameterError` when it exceeds the limit."""
     est = estimate(case, method, outputs, stream)
     if est.total > est.limit:
+        if not stream:  # (the stream is offered only if its own estimate fits: asked here, not on every run)
+            est = replace(est, stream_fits=estimate(case, method, outputs, stream=True).total <= est.limit)
         raise ParameterError(est.message())
     return est
 

@@ -173,8 +173,11 @@ def test_the_refusal_offers_only_ways_out_that_fit():
     stream, whose estimate was larger still; the 0.1 s seed run streamed was refused at 100 MB where the run held in
     memory with all its outputs passed: the stream counted 3 chunks of 32 768 samples where the whole run has 23 571.
     A stream never holds more samples than the whole run, and is offered only when it fits."""
-    tight = memory.estimate(fb.load_case("seed-experiment", {"solver.memory_limit": 3e7}), outputs=True)
-    msg = tight.message()
+    case = fb.load_case("seed-experiment", {"solver.memory_limit": 3e7})
+    tight = memory.estimate(case, outputs=True)
+    with pytest.raises(ParameterError) as err:
+        memory.check(case, outputs=True)
+    msg = str(err.value)
     assert tight.total > tight.limit and "t_end <= " not in msg and "--stream" not in msg
     assert "a smaller solver.max_contacts" in msg
     case = fb.load_case("seed-experiment", {"solver.memory_limit": 1e8})

@@ -51,18 +51,12 @@ SET_UP = ("beam", "hub", "initial", "joint", "drive", "base", "model.gravity", "
 OBSTACLE_SET_UP = ("kind", "centre", "radius", "normal", "youngs_modulus", "poisson_ratio", "fixed_to")
 
 
-def _set_up(data: dict[str, Any]) -> dict[str, Any]:
-    """The :data:`SET_UP` and :data:`OBSTACLE_SET_UP` fields of a case's dump."""
-    view: dict[str, Any] = {}
-    for key in SET_UP:
-        node: Any = data
-        for part in key.split("."):
-            node = node.get(part) if isinstance(node, dict) else None
-        view[key] = node
-    view["obstacle"] = {k: data["obstacle"].get(k) for k in OBSTACLE_SET_UP}
+def _set_up(case: Case) -> dict[str, Any]:
+    """The :data:`SET_UP` and :data:`OBSTACLE_SET_UP` fields of ``case`` (:func:`get_dotted`)."""
+    view: dict[str, Any] = {key: get_dotted(case, key) for key in SET_UP}
+    view["obstacle"] = [getattr(case.obstacle, k) for k in OBSTACLE_SET_UP]
     view["obstacles"] = [
-        ({k: o.get(k) for k in OBSTACLE_SET_UP}, o["contact"].get("position"), o["contact"].get("side"))
-        for o in data["obstacles"]
+        ([getattr(o, k) for k in OBSTACLE_SET_UP], o.contact.position, o.contact.side) for o in case.obstacles
     ]
     return view
 
@@ -75,8 +69,7 @@ def reference_for(case: Case) -> dict[str, Any]:
     reference = reference_data(case.name)
     if not reference or case.name not in builtin_cases():
         return {}
-    same = _set_up(case.model_dump(mode="json")) == _set_up(load_case(case.name).model_dump(mode="json"))
-    return reference if same else {}
+    return reference if _set_up(case) == _set_up(load_case(case.name)) else {}
 
 
 def _read_source(source: str | Path) -> dict[str, Any]:
