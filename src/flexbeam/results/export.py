@@ -257,6 +257,13 @@ def to_netcdf(sol: Solution, path: str | Path, time_chunk: int = TIME_CHUNK, qua
                 "the exact samples need the run held in memory (simulate without stream=)"
             )
         return _copy_stored(sol, path)
+    return write_dataset(result_dataset(sol, quantize), path, time_chunk)
+
+
+def result_dataset(sol: Solution, quantize: bool = True):
+    """:func:`to_xarray` as :func:`to_netcdf` stores it: with ``quantize`` the :data:`QUANTIZED` outputs rounded to the
+    run's precision (:func:`precision_bits`, :func:`bitround`) with their CF attributes and the
+    :data:`QUANTIZATION_INFO` variable (a sweep's histories are these, :mod:`flexbeam.sweep.store`)."""
     ds = sol.to_xarray()
     nsb = precision_bits(sol.provenance) if quantize else None
     if nsb is not None:
@@ -266,6 +273,13 @@ def to_netcdf(sol: Solution, path: str | Path, time_chunk: int = TIME_CHUNK, qua
             ds[name] = var.copy(data=bitround(var.values, nsb))
             ds[name].attrs.update(quantization_attrs(nsb, rtol))
         ds[QUANTIZATION_INFO] = ((), np.int32(0), quantization_info(str(sol.provenance.get("flexbeam_version"))))
+    return ds
+
+
+def write_dataset(ds, path: str | Path, time_chunk: int = TIME_CHUNK) -> Path:
+    """Write a result Dataset to NetCDF-4 at ``path`` atomically, every variable deflated in its chunks
+    (:func:`variable_encoding`)."""
+    path = Path(path)
     encoding = {name: variable_encoding(var, time_chunk) for name, var in ds.variables.items()}
     encoding = {k: v for k, v in encoding.items() if v}
     with atomic_path(path) as tmp:
@@ -347,6 +361,6 @@ class LazyArrays(Mapping):
 
 
 __all__ = [
-    "QUANTIZED", "TIME_CHUNK", "LazyArrays", "bitround", "precision_bits", "read_samples", "significant_bits",
-    "to_netcdf", "to_xarray",
+    "QUANTIZED", "TIME_CHUNK", "LazyArrays", "bitround", "precision_bits", "read_samples", "result_dataset",
+    "significant_bits", "to_netcdf", "to_xarray", "write_dataset",
 ]  # fmt: skip

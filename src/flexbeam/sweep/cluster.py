@@ -65,8 +65,10 @@ def run_case(data: dict[str, Any], method: str, histories: bool = False) -> tupl
         record.update(
             status=sol.status, message=sol.message, metrics=metrics, error=sol.message if sol.status == "failed" else ""
         )
-        if histories:
-            history = sol.to_xarray()
+        if histories:  # as result.nc holds a run: its outputs rounded to the run's precision
+            from ..results.export import result_dataset
+
+            history = result_dataset(sol)
     except Exception as exc:  # noqa: BLE001 - recorded, the sweep goes on
         record["error"] = f"{type(exc).__name__}: {exc}"
         record["message"] = record["error"]

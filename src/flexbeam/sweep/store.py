@@ -50,12 +50,12 @@ class Store:
 
     def save(self, record: dict[str, Any], history: Any = None) -> None:
         """History first, then the record: the record's presence marks the case finished."""
-        from ..results.files import atomic_path, jsonable, write_text_atomic
+        from ..results.export import write_dataset
+        from ..results.files import jsonable, write_text_atomic
 
         key = record["key"]
-        if history is not None:
-            with atomic_path(self.history_path(key)) as tmp:
-                history.to_netcdf(tmp)
+        if history is not None:  # stored as result.nc is (compressed in chunks, atomically)
+            write_dataset(history, self.history_path(key))
         write_text_atomic(self.record_path(key), json.dumps(jsonable(record), indent=1, sort_keys=True))
 
     def write_manifest(self, spec: dict[str, Any]) -> None:
