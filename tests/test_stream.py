@@ -319,3 +319,48 @@ def test_a_streamed_run_cannot_be_written_unrounded(tmp_path):
     with pytest.raises(ValueError, match="quantize=False: this run was streamed"):
         sol.to_netcdf(tmp_path / "exact.nc", quantize=False)
     assert sol.to_netcdf(tmp_path / "copy.nc").read_bytes() == (tmp_path / "s.nc").read_bytes()
+
+
+@pytest.mark.parametrize(("name", "t_end"), [("seed-experiment", 0.1), ("two-stops", 0.1)])
+def test_the_figures_of_a_streamed_run_read_their_window_alone(tmp_path, monkeypatch, name, t_end):
+    """``flexbeam run --stream`` drew its figures from every sample of the file (the whole run read back: 90 MB more
+    at 1000 s): they read the window they draw (export.read_window) and draw what the run held in memory draws,
+    its samples within the file's rounding; the Solution's samples stay in the file."""
+    from flexbeam.views import plotting, report
+
+    drawn: dict[str, list] = {}
+
+    def keep(fig, path):
+        drawn[str(path)] = [(ln.get_label(), ln.get_xdata(), ln.get_ydata()) for ln in fig.axes[0].lines]
+        plotting.pyplot().close(fig)
+        return path
+
+    monkeypatch.setattr(plotting, "save_figure", keep)
+    case = fb.load_case(name, {"solver.t_end": t_end, "model.modes": 4})
+    report.write_run_outputs(fb.simulate(case), case, tmp_path / "memory")
+    streamed = fb.simulate(case, stream=tmp_path / "streamed" / "result.nc")
+    report.write_run_outputs(streamed, case, tmp_path / "streamed")
+    assert streamed.samples_in_file
+    for figure in ("contact_force.png", "normal_velocity.png"):
+        want, got = drawn[str(tmp_path / "memory" / figure)], drawn[str(tmp_path / "streamed" / figure)]
+        assert [g[0] for g in got] == [w[0] for w in want] and len(want[0][1]) > 100
+        for (_, xg, yg), (_, xw, yw) in zip(got, want, strict=True):
+            np.testing.assert_array_equal(xg, xw)
+            np.testing.assert_allclose(yg, yw, rtol=2**-24, atol=0.0)
+
+
+def test_a_window_of_a_result_file_holds_the_samples_at_its_ends(tmp_path):
+    """read_window finds its ends by bisection on the file's time, whose phase boundaries are two samples each: a
+    window from one phase boundary to the same instant holds both, as a mask on the whole time does."""
+    from flexbeam.results.export import read_window
+
+    sol = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 0.02, "model.modes": 4}))
+    onset = float(sol.time[np.nonzero(np.diff(sol.time) == 0.0)[0][0]])  # the first phase boundary
+    assert (sol.time == onset).sum() == 2
+    path = sol.to_netcdf(tmp_path / "w.nc")
+    for a, b in ((onset, onset), (0.0, onset), (onset, 1.0), (-1.0, -0.5), (sol.time[5], sol.time[40])):
+        time, phase, arrays = read_window(path, a, b)
+        sel = (sol.time >= a) & (sol.time <= b)
+        np.testing.assert_array_equal(time, sol.time[sel])
+        assert phase.tolist() == sol.phase[sel].tolist()
+        np.testing.assert_allclose(arrays["contact_force"], sol["contact_force"][sel], rtol=2**-24, atol=0.0)

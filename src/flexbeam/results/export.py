@@ -335,6 +335,20 @@ def read_samples(
     return time, phase, LazyArrays(Path(path), names, checked)
 
 
+def read_window(path: str | Path, t_a: float, t_b: float) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    """(time, phase, arrays) of a result file's samples with ``t_a`` <= time <= ``t_b``, read alone: the file's time
+    index (8 bytes a sample, which xarray reads on opening) and the chunks of the window, not every variable's every
+    sample (the figures of a streamed run of any length, :mod:`flexbeam.views.plotting`)."""
+    import xarray as xr
+
+    with xr.open_dataset(path) as ds:
+        time = ds["time"].values
+        i0, i1 = int(np.searchsorted(time, t_a, side="left")), int(np.searchsorted(time, t_b, side="right"))
+        part = ds.isel(time=slice(i0, i1)).load()
+    names = [n for n in part.data_vars if "time" in part[n].dims and n != "phase"]
+    return part["time"].values, part["phase"].values.astype(object), {n: part[n].values for n in names}
+
+
 class LazyArrays(Mapping):
     """The sampled variables of a result file by name, each read on first access (a long run's file may hold more
     than the memory: read what is needed)."""
@@ -353,6 +367,9 @@ class LazyArrays(Mapping):
                 self._read[name] = ds[name].values
         return self._read[name]
 
+    def __contains__(self, name: object) -> bool:  # (by name, without reading the variable)
+        return name in self.names
+
     def __iter__(self):
         return iter(self.names)
 
@@ -361,6 +378,6 @@ class LazyArrays(Mapping):
 
 
 __all__ = [
-    "QUANTIZED", "TIME_CHUNK", "LazyArrays", "bitround", "precision_bits", "read_samples", "result_dataset",
-    "significant_bits", "to_netcdf", "to_xarray", "write_dataset",
+    "QUANTIZED", "TIME_CHUNK", "LazyArrays", "bitround", "precision_bits", "read_samples", "read_window",
+    "result_dataset", "significant_bits", "to_netcdf", "to_xarray", "write_dataset",
 ]  # fmt: skip
