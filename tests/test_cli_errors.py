@@ -116,6 +116,13 @@ SET_CASES = [
     # the axial modes
     ("model.axial_modes=-1", "model.axial_modes", "greater than or equal to 0"),
     ("model.axial_modes=53", "model.axial_modes", "model.modes + model.axial_modes must be at most 64"),
+    # a field bounded on both sides names its whole range (pydantic names the side that failed alone: a negative
+    # restitution said "greater than or equal to 0", a sphere's negative radius not that 1000 m is the most)
+    ("contact.restitution=-1", "contact.restitution", "(got -1); allowed range [0, 1]"),
+    ("contact.restitution=1.5", "contact.restitution", "(got 1.5); allowed range [0, 1]"),
+    ("obstacle.radius=-1", "obstacle.radius", "allowed range [0, 1000]"),
+    ("model.modes=65", "model.modes", "allowed range [0, 64]"),
+    ("beam.poisson_ratio=0.6", "beam.poisson_ratio", "allowed range (-1, 0.5)"),
     ("initial.axial_displacement=[1e-6]", "initial.axial_displacement", "1 values for model.axial_modes = 0"),
     # a value of the wrong shape says what the field holds (pydantic said "Input should be a valid tuple" only)
     ("obstacle.centre=0.3", "obstacle.centre", "expected a list of 2 numbers, obstacle centre [m]"),

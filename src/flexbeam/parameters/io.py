@@ -119,7 +119,7 @@ def _format_validation_error(exc: ValidationError) -> str:
     if loc and not msg.startswith(loc.split(".")[0] + "."):
         got = err.get("input")
         got_txt = f" (got {got!r})" if got is not None and not isinstance(got, dict) else ""
-        return f"{loc}: {msg}{got_txt}{_shape_hint(err['type'], loc)}"
+        return f"{loc}: {msg}{got_txt}{_shape_hint(err['type'], loc)}{_range_hint(err['type'], loc)}"
     return msg
 
 
@@ -141,6 +141,29 @@ def _shape_hint(kind: str, loc: str) -> str:
     items = typing.get_args(args[0]) if typing.get_origin(args[0]) is tuple else ()
     shape = f"a list of {len(items)} numbers, " if items and Ellipsis not in items else ""
     return f"; expected {shape}{info.description}" if info.description else ""
+
+
+#: pydantic's errors of a number out of its field's bounds, whose text names the bound that failed alone
+_RANGE_ERRORS = ("greater_than", "greater_than_equal", "less_than", "less_than_equal")
+
+
+def _range_hint(kind: str, loc: str) -> str:
+    """For an error of :data:`_RANGE_ERRORS` on a field bounded on both sides, "; allowed range [lo, hi]" (round
+    brackets for strict bounds): ``contact.restitution = -1`` said "greater than or equal to 0" only, not that 1 is
+    the most; else ""."""
+    if kind not in _RANGE_ERRORS:
+        return ""
+    try:
+        info = schema_field(loc)
+    except ParameterError:
+        return ""
+    lo = hi = ""
+    for bound in info.metadata:
+        if hasattr(bound, "ge") or hasattr(bound, "gt"):
+            lo = f"[{bound.ge:g}" if hasattr(bound, "ge") else f"({bound.gt:g}"
+        if hasattr(bound, "le") or hasattr(bound, "lt"):
+            hi = f"{bound.le:g}]" if hasattr(bound, "le") else f"{bound.lt:g})"
+    return f"; allowed range {lo}, {hi}" if lo and hi else ""
 
 
 _INDEXED = re.compile(r"^(\w+)\[(\d+)\]$")
