@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import math
 import platform
+import warnings
 from collections.abc import Callable
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import FlexbeamWarning, ParameterError
 from ..parameters.case import Case
 from ..results.records import FRICTION_VARIABLES, PAIR_VARIABLES
 from ..results.solution import Solution
@@ -173,7 +174,33 @@ def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) ->
     integ = FemIntegrator(beam, case.fem.rho_inf)
     sampler = _Sampler(beam)
     rec, run_info, _ = run(beam, integ, z0, zd0, case.solver.t_end, sampler, progress)
-    return build_solution(case, beam, sampler, rec, run_info, info, __version__, dump_case(case))
+    sol = build_solution(case, beam, sampler, rec, run_info, info, __version__, dump_case(case))
+    warn_coarse_step(case, sol)
+    return sol
+
+
+#: a contact that a fixed ``fem.time_step`` resolves in fewer steps than this is warned of: the seed's first contact
+#: (0.60 ms) in 20 steps reads its peak 1.4 % above the converged one, in 6 steps 10 % (1084 against 986 N), each a
+#: "success" (measured 2026-11-28; the automatic step gives ~200)
+MIN_CONTACT_STEPS = 20
+
+
+def warn_coarse_step(case: Case, sol: Solution) -> None:
+    """A :class:`~flexbeam.errors.FlexbeamWarning` naming ``fem.time_step`` when the step the case fixes resolves a
+    contact of the run (its first such one named) in fewer than :data:`MIN_CONTACT_STEPS` steps."""
+    h = case.fem.time_step
+    if h is None:
+        return
+    for ev in sol.contacts:
+        if math.isfinite(ev.duration) and 0.0 < ev.duration < MIN_CONTACT_STEPS * h:
+            warnings.warn(
+                f"fem.time_step: {h:g} s resolves the contact at t = {ev.onset:.6g} s, {ev.duration:.3g} s long, in "
+                f"{ev.duration / h:.1f} steps (fewer than {MIN_CONTACT_STEPS}: its force is not converged); a smaller "
+                "step, or omit fem.time_step for the automatic one (~200 steps a contact)",
+                FlexbeamWarning,
+                stacklevel=2,
+            )
+            return
 
 
 def build_solution(
