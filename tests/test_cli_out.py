@@ -92,5 +92,6 @@ def test_an_output_in_the_way_inside_out_is_refused_first(tmp_path, command, blo
     code, stdout, stderr = _cli([*COMMANDS[command], "--out", str(out)])
     lines = stderr.splitlines()
     assert code == 2 and stdout == "" and len(lines) == 1, (code, stderr)
-    assert lines[0].startswith("error: ") and says in lines[0], lines[0]
+    # naming the option (a sweep's store named 'out', the Python argument, before)
+    assert lines[0].startswith("error: --out: ") and says in lines[0], lines[0]
     assert sorted(p.name for p in out.iterdir()) == [blocked]  # nothing written

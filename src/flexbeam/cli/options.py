@@ -19,6 +19,14 @@ def out_dir(value: Path | None) -> Path | None:
     return None if value is None else check_output_dir(value, "--out")
 
 
+def store_dir(value: Path) -> Path:
+    """``--out DIR`` of a sweep: as :func:`out_dir`, none of the store's files a directory nor its ``cases`` a file
+    (refused by the store as ``out``, the Python argument's name, before)."""
+    from ..sweep.store import STORE_DIRS, STORE_FILES
+
+    return check_output_dir(value, "--out", files=STORE_FILES, dirs=STORE_DIRS)
+
+
 def out_file(value: Path) -> Path:
     """``--out FILE``: a file whose directory is one, or can be made."""
     check_output_dir(value.parent, "--out")

@@ -13,7 +13,7 @@ import typer
 from ..errors import ParameterError
 from ..progress import StderrProgress
 from .messages import Terminated, interrupt_code
-from .options import MethodOpt, SetOpt, out_dir
+from .options import MethodOpt, SetOpt, out_dir, store_dir
 from .runs import load
 from .tables import print_calibration
 
@@ -25,7 +25,7 @@ def sweep(
         typer.Option(
             "--out",
             "-o",
-            callback=out_dir,
+            callback=store_dir,
             help="store directory (cases/KEY.json, result.nc); a re-run computes only the missing cases",
         ),
     ],

@@ -22,11 +22,15 @@ FAILED = ("failed", "error", "invalid")
 INCOMPLETE = ("max-contacts",)
 
 
+#: the files and the directory a store holds (what must not be in their way: check_output_dir)
+STORE_FILES, STORE_DIRS = ("result.nc", "sweep.json"), ("cases",)
+
+
 class Store:
     """The on-disk store of a sweep (see the module docstring for the layout)."""
 
     def __init__(self, path: str | Path) -> None:
-        self.path = check_output_dir(path, "out", files=("result.nc", "sweep.json"), dirs=("cases",))
+        self.path = check_output_dir(path, "out", files=STORE_FILES, dirs=STORE_DIRS)
         self.cases = self.path / "cases"
 
     def record_path(self, key: str) -> Path:
