@@ -19,6 +19,14 @@ def out_dir(value: Path | None) -> Path | None:
     return None if value is None else check_output_dir(value, "--out")
 
 
+def run_dir(value: Path | None) -> Path | None:
+    """``--out DIR`` of a run: as :func:`out_dir`, none of the files the run writes there a directory
+    (:data:`~flexbeam.views.report.RUN_FILES`; checked once, here, before the run)."""
+    from ..views.report import RUN_FILES
+
+    return None if value is None else check_output_dir(value, "--out", files=RUN_FILES)
+
+
 def store_dir(value: Path) -> Path:
     """``--out DIR`` of a sweep: as :func:`out_dir`, none of the store's files a directory nor its ``cases`` a file
     (refused by the store as ``out``, the Python argument's name, before)."""
@@ -41,6 +49,6 @@ SetOpt = Annotated[
     typer.Option("--set", "-s", help="override a case field: KEY=VALUE (dotted key, repeatable)"),
 ]
 OutOpt = Annotated[
-    Path | None, typer.Option("--out", "-o", callback=out_dir, help="directory for result.nc, summary.json, plots")
+    Path | None, typer.Option("--out", "-o", callback=run_dir, help="directory for result.nc, summary.json, plots")
 ]
 JsonOpt = Annotated[bool, typer.Option("--json", help="print the metrics as one JSON object")]

@@ -33,11 +33,6 @@ def run(
     """Simulate one case and print its metrics."""
     if stream and out is None:
         raise ParameterError("--stream: needs --out DIR, where the run writes DIR/result.nc as it goes")
-    if out is not None:  # (the files in it too, before the run: a directory result.nc ended it in a traceback)
-        from ..results.files import check_output_dir
-        from ..views.report import RUN_FILES
-
-        check_output_dir(out, "--out", files=RUN_FILES)
     c = load(case, set_)
     sol = simulate(c, method, outputs=out is not None, stream=out / "result.nc" if stream and out else None)
     metrics = sol.metrics()

@@ -331,7 +331,7 @@ def read_samples(
     with xr.open_dataset(path) as ds:
         time = ds["time"].values
         phase = ds["phase"].values.astype(object)
-        names = [n for n in ds.data_vars if "time" in ds[n].dims and n != "phase"]
+        names = _sampled(ds)
     return time, phase, LazyArrays(Path(path), names, checked)
 
 
@@ -345,8 +345,12 @@ def read_window(path: str | Path, t_a: float, t_b: float) -> tuple[np.ndarray, n
         time = ds["time"].values
         i0, i1 = int(np.searchsorted(time, t_a, side="left")), int(np.searchsorted(time, t_b, side="right"))
         part = ds.isel(time=slice(i0, i1)).load()
-    names = [n for n in part.data_vars if "time" in part[n].dims and n != "phase"]
-    return part["time"].values, part["phase"].values.astype(object), {n: part[n].values for n in names}
+    return part["time"].values, part["phase"].values.astype(object), {n: part[n].values for n in _sampled(part)}
+
+
+def _sampled(ds) -> list[str]:
+    """The names of a result Dataset's sampled variables (along ``time``; ``phase`` apart)."""
+    return [n for n in ds.data_vars if "time" in ds[n].dims and n != "phase"]
 
 
 class LazyArrays(Mapping):
