@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import signal
 import subprocess
 import sys
@@ -18,6 +19,8 @@ import tracemalloc
 
 import numpy as np
 import pytest
+import xarray as xr
+from matplotlib.figure import Figure
 
 import flexbeam as fb
 from flexbeam import memory
@@ -324,7 +327,7 @@ def test_a_streamed_run_cannot_be_written_unrounded(tmp_path):
 @pytest.mark.parametrize(("name", "t_end"), [("seed-experiment", 0.1), ("two-stops", 0.1)])
 def test_the_figures_of_a_streamed_run_read_their_window_alone(tmp_path, monkeypatch, name, t_end):
     """``flexbeam run --stream`` drew its figures from every sample of the file (the whole run read back: 90 MB more
-    at 1000 s): they read the window they draw (export.read_window) and draw what the run held in memory draws,
+    at 1000 s): they read the window they draw (readback.read_window) and draw what the run held in memory draws,
     its samples within the file's rounding; the Solution's samples stay in the file."""
     from flexbeam.views import plotting, report
 
@@ -352,7 +355,7 @@ def test_the_figures_of_a_streamed_run_read_their_window_alone(tmp_path, monkeyp
 def test_a_window_of_a_result_file_holds_the_samples_at_its_ends(tmp_path):
     """read_window finds its ends by bisection on the file's time, whose phase boundaries are two samples each: a
     window from one phase boundary to the same instant holds both, as a mask on the whole time does."""
-    from flexbeam.results.export import read_window
+    from flexbeam.results.readback import read_window
 
     sol = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 0.02, "model.modes": 4}))
     onset = float(sol.time[np.nonzero(np.diff(sol.time) == 0.0)[0][0]])  # the first phase boundary
@@ -364,3 +367,55 @@ def test_a_window_of_a_result_file_holds_the_samples_at_its_ends(tmp_path):
         np.testing.assert_array_equal(time, sol.time[sel])
         assert phase.tolist() == sol.phase[sel].tolist()
         np.testing.assert_allclose(arrays["contact_force"], sol["contact_force"][sel], rtol=2**-24, atol=0.0)
+
+
+@pytest.mark.parametrize(
+    ("name", "method", "overrides"),
+    [
+        ("seed-experiment", "ccfm", {"solver.t_end": 0.1}),
+        ("two-stops", "ccfm", {"solver.t_end": 0.1}),
+        ("seed-experiment", "imm", {"solver.t_end": 0.3}),  # (a resting contact's force, away from the first)
+        ("kane-spinup", "ccfm", {"solver.t_end": 0.5, "output.interval": 1e-4}),
+    ],
+)
+def test_the_notebook_display_of_a_streamed_run_reads_a_window_and_an_envelope(
+    tmp_path, monkeypatch, name, method, overrides
+):
+    """``_repr_html_`` of a streamed run read its time and phase labels whole (60 MB a 10^6 samples) and drew its
+    whole-run lines from every sample (1.6 GB for 20 s of the seed case at the default sampling, 10^8 samples).  It
+    reads the first contact's window as the figures do, and a whole run's line as its envelope, slice by slice
+    (results.readback); it draws what the run held in memory draws, within the file's 2^-24 rounding, and the
+    run's samples stay in its file."""
+    from flexbeam.results.envelope import envelope
+    from flexbeam.views import display
+
+    drawn: list[list] = []
+
+    def keep(draw, *args, **kwargs):
+        ax = Figure().add_subplot()
+        alt = draw(ax)
+        drawn.append([alt] + [(ln.get_xdata(), ln.get_ydata()) for ln in ax.lines])
+        return ""
+
+    monkeypatch.setattr(display, "_png", keep)
+    case = fb.load_case(name, {**overrides, "model.modes": 4})
+    in_memory = fb.simulate(case, method)
+    streamed = fb.simulate(case, method, stream=tmp_path / "s.nc")
+    html = [sol._repr_html_() for sol in (in_memory, streamed)]
+    assert streamed.samples_in_file
+    spans = [re.search(r"[^>]* to [^<]* samples", h).group(0) for h in html]
+    assert spans[0] == spans[1] and spans[0].endswith(f"{in_memory.time.size} samples")
+    want, got = drawn
+    assert got[0] == want[0] and len(got) == len(want) > 1
+    whole = {"normal velocity of the contact point": "normal_velocity", "tip deflection": "tip_deflection"}.get(want[0])
+    assert whole is not None or want[0].startswith("contact force")
+    for (xg, yg), (xw, yw) in zip(got[1:], want[1:], strict=True):
+        if whole:  # the envelope of the file's samples, reduced (2 a bin) and within the rounding of the run's
+            assert len(in_memory.time) > 2 * 1000 and len(xw) <= 2000
+            with xr.open_dataset(streamed.file) as ds:
+                _, ys = envelope(ds["time"].values, ds[whole].values)
+            np.testing.assert_array_equal(yg, ys)
+            np.testing.assert_allclose([np.nanmin(yg), np.nanmax(yg)], [np.nanmin(yw), np.nanmax(yw)], rtol=2**-24)
+        else:
+            np.testing.assert_array_equal(xg, xw)
+            np.testing.assert_allclose(yg, yw, rtol=2**-24, atol=0.0)

@@ -331,24 +331,11 @@ def read_samples(
     with xr.open_dataset(path) as ds:
         time = ds["time"].values
         phase = ds["phase"].values.astype(object)
-        names = _sampled(ds)
+        names = sampled_names(ds)
     return time, phase, LazyArrays(Path(path), names, checked)
 
 
-def read_window(path: str | Path, t_a: float, t_b: float) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
-    """(time, phase, arrays) of a result file's samples with ``t_a`` <= time <= ``t_b``, read alone: the file's time
-    index (8 bytes a sample, which xarray reads on opening) and the chunks of the window, not every variable's every
-    sample (the figures of a streamed run of any length, :mod:`flexbeam.views.plotting`)."""
-    import xarray as xr
-
-    with xr.open_dataset(path) as ds:
-        time = ds["time"].values
-        i0, i1 = int(np.searchsorted(time, t_a, side="left")), int(np.searchsorted(time, t_b, side="right"))
-        part = ds.isel(time=slice(i0, i1)).load()
-    return part["time"].values, part["phase"].values.astype(object), {n: part[n].values for n in _sampled(part)}
-
-
-def _sampled(ds) -> list[str]:
+def sampled_names(ds) -> list[str]:
     """The names of a result Dataset's sampled variables (along ``time``; ``phase`` apart)."""
     return [n for n in ds.data_vars if "time" in ds[n].dims and n != "phase"]
 
@@ -382,6 +369,6 @@ class LazyArrays(Mapping):
 
 
 __all__ = [
-    "QUANTIZED", "TIME_CHUNK", "LazyArrays", "bitround", "precision_bits", "read_samples", "read_window",
+    "QUANTIZED", "TIME_CHUNK", "LazyArrays", "bitround", "precision_bits", "read_samples", "sampled_names",
     "result_dataset", "significant_bits", "to_netcdf", "to_xarray", "write_dataset",
 ]  # fmt: skip

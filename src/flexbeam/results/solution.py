@@ -113,7 +113,7 @@ class Solution:
     @property
     def samples_in_file(self) -> bool:
         """Are the output samples in the result ``file`` alone (a streamed run whose arrays nobody has asked for
-        yet)?  Then a window of them can be read without the rest (:func:`~flexbeam.results.export.read_window`)."""
+        yet)?  Then a window of them can be read without the rest (:func:`~flexbeam.results.readback.read_window`)."""
         return self._samples is None and self.file is not None
 
     @property

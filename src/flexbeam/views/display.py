@@ -21,7 +21,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..results.envelope import envelope
 from ..results.metrics import METRICS
+from ..results.readback import read_envelope, read_names, read_span
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -110,43 +112,60 @@ def _first_contact_window(sol: Solution) -> np.ndarray:
     return (sol.time >= ev.onset - 0.1 * span) & (sol.time <= ev.onset + 1.6 * span)
 
 
+def _whole(sol: Solution, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """The line of variable ``name`` over the whole run, reduced to its envelope (:mod:`flexbeam.results.envelope`;
+    a streamed run's read from its file a slice at a time)."""
+    if sol.samples_in_file:
+        return read_envelope(sol.stored_file(), name)
+    return envelope(sol.time, sol[name])
+
+
+def _sampled(sol: Solution, name: str) -> bool:
+    """Does ``sol`` hold samples of variable ``name`` (a streamed run's file asked, not its samples read)?"""
+    return name in (read_names(sol.stored_file()) if sol.samples_in_file else sol.arrays)
+
+
 def _draw_solution(sol: Solution):
-    """What to plot: the first contact's force if there is a force history (with several contact pairs, each
-    touching pair's force up to its first contact, labelled by its obstacle), else P's normal velocity (IMM:
-    jumps, no force), else the tip deflection (no contact)."""
-    from .plotting import _window, pair_forces
+    """What to plot: the first contact's force if there is one about it (with several contact pairs, each touching
+    pair's force up to its first contact, labelled by its obstacle), else P's normal velocity over the run (IMM:
+    jumps, no force), else the tip deflection (no contact).  The force is drawn from the samples about the first
+    contact -- of a streamed run read alone from its file, as its figures are
+    (:func:`~flexbeam.views.plotting._drawn`) --, a whole run's line from its envelope."""
+    from .plotting import _drawn, _window, pair_forces
 
     def draw(ax: Axes) -> str:
-        force = sol.arrays.get("contact_force")
-        pairs = pair_forces(sol)
-        if sol.contacts and pairs and any(np.nanmax(f, initial=0.0) > 0.0 for _, _, f in pairs):
+        if sol.contacts:
             ev = sol.contacts[0]
             span = ev.duration if math.isfinite(ev.duration) and ev.duration > 0 else 1e-3
-            t0, sel = _window(sol, 0.1 * span, 1.6 * span, pairs)
-            for k, label, f in pairs:
-                ax.plot((sol.time[sel] - t0) * 1e3, f[sel], lw=1.0, c=f"C{k}", label=label)
-            if "sensor_force" in sol.arrays:
-                ax.plot((sol.time[sel] - t0) * 1e3, sol["sensor_force"][sel], lw=0.8, ls=":", c="C0")
-            ax.legend(fontsize=6)
-            ax.set_xlabel("Time after first contact [ms]")
-            ax.set_ylabel("Contact force [N]")
-            return "contact force of each contact pair"
-        if sol.contacts and force is not None and force.size and np.nanmax(force) > 0.0:
-            sel = _first_contact_window(sol)
-            t0 = sol.contacts[0].onset
-            ax.plot((sol.time[sel] - t0) * 1e3, force[sel], lw=1.0, c="C0")
-            if "sensor_force" in sol.arrays:
-                ax.plot((sol.time[sel] - t0) * 1e3, sol["sensor_force"][sel], lw=0.8, ls=":", c="C0")
-            ax.set_xlabel("Time after first contact [ms]")
-            ax.set_ylabel("Contact force [N]")
-            return "contact force of the first contact"
-        if sol.contacts:
-            ax.plot(sol.time, sol["normal_velocity"], lw=0.8, c="C2")
+            win = _drawn(sol, 0.1 * span, 1.6 * span)
+            pairs = pair_forces(win)
+            sensor = win["sensor_force"] if "sensor_force" in win.arrays else None
+            if pairs:
+                t0, sel = _window(win, 0.1 * span, 1.6 * span, pairs)
+                if any(np.nanmax(f[sel], initial=0.0) > 0.0 for _, _, f in pairs):
+                    for k, label, f in pairs:
+                        ax.plot((win.time[sel] - t0) * 1e3, f[sel], lw=1.0, c=f"C{k}", label=label)
+                    if sensor is not None:
+                        ax.plot((win.time[sel] - t0) * 1e3, sensor[sel], lw=0.8, ls=":", c="C0")
+                    ax.legend(fontsize=6)
+                    ax.set_xlabel("Time after first contact [ms]")
+                    ax.set_ylabel("Contact force [N]")
+                    return "contact force of each contact pair"
+            force = win.arrays.get("contact_force")
+            sel = _first_contact_window(win)
+            if force is not None and np.nanmax(force[sel], initial=0.0) > 0.0:
+                ax.plot((win.time[sel] - ev.onset) * 1e3, force[sel], lw=1.0, c="C0")
+                if sensor is not None:
+                    ax.plot((win.time[sel] - ev.onset) * 1e3, sensor[sel], lw=0.8, ls=":", c="C0")
+                ax.set_xlabel("Time after first contact [ms]")
+                ax.set_ylabel("Contact force [N]")
+                return "contact force of the first contact"
+            ax.plot(*_whole(sol, "normal_velocity"), lw=0.8, c="C2")
             ax.set_xlabel("Time [s]")
             ax.set_ylabel("Normal velocity of P [m/s]")
             return "normal velocity of the contact point"
-        name = "tip_deflection" if "tip_deflection" in sol.arrays else "theta"
-        ax.plot(sol.time, sol[name], lw=0.8, c="C1")
+        name = "tip_deflection" if _sampled(sol, "tip_deflection") else "theta"
+        ax.plot(*_whole(sol, name), lw=0.8, c="C1")
         ax.set_xlabel("Time [s]")
         ax.set_ylabel("Tip deflection [m]" if name == "tip_deflection" else "Hub angle [rad]")
         return name.replace("_", " ")
@@ -170,14 +189,19 @@ def solution_html(sol: Solution) -> str:
     m = sol.metrics()
     case = str(sol.provenance.get("case_name", ""))
     title = f"flexbeam Solution: {case}, {sol.method.upper()}" if case else f"flexbeam Solution ({sol.method.upper()})"
-    span = f"{sol.time[0]:.4g} to {sol.time[-1]:.4g} s, {sol.time.size} samples" if sol.time.size else "no samples"
+    if sol.samples_in_file:  # (a streamed run: its time index alone, not its samples and phase labels)
+        first, last, samples = read_span(sol.stored_file())
+    else:
+        samples = sol.time.size
+        first, last = (sol.time[0], sol.time[-1]) if samples else (math.nan, math.nan)
+    span = f"{first:.4g} to {last:.4g} s, {samples} samples" if samples else "no samples"
     parts = [
         _status(title, sol.status, sol.message),
         f'<div style="font-family: sans-serif; font-size: 12px; color: #57606a">{escape(span)}</div>',
         _FLEX,
         _table(("metric", "value", "units"), _metric_rows(m, SOLUTION_METRICS)),
     ]
-    if sol.time.size > 1:
+    if samples > 1:
         parts.append(_png(_draw_solution(sol)))
     parts.append("</div>")
     return f"<div>{''.join(parts)}</div>"

@@ -14,8 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from ..results.export import read_window
 from ..results.files import atomic_path
+from ..results.readback import read_window
 from ..results.solution import Solution
 
 _STYLE = {"ccfm": "C0", "ccm": "C3", "imm": "C2", "fem": "C1"}
@@ -83,7 +83,7 @@ def _drawn(sol: Solution, before: float, after: float) -> Solution:
     """``sol``, or for a run whose samples are still in its result file alone (a streamed run nobody has read the
     arrays of) a Solution of the samples that :func:`_window` draws from it -- from ``before`` [s] ahead of the first
     contact to ``after`` [s] past the first contact of each pair, which its records (kept whole) give -- read from
-    the file alone (:func:`~flexbeam.results.export.read_window`): the figures of a run of any length read a window,
+    the file alone (:func:`~flexbeam.results.readback.read_window`): the figures of a run of any length read a window,
     not every sample (1000 s at 1 ms: 90 MB more before)."""
     if not sol.samples_in_file:
         return sol
