@@ -413,7 +413,8 @@ def test_the_notebook_display_of_a_streamed_run_reads_a_window_and_an_envelope(
         if whole:  # the envelope of the file's samples, reduced (2 a bin) and within the rounding of the run's
             assert len(in_memory.time) > 2 * 1000 and len(xw) <= 2000
             with xr.open_dataset(streamed.file) as ds:
-                _, ys = envelope(ds["time"].values, ds[whole].values)
+                xs, ys = envelope(ds["time"].values, ds[whole].values)
+            np.testing.assert_array_equal(xg, xs)
             np.testing.assert_array_equal(yg, ys)
             np.testing.assert_allclose([np.nanmin(yg), np.nanmax(yg)], [np.nanmin(yw), np.nanmax(yw)], rtol=2**-24)
         else:
