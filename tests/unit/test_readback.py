@@ -83,6 +83,9 @@ def test_a_window_reads_its_own_samples_and_a_bisection_of_the_time(tmp_path, mo
         def __init__(self, var):
             self.var, self.shape = var, var.shape
 
+        def __len__(self):
+            return len(self.var)
+
         def __getitem__(self, key):
             out = np.asarray(self.var[key])
             read.append(out.size)

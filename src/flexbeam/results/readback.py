@@ -11,6 +11,7 @@ run.
 
 from __future__ import annotations
 
+import bisect
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -33,19 +34,6 @@ def _opened(path: str | Path) -> Iterator[tuple[object, object]]:
         yield time, ds
 
 
-def _search(time, x: float, right: bool) -> int:
-    """``np.searchsorted(time, x, side)`` on the file's ``time`` variable, by bisection (one sample a probe)."""
-    lo, hi = 0, time.shape[0]
-    while lo < hi:
-        mid = (lo + hi) // 2
-        t = float(time[mid])
-        if t < x or (right and t == x):
-            lo = mid + 1
-        else:
-            hi = mid
-    return lo
-
-
 def read_span(path: str | Path) -> tuple[float, float, int]:
     """(first time, last time, samples) of the result file at ``path``."""
     with _opened(path) as (time, _):
@@ -63,7 +51,7 @@ def read_window(path: str | Path, t_a: float, t_b: float) -> tuple[np.ndarray, n
     """(time, phase, arrays) of the samples with ``t_a`` <= time <= ``t_b`` of the result file at ``path``, read
     alone (the figures of a streamed run, :func:`flexbeam.views.plotting._drawn`)."""
     with _opened(path) as (time, ds):
-        i0, i1 = _search(time, t_a, False), _search(time, t_b, True)
+        i0, i1 = bisect.bisect_left(time, t_a), bisect.bisect_right(time, t_b)  # (a sample a probe)
         part = ds.isel(time=slice(i0, i1)).load()
         t = np.asarray(time[i0:i1], dtype=float)
     return t, part["phase"].values.astype(object), {n: part[n].values for n in sampled_names(part)}
