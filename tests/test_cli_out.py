@@ -95,3 +95,50 @@ def test_an_output_in_the_way_inside_out_is_refused_first(tmp_path, command, blo
     # naming the option (a sweep's store named 'out', the Python argument, before)
     assert lines[0].startswith("error: --out: ") and says in lines[0], lines[0]
     assert sorted(p.name for p in out.iterdir()) == [blocked]  # nothing written
+
+
+def _unmakeable(tmp_path: Path, kind: str) -> Path:
+    """An --out that passes every test of the path itself but where the system refuses to make or write a file."""
+    if kind == "a broken symbolic link":
+        link = tmp_path / "link"
+        link.symlink_to(tmp_path / "nowhere" / "dir")
+        return link
+    if kind == "a name too long":
+        return tmp_path / ("a" * 300)
+    if not Path("/proc/self").is_dir():  # (Linux's process file system: no directory can be made in it)
+        pytest.skip("no /proc")
+    return Path("/proc/flexbeam-test/out")
+
+
+@pytest.mark.parametrize("command", list(COMMANDS))
+@pytest.mark.parametrize("kind", ["a broken symbolic link", "a name too long", "a directory under /proc"])
+def test_an_out_directory_the_system_cannot_make_is_refused_first(tmp_path, command, kind):
+    """A path that passed the checks of the path itself (no file in the way, a writable parent as far as access(2)
+    tells) but that the system refuses -- under /proc, a broken symbolic link, a name over 255 bytes -- ended the
+    command in a traceback, exit 1: ``run`` only after the whole integration, its run lost.  Now one line naming
+    --out, exit 2, before the run, and nothing left behind."""
+    out = _unmakeable(tmp_path, kind)
+    before = sorted(p.name for p in tmp_path.iterdir())
+    code, stdout, stderr = _cli([*COMMANDS[command], "--out", str(out)])
+    lines = stderr.splitlines()
+    assert code == 2 and stdout == "" and len(lines) == 1, (code, stderr)
+    assert lines[0].startswith("error: --out: "), lines[0]
+    assert sorted(p.name for p in tmp_path.iterdir()) == before  # the probe's directories removed again
+
+
+def test_an_animation_file_where_none_can_be_written_is_refused(tmp_path):
+    """``animate --out /proc/movie.gif``: its directory exists, but no file can be made in it."""
+    if not Path("/proc/self").is_dir():
+        pytest.skip("no /proc")
+    code, stdout, stderr = _cli(["animate", "seed-experiment", "--frames", "3", *SHORT, "--out", "/proc/movie.gif"])
+    assert code == 2 and stdout == "" and stderr.startswith("error: --out: cannot write in '/proc'"), stderr
+
+
+def test_a_missing_out_directory_is_probed_and_removed_again(tmp_path):
+    """The check makes the missing directories to see that they can be made, and removes them: a command refused
+    for another reason after it leaves no empty directory."""
+    from flexbeam.results.files import check_output_dir
+
+    out = tmp_path / "new" / "deeper"
+    assert check_output_dir(out, "--out") == out
+    assert list(tmp_path.iterdir()) == []

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import json
 import math
@@ -53,6 +54,17 @@ def check_output_dir(path: str | Path, field: str, files: tuple[str, ...] = (), 
     ``field``, before anything runs (a run's outputs were written after it, and a file in the way ended the run in a
     traceback: ``FileExistsError``, ``IsADirectoryError``)."""
     path = Path(path)
+    try:
+        _check_dir(path, field, files, dirs)
+    except OSError as exc:  # the path itself cannot be examined (a name over the file system's length, ...)
+        raise ParameterError(f"{field}: '{path}' cannot be used ({exc.strerror or exc})") from None
+    return path
+
+
+def _check_dir(path: Path, field: str, files: tuple[str, ...], dirs: tuple[str, ...]) -> None:
+    """The checks of :func:`check_output_dir` (raising OSError where the system cannot examine the path)."""
+    if path.is_symlink() and not path.exists():
+        raise ParameterError(f"{field}: '{path}' is a symbolic link to '{os.readlink(path)}', which does not exist")
     if path.exists() and not path.is_dir():
         raise ParameterError(f"{field}: '{path}' exists and is not a directory")
     for name in files:
@@ -66,7 +78,35 @@ def check_output_dir(path: str | Path, field: str, files: tuple[str, ...] = (), 
         raise ParameterError(f"{field}: '{path}' lies under '{nearest}', which is a file, not a directory")
     if not os.access(nearest, os.W_OK | os.X_OK):
         raise ParameterError(f"{field}: cannot write in '{nearest}' (permission denied)")
-    return path
+    _probe_write(path, field)
+
+
+def _probe_write(path: Path, field: str) -> None:
+    """Make the directories of ``path`` that do not exist and a file in it, then remove them again: whether the
+    system lets outputs be written there, which no test of the path itself tells (a directory under ``/proc``, a name
+    over the file system's length, a broken symbolic link among its parents: each ended a finished run in a
+    traceback when its outputs were written).  Nothing is left behind, so a command refused later leaves no empty
+    directory."""
+    missing = []
+    p = path.absolute()
+    while not os.path.lexists(p):
+        missing.append(p)
+        p = p.parent
+    made: list[Path] = []
+    try:
+        for d in reversed(missing):
+            d.mkdir()
+            made.append(d)
+        fd, name = tempfile.mkstemp(prefix=".flexbeam-probe.", dir=path)
+        os.close(fd)
+        os.unlink(name)
+    except OSError as exc:
+        what = "make the directory" if len(made) < len(missing) else "write in"
+        raise ParameterError(f"{field}: cannot {what} '{path}' ({exc.strerror or exc})") from None
+    finally:
+        for d in reversed(made):
+            with contextlib.suppress(OSError):
+                d.rmdir()
 
 
 def file_stamp(path: str | Path) -> tuple[int, int, int]:
