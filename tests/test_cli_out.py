@@ -142,3 +142,17 @@ def test_a_missing_out_directory_is_probed_and_removed_again(tmp_path):
     out = tmp_path / "new" / "deeper"
     assert check_output_dir(out, "--out") == out
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_malformed_scheduler_address_is_refused_before_the_store_is_written(tmp_path):
+    """``sweep --scheduler foo`` (no port) wrote the store's sweep.json, failed to connect, and then ended in a
+    145-line traceback: the failed connection stayed Dask's default client and the store's result.nc, written after
+    it, went through it.  Now the address's form is checked first: one line naming the scheduler, exit 2, nothing
+    written (``bifurcation`` answered so already)."""
+    out = tmp_path / "store"
+    sweep = ["sweep", "seed-experiment", "-g", "contact.restitution=0.5", *SHORT]
+    code, stdout, stderr = _cli([*sweep, "--out", str(out), "--scheduler", "foo"])
+    lines = stderr.splitlines()
+    assert code == 2 and stdout == "" and len(lines) == 1, (code, stderr)
+    assert lines[0].startswith("error: scheduler: cannot connect to 'foo'") and "port" in lines[0], lines[0]
+    assert not out.exists()

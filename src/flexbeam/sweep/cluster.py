@@ -257,6 +257,22 @@ def close_local_cluster() -> None:
             stack.close()
 
 
+def check_scheduler(scheduler: Any) -> None:
+    """A scheduler given by its address: the address's form checked before anything is written (``--scheduler foo``,
+    no port, wrote the store's sweep.json and then ended in a traceback)."""
+    from dask.distributed import Client
+    from distributed.comm.addressing import get_address_host_port, normalize_address, parse_address
+
+    if scheduler is None or isinstance(scheduler, Client):
+        return
+    try:
+        address = normalize_address(str(scheduler))
+        if parse_address(address)[0] != "inproc":  # (a network address needs its host and port)
+            get_address_host_port(address)
+    except (TypeError, ValueError) as exc:
+        raise ParameterError(f"scheduler: cannot connect to '{scheduler}' ({exc})") from None
+
+
 @contextlib.contextmanager
 def cluster_client(scheduler: Any, workers: int | None) -> Iterator[Any]:
     """A Dask client: the given one, one connected to ``scheduler`` (closed on exit), or the process's local
@@ -271,8 +287,10 @@ def cluster_client(scheduler: Any, workers: int | None) -> Iterator[Any]:
         yield scheduler
         return
     if scheduler is not None:
-        try:
-            client = Client(str(scheduler), timeout="10s")
+        check_scheduler(scheduler)
+        try:  # (not Dask's default: a connection that failed stayed the default, and the store's result.nc,
+            # written after the failure, ended in a traceback through it)
+            client = Client(str(scheduler), timeout="10s", set_as_default=False)
         except (OSError, TimeoutError, ValueError) as exc:
             raise ParameterError(f"scheduler: cannot connect to '{scheduler}' ({exc})") from None
         with client:

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 from ..errors import ParameterError
 from ..parameters.case import Case
 from ..parameters.io import load_case
-from .cluster import ProgressFn, cluster_client, compute
+from .cluster import ProgressFn, check_scheduler, cluster_client, compute
 from .dataset import build_dataset
 from .planning import Plan, Point, plan
 from .spec import Distribution
@@ -86,6 +86,7 @@ def sweep(
     check_method(method)
     if batch_size is not None and (isinstance(batch_size, bool) or not isinstance(batch_size, int) or batch_size < 1):
         raise ParameterError(f"batch_size: must be an integer >= 1 (got {batch_size!r})")
+    check_scheduler(scheduler)
     base = load_case(case, dict(overrides) if overrides else None)
     pl = plan(base, grid, samples, n, seed, method)
     store = Store(out) if out is not None else None
