@@ -116,3 +116,32 @@ def test_a_shorter_gap_splits_the_episode():
     sol = fb.simulate(steel_drop(30.0, 8), "ccfm")
     assert len(sol.episodes()) == 1 < len(sol.contacts)
     assert len(sol.episodes(gap=1e-9)) == len(sol.contacts)
+
+
+@pytest.mark.parametrize("stream", [False, True])
+def test_an_episode_the_run_ends_in_has_no_end_and_no_coefficients(tmp_path, stream):
+    """The run ends during the contact (the rigid bar's Hertz contact lasts ~0.2 ms; the run 0.05 ms): the episode is
+    not over, so it has no end and no apparent coefficients (NaN, JSON null) -- they read the run's last state as
+    'after' before (a rod still pressed on the plane: e_N = -0.04, success).  Held in memory and streamed alike; the
+    same bar run to its end keeps all three."""
+    case = fb.load_case(line_bar(45.0, 0.9), {"contact.law": "lankarani_nikravesh", "solver.t_end": 5e-5})
+    sol = fb.simulate(case, "ccfm", **({"stream": tmp_path / "run.nc"} if stream else {}))
+    assert sol.status == "success" and not math.isfinite(sol.contacts[0].end)
+    (ep,) = sol.episodes()
+    assert math.isnan(ep.end) and ep.onset == 0.0
+    assert all(math.isnan(getattr(ep, key)) for key in COEFFICIENTS)
+    m = sol.metrics()
+    assert all(math.isnan(m[key]) for key in COEFFICIENTS)
+    full = fb.simulate(fb.load_case(case, {"solver.t_end": 1e-3}), "ccfm").episodes()[0]
+    assert all(0.85 < getattr(full, key) < 1.0 for key in COEFFICIENTS) and full.end < 1e-3
+
+
+def test_the_last_episode_of_a_run_that_stopped_early_has_no_coefficients():
+    """IMM on the rod's end (Saint-Venant's rod, the preset rod-end) stops at solver.max_contacts with the rod still
+    driven into the plane; its episode read e_N = -0.82 from G's velocity at the stop.  Now: no end, no
+    coefficients."""
+    sol = fb.simulate(fb.load_case("rod-end", {"solver.max_contacts": 50}), "imm")
+    assert sol.status == "max-contacts"
+    ep = sol.episodes()[-1]
+    assert math.isnan(ep.end) and all(math.isnan(getattr(ep, key)) for key in COEFFICIENTS)
+    assert ep.velocity_after[1] < 0.0  # (G still moving into the plane at the stop: the collision was not over)

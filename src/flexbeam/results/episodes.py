@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 from .restitution import FREE_FREE_ROOT as FREE_FREE_ROOT
@@ -163,7 +163,7 @@ def find_episodes(sol: Solution, counts: ContactCounts, gap: float | None = None
         found_gap, found = sol.summaries[STREAMED]
         if gap is not None and float(gap) != found_gap:
             raise ValueError(f"episodes: a streamed run's episodes were found with gap = {found_gap:g} s only")
-        return [make_episode(k, counts, **one) for k, one in enumerate(found)]
+        return unfinished_open(sol, [make_episode(k, counts, **one) for k, one in enumerate(found)])
     motion = rigid_motion(sol)
     if motion is None:
         return []
@@ -179,6 +179,23 @@ def find_episodes(sol: Solution, counts: ContactCounts, gap: float | None = None
         coeffs = apparent_restitution(motion, [records[i] for i in group], first.pair, first.onset, t1, same)
         before, after = motion.state(first.onset, after=False), motion.state(t1, after=True)
         out.append(make_episode(k, counts, tuple(group), first.pair, first.onset, t1, before, after, coeffs))
+    return unfinished_open(sol, out)
+
+
+def unfinished_open(sol: Solution, episodes: list[Episode]) -> list[Episode]:
+    """``episodes`` with those the run ended in -- one of its records still in contact at the run's end, or the last
+    episode of a run that stopped before ``solver.t_end`` -- given no end and no apparent coefficients (NaN): the
+    collision is not over, and its "after" is only the run's last state (a rod still pressed on the plane at the
+    run's end read e_N = -0.04, and IMM's stopped at max-contacts, G still moving into the floor, e_N = -0.82)."""
+    records = sol.contacts
+    stopped = sol.status != "success"
+    out = []
+    for ep in episodes:
+        last = ep is episodes[-1]
+        if any(not math.isfinite(records[i].end) for i in ep.records) or (last and stopped):
+            nan = math.nan
+            ep = replace(ep, end=nan, restitution_newton=nan, restitution_poisson=nan, restitution_energetic=nan)
+        out.append(ep)
     return out
 
 
