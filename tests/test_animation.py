@@ -254,16 +254,33 @@ def test_cli_mp4_falls_back_with_one_line(tmp_path, capsys, monkeypatch):
         (["seed-experiment", *CLI_SMALL, "--out", "x.gif", "--scale", "-3"], "scale"),
         (["seed-experiment", *CLI_SMALL, "--out", "x.gif", "--size", "10x10"], "size"),
         (["seed-experiment", *CLI_SMALL, "--out", "x.gif", "--frames", "1"], "frames"),
+        (["result.nc", "--out", "x.gif", "--method", "imm"], "--method"),  # (ignored before: the file holds its run)
     ],
 )
 def test_cli_bad_input_is_one_line_exit_2(args, field, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
+    if args[0] == "result.nc":
+        (tmp_path / "result.nc").write_bytes(b"")
     with pytest.raises(SystemExit) as exc:
         main(["animate", *args])
     assert exc.value.code == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and field in err[0] and "Traceback" not in err[0]
-    assert not list(tmp_path.iterdir())
+    assert sorted(p.name for p in tmp_path.iterdir()) == (["result.nc"] if args[0] == "result.nc" else [])
+
+
+def test_cli_a_run_that_ends_early_is_animated_and_reported(tmp_path, capsys):
+    """IMM on the rod's end stops at solver.max_contacts: ``animate`` drew what was run and exited 0 in silence,
+    where ``run`` reports it; now the same line as ``run``'s and exit 1, the file written."""
+    out = tmp_path / "rod.gif"
+    with pytest.raises(SystemExit) as exc:
+        main(["animate", "rod-end", "-m", "imm", "-s", "solver.max_contacts=20", "--frames", "4", "--size", "64x48",
+              "--out", str(out)])  # fmt: skip
+    assert exc.value.code == 1 and out.is_file()
+    captured = capsys.readouterr()
+    assert captured.out.strip() == f"wrote {out}"
+    err = captured.err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("imm: run ended early with status 'max-contacts'"), err
 
 
 # --------------------------------------------------------------------------------- several contact pairs
@@ -399,3 +416,10 @@ def test_a_free_beam_is_animated(bar_drop_run, tmp_path):
     assert_allclose(renderer._beam.hub.center, scene.origin[2])
     path = animate(bar_drop_run, tmp_path / "drop.gif", frames=5, size=(160, 120), progress=False)
     assert frames_and_size(path)[:2] == (5, (160, 120))
+
+
+def test_auto_scale_does_not_magnify_round_off():
+    """A beam that does not bend (the rod of ``rod-end``: its bending 2e-19 m, round-off of positions of order L)
+    was drawn bent and tilted into the plane at x1.2e17; a deflection within 1e3 eps L is drawn as it is."""
+    assert auto_scale(2e-19, 1.0) == 1.0 and auto_scale(1e-13, 0.7) == 1.0
+    assert auto_scale(1e-9, 0.7) > 1e7  # a nanometre on a 0.7 m beam is still a shape

@@ -10,9 +10,10 @@ from typing import Annotated, Any
 import typer
 
 from ..errors import ParameterError
+from ..registry import METHOD_NAMES
 from .messages import one_line
-from .options import MethodOpt, SetOpt, out_file
-from .runs import load, simulate
+from .options import SetOpt, out_file
+from .runs import exit_unless_complete, load, simulate
 
 
 def animate(
@@ -26,11 +27,14 @@ def animate(
     frames: Annotated[int, typer.Option("--frames", help="number of frames")] = 200,
     fps: Annotated[float, typer.Option("--fps", help="frames per second of the file")] = 25.0,
     size: Annotated[str, typer.Option("--size", help="frame size WIDTHxHEIGHT [px]")] = "800x600",
-    method: MethodOpt = "ccfm",
+    method: Annotated[
+        str | None, typer.Option("--method", "-m", help=f"impact method of a case's run: {', '.join(METHOD_NAMES)}")
+    ] = None,
     set_: SetOpt = None,
 ) -> None:
     """Animate a run: deformed beam (magnified deflection), hub, obstacle and contact force, slow motion in
-    contacts."""
+    contacts.  A case's run that ends early is animated as far as it went, then reported as ``run`` reports it
+    (one line, exit 1)."""
     from ..views.animation import VideoFallbackWarning, parse_scale, parse_size, parse_window
     from ..views.animation import animate as render
 
@@ -51,15 +55,19 @@ def animate(
         else:
             warnings.showwarning(w.message, w.category, w.filename, w.lineno)
     typer.echo(f"wrote {path}")
+    if not isinstance(result, Path):
+        exit_unless_complete([result])
 
 
-def _result(source: str, sets: list[str] | None, method: str) -> Any:
-    """What to animate: the path of a ``result.nc`` as it is (no ``--set``), or a case (name or TOML file) run
-    with ``method``."""
+def _result(source: str, sets: list[str] | None, method: str | None) -> Any:
+    """What to animate: the path of a ``result.nc`` as it is (no ``--set`` nor ``--method``), or a case (name or
+    TOML file) run with ``method`` (default CCFM)."""
     if source.endswith(".nc"):
         if sets:
             raise ParameterError("--set: only with a case, not with a result file")
+        if method is not None:
+            raise ParameterError("--method: only with a case, not with a result file (it holds its own run)")
         if not Path(source).is_file():
             raise ParameterError(f"source: no such result file '{source}'")
         return Path(source)
-    return simulate(load(source, sets), method, outputs=True)
+    return simulate(load(source, sets), method or "ccfm", outputs=True)

@@ -9,6 +9,7 @@ drawn with (:func:`auto_scale`); and the times of the frames, denser inside the 
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
@@ -23,6 +24,10 @@ if TYPE_CHECKING:
 #: auto scale: the largest magnified deflection over the frames is this fraction of the beam length, less at
 #: most 1/11 of it (the factor is rounded down to two significant digits): 10.9-12 % of L
 TARGET_DEFLECTION = 0.12
+#: a deflection below this share of the beam's length is round-off, not drawn magnified (:func:`auto_scale`): the
+#: deflection is a difference of positions of order L, so its round-off is a few eps L; 1e3 eps is 1000x over that
+#: and 6000x under a deflection of 1 nm on a 0.7 m beam
+DEFLECTION_ROUNDOFF = 1e3 * sys.float_info.epsilon
 #: rigid reference lines the deflection is measured from (see :func:`reference_angle`)
 REFERENCES = ("contact", "hub")
 
@@ -163,9 +168,12 @@ def auto_scale(deflection: float, length: float, target: float = TARGET_DEFLECTI
     """Deflection magnification that draws the largest ``deflection`` [m] as ``target`` x ``length``.
 
     Rounded down to two significant digits (so the drawn maximum is 10/11 to 1 times the target) and never
-    below 1: a deflection already that large is drawn at its true size.
+    below 1: a deflection already that large is drawn at its true size.  A deflection within
+    :data:`DEFLECTION_ROUNDOFF` x ``length`` is round-off (a difference of positions of order ``length``), not a
+    shape: drawn unmagnified (the rod of ``rod-end``, which does not bend, read 2e-19 m and was drawn bent and tilted
+    into the plane at x1.2e17).
     """
-    if not deflection > 0.0:
+    if not deflection > DEFLECTION_ROUNDOFF * length:
         return 1.0
     raw = target * length / deflection
     if raw <= 1.0:
