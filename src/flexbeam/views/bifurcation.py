@@ -12,12 +12,15 @@ import xarray as xr
 from ..results.files import atomic_path
 
 COLOURS = {"up": "C0", "down": "C3"}
+#: each branch's marker: the swept-down branch's hollow, so that both show where they coincide (drawn 0.15 of a
+#: frequency step to the right before, at frequencies it was not run at)
+MARKERS = {"up": {"marker": ".", "ms": 2}, "down": {"marker": "o", "ms": 3.5, "mfc": "none", "mew": 0.6}}
 
 
-def plot_bifurcation(ds: xr.Dataset, path: str | Path) -> Path:
+def bifurcation_figure(ds: xr.Dataset):
     """Three panels against the frequency -- the Poincaré samples of the tip deflection [mm], the impacts' approach
-    speeds [m/s], the largest absolute tip deflection [mm] -- the branch swept up in blue, down in red; written as a
-    PNG."""
+    speeds [m/s], the largest absolute tip deflection [mm] -- the branch swept up in blue dots, down in red circles,
+    every point at the frequency it was run at: the Matplotlib figure."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -27,23 +30,26 @@ def plot_bifurcation(ds: xr.Dataset, path: str | Path) -> Path:
     fig, axes = plt.subplots(3, 1, figsize=(7.0, 8.0), sharex=True, height_ratios=(2, 2, 1), layout="constrained")
     for name in ds["branch"].values:
         b = ds.sel(branch=name)
-        colour, offset = (
-            COLOURS.get(str(name), "k"),
-            (0.0 if name == "up" else 0.15 * (f[1] - f[0] if f.size > 1 else 0)),
-        )
+        style = {"color": COLOURS.get(str(name), "k"), "ls": "none", **MARKERS.get(str(name), MARKERS["up"])}
         tip = b["tip"].values
-        axes[0].plot(
-            np.repeat(f, tip.shape[1]) + offset, 1e3 * tip.ravel(), ".", ms=2, color=colour, label=f"swept {name}"
-        )
+        axes[0].plot(np.repeat(f, tip.shape[1]), 1e3 * tip.ravel(), label=f"swept {name}", **style)
         iv = b["impact_velocity"].values
-        axes[1].plot(np.repeat(f, iv.shape[1]) + offset, -iv.ravel(), ".", ms=2, color=colour)
-        axes[2].plot(f, 1e3 * b["amplitude"].values, ".-", ms=3, color=colour)
+        axes[1].plot(np.repeat(f, iv.shape[1]), -iv.ravel(), **style)
+        axes[2].plot(f, 1e3 * b["amplitude"].values, **{**style, "ls": "-"})
     axes[0].set(ylabel="tip deflection at the\nPoincaré section [mm]",
                 title=f"{ds.attrs.get('case', '')}: {ds.attrs.get('method', '')}, "
                       f"{ds.attrs.get('periods', '')} periods, {ds.attrs.get('discard', '')} discarded")  # fmt: skip
-    axes[0].legend(markerscale=4, fontsize="small")
+    axes[0].legend(markerscale=2, fontsize="small")
     axes[1].set(ylabel="impact speed [m/s]")
     axes[2].set(xlabel="drive frequency [Hz]", ylabel="max |tip|\n[mm]")
+    return fig
+
+
+def plot_bifurcation(ds: xr.Dataset, path: str | Path) -> Path:
+    """:func:`bifurcation_figure` written as a PNG."""
+    import matplotlib.pyplot as plt
+
+    fig = bifurcation_figure(ds)
     path = Path(path)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=110, format="png")
