@@ -85,3 +85,27 @@ def test_two_stops_velocity_plot_has_one_line_per_pair_in_contact(two_stops, see
     labels = [label for label, _ in _lines(pairs) if label.startswith("flexbeam")]
     assert labels == ["flexbeam CCFM, obstacle", "flexbeam CCFM, obstacles[0]"]
     assert [label for label, _ in _lines(single) if label.startswith("flexbeam")] == ["flexbeam CCFM"]
+
+
+@pytest.mark.parametrize(
+    ("case", "method", "says"),
+    [
+        ("seed-experiment", "imm", "IMM: instantaneous impacts"),
+        ("kane-spinup", "ccfm", "no contact in this run"),
+        ("seed-experiment", "ccfm", None),
+    ],
+)
+def test_a_contact_force_figure_with_no_force_says_why(figures, case, method, says):
+    """``run --out`` wrote an empty contact_force.png for IMM's impacts and for a run without contact (empty axes,
+    'Time after first contact'); it now says why on the axes.  A run with a force history draws it without a note."""
+    sol = fb.simulate(fb.load_case(case, {"model.modes": 2, "solver.t_end": 2e-3}), method)
+    assert bool(sol.contacts) == (case != "kane-spinup")
+    plotting.plot_contact_force([sol], "unused.png")
+    (ax,) = figures[-1].axes
+    texts = [t.get_text() for t in ax.texts]
+    if says is None:
+        assert texts == [] and ax.get_xlabel() == "Time after first contact [ms]"
+    else:
+        assert len(texts) == 1 and texts[0].startswith(says), texts
+    if case == "kane-spinup":
+        assert ax.get_xlabel() == "Time [ms]"

@@ -376,8 +376,10 @@ def test_the_friction_figure(tmp_path):
     matplotlib.use("Agg")
     sol = fb.simulate(bar_on_stops(0.3, 0.1, 0.01), "ccfm")
     assert sol.plot("friction", tmp_path / "friction.png").stat().st_size > 0
+    held = fb.simulate(bar_on_stops(0.3, 0.1, 0.01), "ccm")  # (any method's frictional run; the refusal named CCFM)
+    assert held.plot("friction", tmp_path / "held.png").stat().st_size > 0
     plain = fb.simulate(rough_bar(45.0, 0.0, 1.0), "ccfm")
-    with pytest.raises(ValueError, match="contact.friction"):
+    with pytest.raises(ValueError, match=r"contact.friction > 0 \(any method\)"):
         plain.plot("friction", tmp_path / "none.png")
 
 

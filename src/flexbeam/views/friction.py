@@ -1,4 +1,4 @@
-"""The friction figure of a run with Coulomb friction under CCFM (:mod:`flexbeam.methods.coulomb`): each frictional
+"""The friction figure of a run with Coulomb friction (any method: :mod:`flexbeam.methods.coulomb`): each frictional
 pair's tangential force against the friction cone mu_s F (upper panel) and its slip velocity (lower panel), the
 stick intervals shaded."""
 
@@ -14,9 +14,9 @@ from .plotting import pyplot, save_figure
 
 def plot_friction(sol: Solution, path: str | Path, title: str = "") -> Path:
     """Tangential force F_t [N] with the bounds -+ mu_s F of each pair that had friction, and its slip velocity
-    [m/s], against time [ms]; a ValueError naming ``contact.friction`` for a run without CCFM's friction arrays."""
+    [m/s], against time [ms]; a ValueError naming ``contact.friction`` for a run without friction arrays."""
     if "pair_tangential_force" not in sol.arrays:
-        raise ValueError("plot: the friction figure needs a CCFM run with contact.friction > 0")
+        raise ValueError("plot: the friction figure needs a run with contact.friction > 0 (any method)")
     plt = pyplot()
     fig, (top, low) = plt.subplots(2, 1, sharex=True, figsize=(6.4, 5.6))
     t = sol.time * 1e3

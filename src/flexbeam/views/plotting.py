@@ -201,12 +201,29 @@ def plot_contact_force(
             )
     if reference:
         _mark_references(ax, reference, solutions[0].method if len(solutions) == 1 else "", "force")
-    ax.set_xlabel("Time after first contact [ms]")
+    contact = any(s.contacts for s in solutions)
+    note = _no_force_note(solutions)
+    if note:  # (an empty plot said nothing of why: an IMM run, a run without contact)
+        ax.text(0.5, 0.5, note, transform=ax.transAxes, ha="center", va="center", fontsize=9, color="0.3")
+    ax.set_xlabel("Time after first contact [ms]" if contact else "Time [ms]")
     ax.set_ylabel("Contact force [N]")
     ax.set_title(title or "Contact force")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     return save_figure(fig, path)
+
+
+def _no_force_note(solutions: list[Solution]) -> str:
+    """Why the contact-force figure of ``solutions`` has no force to draw ("" when one has): no contact in any run,
+    or every run IMM's with instantaneous impacts alone (a resting contact has a force)."""
+    if not any(s.contacts for s in solutions):
+        return "no contact in this run"
+    if all(s.method == "imm" and not any(ev.duration > 0.0 for ev in s.contacts) for s in solutions):
+        return (
+            "IMM: instantaneous impacts, no contact-force history\n"
+            "(their impulses: the contact records; P's velocity: normal_velocity.png)"
+        )
+    return ""
 
 
 def plot_normal_velocity(
