@@ -175,6 +175,28 @@ def test_true_or_false_where_a_number_belongs_is_refused_naming_the_field(field,
     assert str(err.value).startswith(field if field != "obstacles" else "obstacles[0].centre"), str(err.value)
 
 
+@pytest.mark.parametrize(
+    "field, value",
+    [("beam.length", "0.7"), ("contact.restitution", "0.5"), ("solver.t_end", "1e-3"), ("model.modes", "3"),
+     ("initial.impact_angle", "0.1"), ("output.measuring_points", [0.2, "0.3"]),
+     ("obstacles", [{"kind": "sphere", "centre": [0.5, "0.1"], "radius": 0.01}])],
+)  # fmt: skip
+def test_text_where_a_number_belongs_is_refused_naming_the_field(field, value):
+    """Pydantic's lax mode read ``length = "0.7"`` in a case file (or ``--set 'beam.length="0.7"'``) as 0.7, where
+    usage.md says a number field takes numbers only (found by exploratory testing)."""
+    with pytest.raises(ParameterError) as err:
+        fb.load_case("two-stops", {field: value})
+    assert "must be a number, not text" in str(err.value)
+    assert str(err.value).startswith(field if field != "obstacles" else "obstacles[0].centre"), str(err.value)
+
+
+@pytest.mark.parametrize("value", ["yes", "true", 1, 0, 1.0])
+def test_a_switch_takes_true_or_false_only(value):
+    """``contact.anywhere = "yes"``, ``= 1`` or ``--set contact.anywhere=yes`` ran as true (pydantic's lax mode)."""
+    with pytest.raises(ParameterError, match=r"^contact.anywhere: must be true or false"):
+        fb.load_case("seed-experiment", {"contact.anywhere": value})
+
+
 def test_true_or_false_still_set_a_switch_and_integers_still_set_a_float():
     case = fb.load_case("seed-experiment", {"contact.anywhere": True, "contact.restitution": 1, "model.modes": 3})
     assert case.contact.anywhere is True and case.contact.restitution == 1.0 and case.model.modes == 3
@@ -183,10 +205,12 @@ def test_true_or_false_still_set_a_switch_and_integers_still_set_a_float():
 @pytest.mark.parametrize(
     "source, overrides, says",
     [(123, None, "case: a built-in case name, a TOML path"), (None, None, "case: a built-in case name"),
-     ("seed-experiment", ["model.modes=3"], "overrides: a mapping of dotted keys")],
+     ("seed-experiment", ["model.modes=3"], "overrides: a mapping of dotted keys"),
+     ("seed-experiment", {1: 2}, "overrides: each key is a dotted field name")],
 )  # fmt: skip
 def test_load_case_of_the_wrong_type_is_one_parameter_error(source, overrides, says):
-    """A TypeError or an AttributeError ('list' object has no attribute 'items') before."""
+    """A TypeError or an AttributeError ('list' object has no attribute 'items'; 'int' object has no attribute
+    'split' for a key that is no string) before."""
     with pytest.raises(ParameterError, match=says):
         fb.load_case(source, overrides)
 

@@ -26,10 +26,21 @@ NonNegative = Annotated[float, Field(ge=0), AfterValidator(_finite)]
 
 
 def _finite_first(value: object) -> object:
-    """NaN and +-inf named as such before a bounded field's range is checked."""
+    """Text, true or false, NaN and +-inf named as such before a bounded field's range is checked."""
+    _number_given(value)
     if isinstance(value, float) and not math.isfinite(value):
         raise ValueError("must be a finite number")
     return value
+
+
+def _number_given(value: object) -> None:
+    """A ValueError unless ``value`` (or each item of a list or tuple) is a number: pydantic's lax mode read
+    ``contact.friction = true`` as a friction coefficient of 1, ``model.modes = true`` as one mode and ``length =
+    "0.7"`` as 0.7."""
+    if _has(value, bool):
+        raise ValueError("must be a number, not true or false")
+    if _has(value, str):
+        raise ValueError("must be a number, not text")
 
 
 def Bounded(lo: float, hi: float):  # noqa: N802 - a type
@@ -49,46 +60,56 @@ MIN_SPHERE_RADIUS = 1e-6
 CONTACT_LAWS = LAW_NAMES  # the registry of contact laws (flexbeam.contact.laws.LAWS)
 
 
-def _takes(annotation: Any) -> tuple[bool, bool]:
-    """(whether a field of this type takes a number, whether it takes true/false), Annotated and unions unwrapped;
-    a list or tuple by its items."""
+def _kinds(annotation: Any) -> frozenset[str]:
+    """What a field of this type takes: ``"number"``, ``"bool"``, ``"other"`` (text, paths, sections, ...), or
+    ``"own"`` for a type whose own validator checks its input; Annotated and unions unwrapped, a list or tuple by its
+    items, Any all three."""
     while typing.get_origin(annotation) is Annotated:
+        if any(isinstance(m, BeforeValidator) for m in typing.get_args(annotation)[1:]):
+            return frozenset({"own"})  # (its own validator checks what it is given: Bounded, the output interval)
         annotation = typing.get_args(annotation)[0]
     origin = typing.get_origin(annotation)
     if origin in (typing.Union, types.UnionType, list, tuple):
-        kinds = [_takes(a) for a in typing.get_args(annotation) if a is not type(None) and a is not Ellipsis]
-        return any(n for n, _ in kinds), any(b for _, b in kinds)
+        args = [a for a in typing.get_args(annotation) if a is not type(None) and a is not Ellipsis]
+        return frozenset().union(*(_kinds(a) for a in args))
     if annotation is bool:
-        return False, True
-    return annotation in (int, float), annotation is Any
+        return frozenset({"bool"})
+    if annotation in (int, float):
+        return frozenset({"number"})
+    if annotation is Any:
+        return frozenset({"number", "bool", "other"})
+    return frozenset({"other"})
 
 
 @cache
-def _numbers_only(section: type[BaseModel], name: str) -> bool:
-    """Whether field ``name`` of ``section`` takes numbers (or lists of them) and no true/false."""
+def _field_kinds(section: type[BaseModel], name: str) -> frozenset[str]:
     field = section.model_fields.get(name)
-    if field is None:
-        return False
-    number, boolean = _takes(field.annotation)
-    return number and not boolean
+    return _kinds(field.annotation) if field is not None else frozenset({"number", "bool", "other"})
 
 
-def _has_bool(value: object) -> bool:
-    return isinstance(value, bool) or (isinstance(value, (list, tuple)) and any(isinstance(v, bool) for v in value))
+def _has(value: object, kind: type | tuple[type, ...]) -> bool:
+    """Is ``value``, or an item of it (a list or tuple), of ``kind``?"""
+    return isinstance(value, kind) or (isinstance(value, (list, tuple)) and any(isinstance(v, kind) for v in value))
 
 
 class Section(BaseModel):
-    """The base of every section of a case: unknown keys are errors, and so is true or false where a number
-    belongs (pydantic's lax mode read ``contact.friction = true`` as a friction coefficient of 1 and
-    ``model.modes = true`` as one mode)."""
+    """The base of every section of a case: unknown keys are errors, and so is true or false or a string where a
+    number belongs, and anything but true or false where a switch does (pydantic's lax mode read
+    ``contact.friction = true`` as a friction coefficient of 1, ``model.modes = true`` as one mode, ``length =
+    "0.7"`` as 0.7 and ``contact.anywhere = "yes"`` or ``1`` as true)."""
 
     model_config = ConfigDict(extra="forbid", validate_assignment=True)
 
     @field_validator("*", mode="before")
     @classmethod
-    def _no_true_or_false_for_a_number(cls, value: object, info: ValidationInfo) -> object:
-        if _has_bool(value) and info.field_name is not None and _numbers_only(cls, info.field_name):
-            raise ValueError("must be a number, not true or false")
+    def _numbers_and_switches_only(cls, value: object, info: ValidationInfo) -> object:
+        if info.field_name is None:
+            return value
+        kinds = _field_kinds(cls, info.field_name)
+        if kinds == {"number"}:
+            _number_given(value)
+        elif kinds == {"bool"} and not isinstance(value, bool):
+            raise ValueError("must be true or false")
         return value
 
 

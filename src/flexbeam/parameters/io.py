@@ -309,6 +309,8 @@ def load_case(source: str | Path | Case | Mapping[str, Any], overrides: dict[str
     else:
         raise ParameterError(f"case: a built-in case name, a TOML path, a Case or a dict (got {type(source).__name__})")
     for key, value in (overrides or {}).items():
+        if not isinstance(key, str):  # (1 -> AttributeError: 'int' object has no attribute 'split')
+            raise ParameterError(f"overrides: each key is a dotted field name such as 'model.modes' (got {key!r})")
         set_dotted(data, key, value)
     return validate_case(data)
 
