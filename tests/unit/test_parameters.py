@@ -298,3 +298,11 @@ def test_an_impact_start_anywhere_against_a_surface_along_the_beam_says_why():
 
     with pytest.raises(ParameterError, match=r"with contact.anywhere P is the straight beam's nearest .* x = 0 m"):
         fb.simulate(fb.load_case("tip-wall", {"contact.anywhere": True, "solver.t_end": 1e-4}))
+
+
+def test_an_optional_switch_or_number_still_takes_none():
+    """A dumped case (model_dump) holds None for an optional field not given (an obstacle's own contact.anywhere):
+    loading it back must not read None as a bad switch."""
+    data = fb.load_case("two-stops").model_dump()
+    assert data["obstacles"][0]["contact"]["anywhere"] is None
+    assert fb.load_case(data).obstacles[0].contact.anywhere is None

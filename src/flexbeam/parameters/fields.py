@@ -103,7 +103,7 @@ class Section(BaseModel):
     @field_validator("*", mode="before")
     @classmethod
     def _numbers_and_switches_only(cls, value: object, info: ValidationInfo) -> object:
-        if info.field_name is None:
+        if info.field_name is None or value is None:  # (None: an optional field's "not given", pydantic's to judge)
             return value
         kinds = _field_kinds(cls, info.field_name)
         if kinds == {"number"}:
