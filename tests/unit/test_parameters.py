@@ -240,7 +240,7 @@ def test_the_experiment_is_the_reference_of_its_own_set_up_only():
     case that keeps the name but changes the beam, the start or where the obstacle is struck was scored against the
     2013 experiment all the same (a 597 % "error").  The model's choices (law, stiffness, modes, t_end) keep it, and a
     calibrated variant keeps its base case's numbers, whatever support it fits."""
-    from flexbeam.parameters.io import reference_for
+    from flexbeam.parameters.references import reference_for
     from flexbeam.views.report import compare_table, markdown_table
 
     assert reference_for(fb.load_case("seed-experiment"))["experiment"]["peak_force"] == 584.0
@@ -258,7 +258,7 @@ def test_the_experiment_is_the_reference_of_its_own_set_up_only():
 def test_an_instantaneous_impact_gets_no_duration_error():
     """IMM's impact has no duration: ``compare`` reported its 0 ms as a -100 % error against the experiment's 0.6 ms
     (its peak, NaN, got none).  No error for a quantity the method does not resolve; CCFM's errors unchanged."""
-    from flexbeam.parameters.io import reference_for
+    from flexbeam.parameters.references import reference_for
     from flexbeam.views.report import compare_table, markdown_table
 
     case = fb.load_case("seed-experiment", {"solver.t_end": 2e-3})

@@ -69,7 +69,7 @@ def compare(
     ] = False,
 ) -> None:
     """Run CCFM, CCM and the FE reference on one case; figures and a table against the paper."""
-    from ..parameters.io import reference_for
+    from ..parameters.references import reference_for
     from ..views.report import compare as run_compare
     from ..views.report import markdown_table
 

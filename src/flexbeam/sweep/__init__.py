@@ -58,6 +58,7 @@ Modules
 * :mod:`~flexbeam.sweep.store` -- :class:`Store`, the resumable directory;
 * :mod:`~flexbeam.sweep.cluster` -- :func:`run_case` and :func:`run_batch` on a Dask worker,
   the batches, the cluster;
+* :mod:`~flexbeam.sweep.scheduler` -- a scheduler's address checked before anything runs;
 * :mod:`~flexbeam.sweep.dataset` -- the result Dataset, :func:`load`, :func:`summary`,
   :func:`open_history`;
 * :mod:`~flexbeam.sweep.runner` -- :func:`sweep`.

@@ -29,6 +29,7 @@ from ..errors import ParameterError
 from ..parameters.io import validate_case
 from .interrupt import ctrl_c_flag
 from .planning import Point
+from .scheduler import check_scheduler
 from .store import Store
 
 ProgressFn = Callable[[int, int], None]
@@ -255,22 +256,6 @@ def close_local_cluster() -> None:
         _Local.workers = 0
         if stack is not None:
             stack.close()
-
-
-def check_scheduler(scheduler: Any) -> None:
-    """A scheduler given by its address: the address's form checked before anything is written (``--scheduler foo``,
-    no port, wrote the store's sweep.json and then ended in a traceback)."""
-    from dask.distributed import Client
-    from distributed.comm.addressing import get_address_host_port, normalize_address, parse_address
-
-    if scheduler is None or isinstance(scheduler, Client):
-        return
-    try:
-        address = normalize_address(str(scheduler))
-        if parse_address(address)[0] != "inproc":  # (a network address needs its host and port)
-            get_address_host_port(address)
-    except (TypeError, ValueError) as exc:
-        raise ParameterError(f"scheduler: cannot connect to '{scheduler}' ({exc})") from None
 
 
 @contextlib.contextmanager

@@ -15,9 +15,10 @@ from typing import TYPE_CHECKING, Any
 from ..errors import ParameterError
 from ..parameters.case import Case
 from ..parameters.io import load_case
-from .cluster import ProgressFn, check_scheduler, cluster_client, compute
+from .cluster import ProgressFn, cluster_client, compute
 from .dataset import build_dataset
 from .planning import Plan, Point, plan
+from .scheduler import check_scheduler
 from .spec import Distribution
 from .store import Store
 

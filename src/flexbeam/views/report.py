@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 from ..parameters.case import Case
-from ..parameters.io import reference_for
+from ..parameters.references import reference_for
 from ..results.files import jsonable, write_text_atomic
 from ..results.solution import Solution
 
