@@ -248,3 +248,15 @@ def test_a_case_that_kills_its_worker_inside_a_batch_loses_no_other_case(tmp_pat
     with xr.open_dataset(store / "result.nc") as ds:
         assert ds["status"].values.tolist() == ["success", "missing", "success"]
     assert len(list((store / "cases").glob("*.json"))) == 2
+
+
+def test_a_sweep_says_a_cases_slenderness_warning_once(tmp_path):
+    """The planning validates every case on the client, which says a thick beam's SlenderBeamWarning as one line;
+    the worker validated the case again and printed the same warning raw (file, line and source) -- twice in all
+    (found by exploratory testing)."""
+    r = flexbeam("sweep", "seed-experiment", *sets(SHORT), "--grid", "beam.radius=0.1", "--workers", "1",
+                 "--out", str(tmp_path / "store"), timeout=300)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    said = [line for line in r.stderr.splitlines() if "r/L = " in line]
+    assert len(said) == 1 and said[0].startswith("warning: beam.radius: r/L = "), r.stderr
+    assert "SlenderBeamWarning" not in r.stderr

@@ -21,11 +21,12 @@ import os
 import threading
 import time
 import uuid
+import warnings
 from collections import deque
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from ..errors import ParameterError
+from ..errors import ParameterError, SlenderBeamWarning
 from ..parameters.io import validate_case
 from .interrupt import ctrl_c_flag
 from .planning import Point
@@ -59,7 +60,10 @@ def run_case(data: dict[str, Any], method: str, histories: bool = False) -> tupl
     try:
         from ..simulation import simulate
 
-        sol = simulate(validate_case(data), method)
+        with warnings.catch_warnings():  # (planning said it once, as one line; the worker printed it again, raw)
+            warnings.simplefilter("ignore", SlenderBeamWarning)
+            case = validate_case(data)
+        sol = simulate(case, method)
         metrics = sol.metrics()
         for name in ("method", "status", "message"):
             metrics.pop(name, None)
