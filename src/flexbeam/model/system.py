@@ -279,6 +279,17 @@ class BeamSystem:
         delta, rate, gamma = core.gap(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float), J)[:3]
         return delta, rate, gamma, J
 
+    def normal_jump(
+        self, t: float, y: np.ndarray, pair: int, restitution: float
+    ) -> tuple[np.ndarray, np.ndarray] | None:
+        """One frictionless pair's impulse-momentum map, compiled (``kernels/src/impulse_map.c``, the same bits as
+        :func:`flexbeam.methods.impulse.impulse_jump`'s): (y+, [P, v-, v+, T-, T+]); None where that map must take
+        it (prescribed theta, a compliant support, an obstacle fixed to the ground on a moving base, M singular)."""
+        y_plus, out = np.empty(self.size), np.empty(5)
+        status = core.normal_jump(self.kernel, int(pair), float(t), np.ascontiguousarray(y, float),
+                                  float(restitution), y_plus, out)  # fmt: skip
+        return None if status else (y_plus, out)
+
     def tangent(self, t: float, y: np.ndarray, pair: int = 0) -> tuple[float, float, float, np.ndarray, np.ndarray]:
         """(delta, delta', slip velocity, J, J_t) of contact pair ``pair``: the gap, its rate, the contact point's
         velocity along the tangent t = (-n_y, n_x), and the normal and tangential Jacobians d delta/dz, d(t . r)/dz

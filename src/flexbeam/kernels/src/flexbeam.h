@@ -192,6 +192,9 @@ fb_gap fb_pair_gap(const fb_model *m, int pair, const fb_frame *f, const double 
                    double sd, int want_acc, double *J);
 fb_gap fb_pair_tangent(const fb_model *m, int pair, const fb_frame *f, const double *q, const double *qd, double s,
                        double sd, int want_acc, double *J, double *Jt, double *vt);
+/* impulse_map.c: one frictionless pair's impulse-momentum map (e its restitution): y_plus, out = [P, v-, v+, T-, T+];
+ * 1 where the Python map must take it (given coordinates, a compliant support, an obstacle on the ground), -1 singular */
+int fb_normal_jump(const fb_model *m, int pair, double t, const double *y, double e, double *y_plus, double *out);
 
 /* ------------------------------------------------------------------ axial.c (the axial modes, na > 0) */
 double fb_axial_row(const fb_model *m, const double *q, double *u);

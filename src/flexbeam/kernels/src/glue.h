@@ -50,6 +50,7 @@ FB_GLUE PyObject *py_tangent(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_nearest_path(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_equations(PyObject *self, PyObject *args);
 FB_GLUE PyObject *py_law_force(PyObject *self, PyObject *args);
+FB_GLUE PyObject *py_normal_jump(PyObject *self, PyObject *args);
 
 /* glue_integrator.c */
 FB_GLUE PyObject *py_advance(PyObject *self, PyObject *args);

@@ -274,3 +274,29 @@ PyObject *py_law_force(PyObject *self, PyObject *args) {
     release(b, 1);
     return Py_BuildValue("dddd", F, fk, gd, gr);
 }
+
+/* normal_jump(model, pair, t, y, e, y_plus, out) -> status: one frictionless pair's impulse map (impulse_map.c
+ * fb_normal_jump), out = [P, v-, v+, T-, T+]; 1: a state the Python map takes, -1: M singular */
+PyObject *py_normal_jump(PyObject *self, PyObject *args) {
+    PyObject *om, *oy, *oyp, *oout;
+    int pair;
+    double t, e;
+    if (!PyArg_ParseTuple(args, "OidOdOO", &om, &pair, &t, &oy, &e, &oyp, &oout)) return NULL;
+    buf_t b[4];
+    memset(b, 0, sizeof b);
+    fb_model m;
+    if (get_buf(om, &b[0], 0, "model") || get_buf(oy, &b[1], 0, "y") || get_buf(oyp, &b[2], 1, "y_plus") ||
+        get_buf(oout, &b[3], 1, "out") || model_from(&b[0], &m))
+        goto fail;
+    if (pair < 0 || pair >= m.npairs || LEN(b[1]) != (size_t)fb_state_size(&m) || LEN(b[2]) != LEN(b[1]) ||
+        LEN(b[3]) != 5) {
+        PyErr_SetString(PyExc_ValueError, "normal_jump: no such pair, or array sizes do not match");
+        goto fail;
+    }
+    int status = fb_normal_jump(&m, pair, t, PTR(b[1]), e, PTR(b[2]), PTR(b[3]));
+    release(b, 4);
+    return PyLong_FromLong(status);
+fail:
+    release(b, 4);
+    return NULL;
+}

@@ -14,6 +14,8 @@ static PyMethodDef methods[] = {
      "nearest_path(model, pair, t, Y, warm, out) -> full scans: rows [delta, x, nx, ny], the pair's gap and point"},
     {"equations", py_equations, METH_VARARGS, "equations(model, t, y, M, Q, E)"},
     {"law_force", py_law_force, METH_VARARGS, "law_force(p, d, dd) -> (F, Fk, dF/dd, dF/ddd)"},
+    {"normal_jump", py_normal_jump, METH_VARARGS,
+     "normal_jump(model, pair, t, y, e, y_plus, out) -> status: one frictionless pair's impulse map (impulse_map.c)"},
     {"advance", py_advance, METH_VARARGS,
      "advance(model, basis, ctrl, state, t_end, records, info[, coef, switches]) -> (code, nrec, nswitch)"},
     {"dense", py_dense, METH_VARARGS, "dense(model, basis, records, nrec, times, Y)"},
