@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import os
 from pathlib import Path
 
 import pytest
@@ -141,6 +142,25 @@ def test_a_missing_out_directory_is_probed_and_removed_again(tmp_path):
 
     out = tmp_path / "new" / "deeper"
     assert check_output_dir(out, "--out") == out
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_interrupted_probe_leaves_nothing(tmp_path, monkeypatch):
+    """Ctrl-C or SIGTERM while the check's probe file exists (it raises in the main thread between two calls) left
+    the probe ``.flexbeam-probe.*`` and the directories made for it: the streamed run's SIGTERM test met them under
+    load.  The interrupt still propagates; nothing is left."""
+    from flexbeam.results import files
+
+    real_close = os.close
+
+    def close(fd):  # the interrupt arrives with the probe made, before its removal
+        real_close(fd)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(files.os, "close", close)
+    with pytest.raises(KeyboardInterrupt):
+        files.check_output_dir(tmp_path / "new" / "deeper", "--out")
+    monkeypatch.undo()
     assert list(tmp_path.iterdir()) == []
 
 

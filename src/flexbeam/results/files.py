@@ -93,17 +93,20 @@ def _probe_write(path: Path, field: str) -> None:
         missing.append(p)
         p = p.parent
     made: list[Path] = []
+    name = None
     try:
         for d in reversed(missing):
             d.mkdir()
             made.append(d)
         fd, name = tempfile.mkstemp(prefix=".flexbeam-probe.", dir=path)
         os.close(fd)
-        os.unlink(name)
     except OSError as exc:
         what = "make the directory" if len(made) < len(missing) else "write in"
         raise ParameterError(f"{field}: cannot {what} '{path}' ({exc.strerror or exc})") from None
-    finally:
+    finally:  # (also when interrupted: Ctrl-C or SIGTERM here left the probe and its directories)
+        with contextlib.suppress(OSError):
+            if name is not None:
+                os.unlink(name)
         for d in reversed(made):
             with contextlib.suppress(OSError):
                 d.rmdir()
