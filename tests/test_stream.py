@@ -283,10 +283,14 @@ def test_a_terminated_streamed_run_leaves_no_file(tmp_path, signum, code, line):
         [sys.executable, "-m", "flexbeam.cli", "run", "seed-experiment", "--stream", "--out", str(out),
          "--set", "solver.t_end=1000", "--set", "output.interval=1e-3"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        # Ctrl-C's default action, as a terminal gives it: a suite started in the background (`cmd &` without job
+        # control, nohup) ignores SIGINT, and so would the run it starts -- it ran on to exit 0
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )  # fmt: skip
     try:
         deadline = time.monotonic() + 120
-        while not (out.is_dir() and any(out.iterdir())):  # the stream's temporary file, being written
+        # the stream's temporary file, being written (not the probe of --out's check, made and removed before it)
+        while not (out.is_dir() and any(p.name.startswith(".result.nc.") for p in out.iterdir())):
             assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
             time.sleep(0.05)
         proc.send_signal(signum)
