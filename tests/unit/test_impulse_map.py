@@ -96,3 +96,17 @@ def test_the_python_map_takes_what_the_compiled_one_leaves(name, over):
     assert system.normal_jump(t, y, 0, 0.5) is None
     jump, ref = impulse_jump(system, t, y, 0.5), lcp_jump(system, t, y, np.array([0.5]), [0])
     np.testing.assert_array_equal(jump.y, ref.y)
+
+
+def test_an_overflowing_jump_is_the_python_maps_floating_point_error():
+    """Velocities of ~1e200 m/s overflow the impulse's work: the Python map raises FloatingPointError under the run's
+    np.errstate (the run ends "failed" at that time); the compiled map hands such a state to it rather than
+    returning infinities."""
+    system, states = _states("seed-experiment", "ccm", {"solver.t_end": 0.01})
+    t, y = states[0]
+    y = np.array(y)
+    nz = system.nz
+    y[nz : 2 * nz] = -1e200  # (theta' and every q' towards the stop)
+    assert system.normal_jump(t, y, 0, 0.0) is None
+    with np.errstate(over="raise", invalid="raise", divide="raise"), pytest.raises(FloatingPointError):
+        impulse_jump(system, t, y, 0.0)

@@ -11,7 +11,8 @@
  * (impulse._normal_jump, _apply and solve_impact_lcp with numerics' matmul and solve, linalg.c), so the same bits:
  * tests/unit/test_impulse_map.py compares the two.  Only for a state that holds all its coordinates (no prescribed
  * theta), no compliant support and an obstacle not fixed to the ground on a moving base (a moving obstacle's
- * velocity enters v- there): returns 1 for any other, and the Python map takes it. */
+ * velocity enters v- there), and a finite result: returns 1 for any other, and the Python map takes it (an overflow
+ * raises its floating-point error, which ends the run). */
 #include <string.h>
 
 #include "flexbeam.h"
@@ -54,6 +55,10 @@ int fb_normal_jump(const fb_model *m, int pair, double t, const double *y, doubl
     double T_plus = kinetic(m, t, y_plus), work = 0.5 * (P * (vm + vp));
     y_plus[S - 2] += -work;
     y_plus[S - 1] += (T_plus - T_minus) - work;
+    /* an overflow: the Python map's floating-point error ends the run, as before (the state would be non-finite) */
+    if (!isfinite(T_minus) || !isfinite(y_plus[S - 2]) || !isfinite(y_plus[S - 1])) return 1;
+    for (int i = 0; i < N; i++)
+        if (!isfinite(y_plus[nz + i])) return 1;
     out[0] = P, out[1] = vm, out[2] = vp, out[3] = T_minus, out[4] = T_plus;
     return 0;
 }
