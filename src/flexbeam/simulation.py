@@ -148,7 +148,7 @@ def simulate(
     stepper = make_stepper(case, method, system)
     impact.locates_friction = isinstance(stepper, ModalStepper)
     if isinstance(stepper, ModalStepper):
-        stepper.friction_coef = impact.kernel_switches()
+        stepper.switching = impact
     if stream is not None:
         return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
     run = run_phases(impact, stepper, y0, case.solver.t_end, progress)

@@ -22,7 +22,10 @@ DATA = Path(__file__).parents[1] / "validation" / "data"
 
 @pytest.mark.parametrize("preset", ["seed-experiment", "two-stops", str(DATA / "free-bar-drop.toml")])
 def test_each_phase_runs_under_its_own_contacts(monkeypatch, preset: str) -> None:
-    """CCM (whose held phases take the buffer of their held set) on one pair, two pairs and a free bar."""
+    """CCM (whose held phases take the buffer of their held set) on one pair, two pairs and a free bar: the phases
+    handed to the stepper, and those of every segment (a phase the compiled stepper switched to inside its call, a
+    single pair's onset or release, is built by the method afterwards for its segment, whose outputs read its
+    buffer)."""
     phases = []
     advance = modal.ModalStepper.advance
 
@@ -33,6 +36,7 @@ def test_each_phase_runs_under_its_own_contacts(monkeypatch, preset: str) -> Non
     monkeypatch.setattr(modal.ModalStepper, "advance", recording)
     sol = fb.simulate(fb.load_case(preset, {"solver.t_end": 0.05}), "ccm")
     assert sol.status == "success"
+    phases += [seg.phase for seg in sol.source.segments]
     held = [p for p in phases if any(m == 2 for m in p.modes)]
     assert held, "the run has no held phase: nothing is checked"
     for p in phases:

@@ -16,7 +16,6 @@ of the state) and with mu_k = 0 < mu_s; the threlfall law (no switches) is the s
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
@@ -26,6 +25,8 @@ import flexbeam as fb
 from flexbeam.integrate import modal
 from flexbeam.integrate.phases import EventKind
 from flexbeam.methods.ccfm import CCFM
+
+from .kernel_switch_runs import assert_same_run, recorded_run
 
 DATA = Path(__file__).parent / "data"
 CASES = {
@@ -48,23 +49,10 @@ CASES = {
 def run(name: str, monkeypatch, kernel: bool):
     """The case's CCFM run, with the kernel's friction switches or without; and the switches the kernel took."""
     source, overrides = CASES[name]
-    taken = []
-    advance = modal.ModalStepper.advance
-
-    def recording(self, phase, t, y, t_end):
-        out = advance(self, phase, t, y, t_end)
-        taken.extend(out.switches)
-        return out
-
-    with monkeypatch.context() as m:
-        m.setattr(modal.ModalStepper, "advance", recording)
-        if not kernel:
-            m.setattr(CCFM, "kernel_switches", lambda self: None)
-        sol = fb.simulate(fb.load_case(source, overrides), "ccfm")
-        contacts = repr(sol.contacts)
-        metrics = json.dumps({k: v for k, v in sol.metrics().items() if "wall" not in k}, sort_keys=True, default=str)
-    assert sol.status == "success", sol.message
-    return sol.source.run, contacts, metrics, taken
+    off = None if kernel else (CCFM, "kernel_switches", lambda self: None)
+    out = recorded_run(source, overrides, "ccfm", monkeypatch, off)
+    assert out[0].status == "success", out[0].message
+    return out
 
 
 @pytest.mark.parametrize("name", list(CASES))
@@ -76,22 +64,7 @@ def test_the_kernels_switches_give_the_phase_loops_run(monkeypatch, name: str) -
         assert not taken
     else:
         assert taken, "the kernel took no switch: nothing is compared"
-    assert (ours.steps, ours.nfev, ours.events, ours.status) == (loops.steps, loops.nfev, loops.events, loops.status)
-    assert [n for n, _ in ours.phase_steps] == [n for n, _ in loops.phase_steps]
-    assert [k for _, k in ours.phase_steps] == [k for _, k in loops.phase_steps]
-    assert len(ours.segments) == len(loops.segments)
-    for a, b in zip(ours.segments, loops.segments):
-        assert (a.t0, a.t1, a.phase.modes) == (b.t0, b.t1, b.phase.modes)
-        np.testing.assert_array_equal(a.y0, b.y0)
-        np.testing.assert_array_equal(a.y1, b.y1)
-        if a.phase.friction is None or b.phase.friction is None:
-            assert a.phase.friction is b.phase.friction is None
-        else:
-            np.testing.assert_array_equal(a.phase.friction, b.phase.friction)
-        np.testing.assert_array_equal(a.phase.buffer, b.phase.buffer)
-        assert (a.dense is None) == (b.dense is None)
-        if a.dense is not None:
-            np.testing.assert_array_equal(a.dense.records, b.dense.records)
+    assert_same_run(ours, loops)
     assert contacts == contacts_loop
     assert metrics == metrics_loop
 

@@ -87,10 +87,11 @@ class Segment:
 
 @dataclass
 class Switch:
-    """A friction switch the stepper took inside a phase without ending it (CCFM's Coulomb friction:
-    ``kernels/src/friction_switch.c``): the part of the phase before it (its dense output, steps and node
-    evaluations), the time and state there, the event (a stop, the end of a stick) and the pair's friction row after
-    it (a stop's stick, or the slip it broke into at once)."""
+    """A switch the stepper took inside a phase without ending it (``kernels/src/switching.c``): the part of the
+    phase before it (its dense output, steps and node evaluations), the time and state there (before any jump), the
+    event and the rule's row -- CCFM's Coulomb friction (a stop, the end of a stick: the pair's friction row after it,
+    a stop's stick or the slip it broke into at once), or CCM's contact on one pair (an onset, row[0] 1 if the pair
+    is then held; a release)."""
 
     t: float
     y: np.ndarray
@@ -104,8 +105,8 @@ class Switch:
 
 @dataclass
 class PhaseRun:
-    """What a stepper returns for one phase (``switches``: the friction switches it took inside the phase, in time
-    order; the rest of the fields are those of the part after the last of them)."""
+    """What a stepper returns for one phase (``switches``: the switches it took inside the phase, in time order; the
+    rest of the fields are those of the part after the last of them)."""
 
     t1: float
     y1: np.ndarray
@@ -149,7 +150,7 @@ class PhaseMethod(Protocol):
         self, phase: Phase, event: EventKind, t: float, y: np.ndarray, pair: int = 0
     ) -> tuple[Phase, np.ndarray]: ...
 
-    def friction_switched(self, phase: Phase, pair: int, row: np.ndarray) -> Phase: ...
+    def kernel_switched(self, phase: Phase, switch: Switch) -> tuple[Phase, np.ndarray]: ...
 
 
 @dataclass
@@ -208,13 +209,17 @@ def run_phases(
                 if parts:
                     stepper.hand_on = _hand_on(sink, phase, progress)
                 run = stepper.advance(phase, t, y, t_end)
-                for sw in run.switches:  # the parts of the phase that friction switches inside the stepper ended
+                for sw in run.switches:  # the parts of the phase that switches inside the stepper ended
                     steps, nfev, events = steps + sw.steps, nfev + sw.nfev, events + 1
                     phase_steps.append((phase.name, sw.steps))
                     keep(Segment(phase, t, sw.t, y.copy(), sw.y.copy(), sw.dense))
-                    stalled, t, y = 0, sw.t, sw.y
-                    phase = method.friction_switched(phase, sw.pair, sw.row)
-                    recent.append(t)
+                    t = sw.t
+                    phase, y = method.kernel_switched(phase, sw)
+                    stalled = 0
+                    if sw.event in _STORM_KINDS:
+                        recent.append(t)
+                    else:
+                        recent.clear()
                 steps += run.steps
                 nfev += run.nfev
                 phase_steps.append((phase.name, run.steps))

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import numerics as nm
-from ..kernels import core, pack_basis, pack_controls
+from ..kernels import SWITCH_HELD, core, pack_basis, pack_controls
 from ..model.damping import modal_damping
 from ..model.system import BeamSystem
 from .dense import ModalDense
@@ -54,7 +54,7 @@ _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 
 #: largest multiplier so far, which scales its multiplier's error): the steps are those of one long call, whatever
 #: the block size
 BLOCK_RECORDS = 16384
-#: the floats of a friction switch's row before its modal state (FB_SWITCH_HEAD, ``kernels/src/phase.h``), and the
+#: the floats of a switch's row before its modal state (FB_SWITCH_HEAD, ``kernels/src/phase.h``), and the
 #: switches one kernel call takes at most before it hands the event to the phase loop
 _SWITCH_HEAD, _SWITCH_ROWS = 14, 64
 
@@ -179,9 +179,9 @@ class ModalStepper:
         #: set by a streamed run's loop: called with each finished part of a long phase (t0, y0, t1, y1, dense,
         #: opens), which is then dropped (:func:`flexbeam.integrate.loop.run_phases`)
         self.hand_on = None
-        #: the impact method's friction switches the kernel takes itself (``coef`` of kernels/src/friction_switch.c:
-        #: :meth:`~flexbeam.methods.base.ImpactMethod.kernel_switches`; None: the phase loop takes them all)
-        self.friction_coef: np.ndarray | None = None
+        #: the impact method whose switches the kernel takes itself (kernels/src/switching.c: its ``switch_coef``
+        #: and ``switched_phase``, :mod:`flexbeam.methods.switches`); None: the phase loop takes them all
+        self.switching = None
         self._modes: tuple = ()  # the contact modes of the last phase advanced
 
     # state conversion between the reference layout [z, z', (s, s'), E_d, W] and modal (eta, v)
@@ -296,9 +296,9 @@ class ModalStepper:
             parts, dense = self._split(dense, switches)
         event = _EVENT_KINDS[int(info[0])] if code == _ADV_EVENT else None
         failure = ""
-        if parts and code in _FAILURES:  # (the advice reads the rows at the end)
+        if parts and code in _FAILURES:  # (the message names the phase at the end, its advice reads its rows)
             for sw in parts:
-                phase = phase.with_friction_row(sw.pair, sw.row)
+                phase = self.switching.switched_phase(phase, sw)
         if code == _ADV_UNDERFLOW:
             failure = f"step size underflow at t = {t1:.9g} s ({phase.name} phase)" + phase.underflow_advice
         elif code == _ADV_NONFINITE:
@@ -313,12 +313,15 @@ class ModalStepper:
         return run
 
     def _switching(self, phase: Phase) -> np.ndarray | None:
-        """The kernel's friction switches' ``coef`` for ``phase``, or None where the phase loop takes them: a phase
-        with friction, a diagonal basis (the kernel passes the state through y = Psi eta as :meth:`from_modal`
-        does), not handed on in parts (a streamed run)."""
-        if self.friction_coef is None or phase.friction is None or self.hand_on is not None or self.psi is None:
+        """The ``coef`` of the switches the kernel takes in ``phase`` (the method's, CCM's with this stepper's step
+        bounds and first step), or None where the phase loop takes them: a diagonal basis only (the kernel passes
+        the state through y = Psi eta as :meth:`from_modal` does), not handed on in parts (a streamed run)."""
+        if self.switching is None or self.hand_on is not None or self.psi is None:
             return None
-        return self.friction_coef
+        coef = self.switching.switch_coef(phase)
+        if coef is not None and coef[0] == SWITCH_HELD:  # the free and the held phase's bounds as advance takes them
+            coef[5], coef[6], coef[7] = min(self.max_step, coef[5]), min(self.max_step, coef[6]), FIRST_STEP
+        return coef
 
     def _split(self, dense: ModalDense, switches: list) -> tuple[list[Switch], ModalDense | None]:
         """The phase's records cut where the kernel switched friction: a :class:`~flexbeam.integrate.loop.Switch`

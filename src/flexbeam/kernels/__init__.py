@@ -7,7 +7,9 @@
 * ``collocation.c`` -- one Gauss collocation step (fixed point, the pairs' contact forces by Newton);
 * ``stepcontrol.c`` -- the energy-norm error and the step-size controller;
 * ``events.c`` -- the guaranteed search for impact/separation on the dense output, the release of a constraint;
-* ``phase.c`` -- the phase driver (steps, control, the pairs' events, dense-output records);
+* ``phase.c`` -- the phase driver (steps, control, the pairs' events, dense-output records); ``switching.c`` -- the
+  switches it takes inside a phase (``friction_switch.c``: CCFM's Coulomb switches; ``held_switch.c``: CCM's
+  contact on one pair, its jump from ``impulse_map.c``);
 * ``bookkeeping.c`` -- dissipated energy, joint work and energy balance of a step, the dense evaluation;
 * ``module.c`` -- the Python module (method table, init); ``glue_model.c``, ``glue_integrator.c``,
   ``glue_math.c`` -- its functions, ``glue.c`` / ``glue.h`` -- the buffer helpers.
@@ -26,9 +28,28 @@ from __future__ import annotations
 
 from .._namespace import public_dir
 from . import _core
-from .layout import OUTPUT_COLUMNS, PAIR_COLUMNS, pack_basis, pack_contacts, pack_controls, pack_model
+from .layout import (
+    OUTPUT_COLUMNS,
+    PAIR_COLUMNS,
+    SWITCH_FRICTION,
+    SWITCH_HELD,
+    pack_basis,
+    pack_contacts,
+    pack_controls,
+    pack_model,
+)
 
-__all__ = ["OUTPUT_COLUMNS", "PAIR_COLUMNS", "core", "pack_basis", "pack_contacts", "pack_controls", "pack_model"]
+__all__ = [
+    "OUTPUT_COLUMNS",
+    "PAIR_COLUMNS",
+    "SWITCH_FRICTION",
+    "SWITCH_HELD",
+    "core",
+    "pack_basis",
+    "pack_contacts",
+    "pack_controls",
+    "pack_model",
+]
 
 core = _core
 

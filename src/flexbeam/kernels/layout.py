@@ -58,6 +58,9 @@ OUTPUT_COLUMNS = (
 )  # fmt: skip
 #: columns per contact pair of the kernels' ``outputs`` (``FB_PAIR_COLS`` in C)
 PAIR_COLUMNS = ("gap", "normal_velocity", "contact_force", "contact_position")
+#: the rules of the switches the compiled stepper takes inside a phase (``coef[0]`` of ``core.advance``,
+#: ``kernels/src/switching.c``): CCFM's Coulomb switches (friction_switch.c), CCM's contact on one pair (held_switch.c)
+SWITCH_FRICTION, SWITCH_HELD = 1.0, 2.0
 
 
 def pack_model(

@@ -20,6 +20,7 @@ from ..parameters.case import Case
 from ..results.records import ContactEvent
 from . import coulomb, stick_start
 from .impulse import Jump, impulse_jump
+from .switches import KernelSwitches
 
 #: steps per (estimated) contact duration at least: a contact phase's step is bounded by t_c / CONTACT_STEPS
 CONTACT_STEPS = 8
@@ -42,7 +43,7 @@ ALL_EVENTS = (EventKind.IMPACT, EventKind.SEPARATION, EventKind.RELEASE)
 
 
 @dataclass
-class ImpactMethod:
+class ImpactMethod(KernelSwitches):
     """Base of CCFM, CCM and IMM: the phases, the impact events and the transitions back to free flight.
 
     A phase says, pair by pair, whether the pair is free, under its law or held by its constraint
@@ -117,7 +118,7 @@ class ImpactMethod:
         steps = [r.time_scale / CONTACT_STEPS for r in young]
         until = max((r.onset + RESTING_DURATIONS * r.time_scale for r in young), default=math.inf)
         if self.baumgarte[0] > 0.0 and any(m == ContactMode.CONSTRAINT for m in modes):
-            steps.append(HELD_STEPS / self.baumgarte[0])  # (with a young contact beside: the smaller, to the end)
+            steps.append(self.held_step())  # (with a young contact beside: the smaller, to the end)
             until = math.inf
         rough = friction is not None and np.count_nonzero(friction) > 0  # (np.any costs 5 us a phase)
         events = ALL_EVENTS + FRICTION_EVENTS if rough else ALL_EVENTS
@@ -349,18 +350,9 @@ class ImpactMethod:
         friction = coulomb.grouped(self.system, t, y, friction, phase.modes)
         return self.phase(phase.modes, phase.parameters, phase.records, friction), y
 
-    def friction_switched(self, phase: Phase, pair: int, row: np.ndarray) -> Phase:
-        """``phase`` with pair ``pair``'s friction row switched to ``row`` by the stepper (a stop or the end of a
-        stick that :meth:`transition` would have decided the same way: :meth:`kernel_switches`).  The phase
-        :meth:`phase` would build: the same modes and records give the same name, step bound and sample step, and a
-        stick or slip row keeps the friction events watched."""
-        return phase.with_friction_row(pair, row)
-
-    def kernel_switches(self) -> np.ndarray | None:
-        """What the compiled stepper needs to take this method's friction switches itself (``coef`` of
-        ``kernels/src/friction_switch.c``), or None where :meth:`transition` takes them all: CCFM's, see
-        :meth:`flexbeam.methods.ccfm.CCFM.kernel_switches`."""
-        return None
+    def held_step(self) -> float:
+        """The step bound of a phase with a held pair: HELD_STEPS / alpha (:meth:`phase`), inf without Baumgarte."""
+        return HELD_STEPS / self.baumgarte[0] if self.baumgarte[0] > 0.0 else math.inf
 
     def settled(self, phase: Phase, t: float, y: np.ndarray) -> tuple[Phase, np.ndarray]:
         """The phase and state after a friction switch at (t, y): as they are (CCFM's law pairs);

@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..integrate.phases import ContactMode, Phase
+from ..kernels import SWITCH_FRICTION
 from . import coulomb, stick_start
 from .base import ImpactMethod
 
@@ -46,10 +47,10 @@ class CCFM(ImpactMethod):
         return self.phase(modes, params, records, coulomb.grouped(self.system, t, y, friction)), y
 
     def kernel_switches(self) -> np.ndarray | None:
-        """[band, REST_SPEED, mu_k per pair, mu_s per pair] with Coulomb friction at some pair: the compiled stepper
-        takes a stop or the end of a stick itself where :meth:`transition` would decide it alone -- pairs under their
-        laws, at most one sticking (``kernels/src/friction_switch.c``: the same rows from the same numbers, so the
-        run is the same to the bit) -- and saves the phase loop's round trip.  The band is
+        """[SWITCH_FRICTION, band, REST_SPEED, mu_k per pair, mu_s per pair] with Coulomb friction at some pair: the
+        compiled stepper takes a stop or the end of a stick itself where :meth:`transition` would decide it alone --
+        pairs under their laws, at most one sticking (``kernels/src/friction_switch.c``: the same rows from the same
+        numbers, so the run is the same to the bit) -- and saves the phase loop's round trip.  The band is
         :func:`flexbeam.methods.stick_start.band`, the stick test's; None without friction or with Threlfall's
         law."""
         pairs = self.system.contact.pairs
@@ -58,4 +59,4 @@ class CCFM(ImpactMethod):
         band = stick_start.band(self.case.solver.fast_rtol)
         mu_k = [p.friction if p.frictional else 0.0 for p in pairs]
         mu_s = [p.friction_static if p.frictional else 0.0 for p in pairs]
-        return np.array([band, coulomb.REST_SPEED, *mu_k, *mu_s], float)
+        return np.array([SWITCH_FRICTION, band, coulomb.REST_SPEED, *mu_k, *mu_s], float)

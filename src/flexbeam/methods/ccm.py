@@ -33,7 +33,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..integrate.phases import ContactMode, Phase
+from ..integrate.loop import Switch
+from ..integrate.phases import ContactMode, EventKind, Phase
+from ..kernels import SWITCH_HELD
 from .held_friction import HeldFriction
 
 
@@ -62,3 +64,45 @@ class CCM(HeldFriction):
             rec.velocity_after = self.gap_event(t, jump.y, k)[1]
             modes[k], records[k] = ContactMode.NONE, None
         return self.held_phase(phase, t, jump.y, modes, records, [k for k in pairs if k in held])
+
+    # the contacts the compiled stepper takes itself ---------------------------------------------------------------
+    def switch_coef(self, phase: Phase) -> np.ndarray | None:
+        """Without Coulomb friction at any pair, the compiled stepper takes a single pair's contact itself where
+        :meth:`transition` would decide it alone (``kernels/src/held_switch.c``: its e = 0 onset with the Python
+        map's bits, the held test as :meth:`held_set`'s, its release), and saves the phase loop's round trip:
+        [SWITCH_HELD, grazing_speed, gap_tolerance, simultaneity, the contacts left under solver.max_contacts, the
+        free and the held phase's step bounds, the first step] (the stepper puts in its own bounds and first step);
+        with friction the friction switches' (none: :meth:`kernel_switches`)."""
+        if self.rough:
+            return super().switch_coef(phase)
+        left = self.case.solver.max_contacts - len(self.contacts)
+        return np.array([SWITCH_HELD, self.grazing_speed, self.gap_tolerance, self.simultaneity, left, np.inf,
+                         self.held_step(), np.nan])  # fmt: skip
+
+    def switched_phase(self, phase: Phase, switch: Switch) -> Phase:
+        if switch.event not in (EventKind.IMPACT, EventKind.RELEASE):
+            return super().switched_phase(phase, switch)
+        if switch.event == EventKind.RELEASE or not switch.row[0]:
+            return self.free_phase()
+        modes = list(phase.modes)
+        modes[switch.pair] = ContactMode.CONSTRAINT
+        return self.phase(modes, phase.parameters, phase.records)
+
+    def kernel_switched(self, phase: Phase, switch: Switch) -> tuple[Phase, np.ndarray]:
+        """A release: the record ends (:meth:`end_contact`).  An onset: the e = 0 jump again (the compiled map the
+        kernel took, the same bits), its record logged, and the pair held or -- its multiplier pulling at once --
+        its record ended there (as :meth:`on_impact`)."""
+        if switch.event not in (EventKind.IMPACT, EventKind.RELEASE):
+            return super().kernel_switched(phase, switch)
+        t, k = switch.t, switch.pair
+        if switch.event == EventKind.RELEASE:
+            return self.end_contact(phase, k, t, switch.y), switch.y
+        jump = self.held_impact(phase, t, switch.y, [k], 0.0)
+        (rec,) = self.log_jump(t, jump, [k])
+        modes, records = list(phase.modes), list(phase.records)
+        if switch.row[0]:
+            modes[k], records[k] = ContactMode.CONSTRAINT, rec
+        else:
+            rec.end = t
+            rec.velocity_after = self.gap_event(t, jump.y, k)[1]
+        return self.phase(modes, phase.parameters, records), jump.y

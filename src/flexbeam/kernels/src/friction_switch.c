@@ -1,10 +1,7 @@
-/* Coulomb's switches of a CCFM phase taken in place (issue 28): fb_advance, and at each stop or end of a stick that
- * methods/coulomb.py and methods/stick_start.py would decide alone -- a phase of pairs under their laws, at most one
- * of them sticking -- the pair's new friction row written into the control buffer and the phase started again from
- * the event, as flexbeam.integrate.modal.ModalStepper.advance starts a phase: the step the controller took there, a
- * fresh collocation guess, the modal state passed through the stepper's state vector (y = Psi eta, eta = toM y; a
- * diagonal basis: the beam's coordinates and a compliant support's), the phase's effort budget from the event.
- * The rules, from those modules:
+/* Coulomb's switches of a CCFM phase taken in place (issue 28; the loop that takes them: switching.c): at each stop
+ * or end of a stick that methods/coulomb.py and methods/stick_start.py would decide alone -- a phase of pairs under
+ * their laws, at most one of them sticking -- the pair's new friction row written into the control buffer, the phase
+ * started again from the event with the step the controller took there.  The rules, from those modules:
  *
  *   stop of pair k (its slip velocity reached zero): k sticks, row [0, 1, mu_s, 0, 0]; the stick holds if
  *     mu_s F_k - |lambda_t| + band max(|lambda_t|, mu_s F_k) >= 0 with (F, lambda_t) the multipliers of the phase
@@ -16,17 +13,13 @@
  * Anything else returns the event to Python as fb_advance does: another slipping pair within REST_SPEED of a stop
  * (it stops too), a stop beside a sticking pair or a stick's end beside two (the holders and followers of
  * coulomb.grouped), a held pair (CCM's rows), Threlfall's law, a part of the phase that made no step (the phase
- * loop counts those), an event at t_end (the loop ends there), non-finite multipliers.  Each switch taken is a row
- * of `switches` (fb_switch_width(N) doubles): [records written before it, t, the event, the pair, the new row (5),
- * the finished part's steps and node evaluations, the step taken at the event, Ed, W, eta (N), v (N)]; the stepper
- * cuts the phase's records there. */
+ * loop counts those), an event at t_end (the loop ends there), non-finite multipliers.  The switch's row (switching.c)
+ * carries the pair's new friction row. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "phase.h"
-
-int fb_switch_width(int N) { return FB_SWITCH_HEAD + 2 * N; }
 
 /* pair k's friction row [sigma, stick, mu_s, v_rest, s] in the contacts buffer (pack_contacts: 10 floats a pair) */
 static double *friction_row(double *contacts, int k) { return contacts + 3 + 10 * k + 5; }
@@ -48,6 +41,7 @@ static double slip_velocity(const fb_model *m, double t, const double *y, int k,
  * mu_s (S)]. */
 static int decide(const fb_model *m, const double *contacts, size_t nbuf, double t, const double *y, int kind,
                   int pair, const double *coef, double *row) {
+    if (kind < FB_EVENT_STOP || kind > FB_EVENT_UNSTICK_MINUS) return 1;
     int S = m->npairs, others = 0;
     fb_contacts c;
     if (fb_contacts_unpack(&c, m, contacts, nbuf) || nbuf != 3 + 10 * (size_t)S) return 1;
@@ -95,50 +89,10 @@ static int decide(const fb_model *m, const double *contacts, size_t nbuf, double
     return python;
 }
 
-int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, size_t nctrl, double *state,
-                         double t_end, double *records, int capacity, int *nrec, double *info, const double *coef,
-                         double *switches, int cap_switches, int *nswitch) {
-    int N = b->N, S = m->npairs, R = fb_record_size(N, S), width = fb_switch_width(N), code;
-    int nz = fb_nz(m), compliant = fb_compliant(m); /* the state vector [z (nz), z' (nz), (s, s'), Ed, W] */
-    size_t ny = (size_t)fb_state_size(m);
-    *nrec = 0, *nswitch = 0;
-    double *y = malloc(sizeof(double) * ny);
-    if (!y) return ADV_NONFINITE;
-    for (;;) {
-        int n = 0;
-        code = fb_advance(m, b, ctrl, nctrl, state, t_end, records + (size_t)(*nrec) * R, capacity - *nrec, &n, info);
-        *nrec += n;
-        int kind = (int)info[0], pair = (int)info[4];
-        if (code != ADV_EVENT || *nswitch >= cap_switches || info[1] == 0.0 || state[0] >= t_end ||
-            kind < FB_EVENT_STOP || kind > FB_EVENT_UNSTICK_MINUS || !b->diagonal || N != nz + compliant)
-            break;
-        double t = state[0], *eta = state + 5, *v = eta + N, row[5];
-        for (int i = 0; i < N; i++) { /* the stepper's state vector (ModalStepper.from_modal) */
-            double psi = b->Psi[(size_t)i * N + i];
-            int iz = i < nz ? i : 2 * nz, iv = i < nz ? nz + i : 2 * nz + 1; /* the support's s, s' after z' */
-            y[iz] = psi * eta[i], y[iv] = psi * v[i];
-        }
-        y[ny - 2] = state[2], y[ny - 1] = state[3];
-        if (decide(m, ctrl + FB_CTRL_HEAD, nctrl - FB_CTRL_HEAD, t, y, kind, pair, coef, row)) break;
-        double *e = switches + (size_t)(*nswitch) * width;
-        e[0] = *nrec, e[1] = t, e[2] = kind, e[3] = pair;
-        memcpy(e + 4, row, sizeof row);
-        e[9] = info[1], e[10] = info[3], e[11] = info[FB_INFO_STEP], e[12] = state[2], e[13] = state[3];
-        memcpy(e + FB_SWITCH_HEAD, eta, sizeof(double) * 2 * N);
-        (*nswitch)++;
-        /* the next phase as the stepper starts it (ModalStepper.advance): the step taken at the event, no guess */
-        double h = info[FB_INFO_STEP], Ed = state[2], W = state[3];
-        memset(state, 0, sizeof(double) * (size_t)fb_state_buffer_size(N, S));
-        state[0] = t, state[1] = h, state[2] = Ed, state[3] = W;
-        for (int i = 0; i < N; i++) { /* (ModalStepper._put_modal) */
-            double tom = b->toM[(size_t)i * N + i];
-            int iz = i < nz ? i : 2 * nz, iv = i < nz ? nz + i : 2 * nz + 1;
-            state[5 + i] = tom * y[iz], state[5 + N + i] = tom * y[iv];
-        }
-        memset(info, 0, sizeof(double) * FB_INFO_SIZE);
-        info[FB_INFO_T0] = t;
-        memcpy(friction_row(ctrl + FB_CTRL_HEAD, pair), row, sizeof row);
-    }
-    free(y);
-    return code;
+int fb_friction_switch(const fb_model *m, double *ctrl, size_t nctrl, const double *state, const double *info,
+                       double *y, int kind, int pair, double *coef, double *row, double *h) {
+    if (decide(m, ctrl + FB_CTRL_HEAD, nctrl - FB_CTRL_HEAD, state[0], y, kind, pair, coef, row)) return 1;
+    memcpy(friction_row(ctrl + FB_CTRL_HEAD, pair), row, sizeof(double) * 5);
+    *h = info[FB_INFO_STEP]; /* (the step the controller took: a stick's residual slip decays over it, modal.py) */
+    return 0;
 }

@@ -4,9 +4,19 @@
 #include "glue.h"
 #include "phase.h"
 
+/* the length a switching rule's coef must have (switching.c): [FB_SWITCH_FRICTION, band, REST_SPEED, mu_k (S), mu_s
+ * (S)] or [FB_SWITCH_HELD, 7 numbers] (held_switch.c); 0 for anything else */
+static size_t coef_size(const double *coef, size_t n, int S) {
+    if (n < 1) return 1;
+    if (coef[0] == FB_SWITCH_FRICTION) return 3 + 2 * (size_t)S;
+    if (coef[0] == FB_SWITCH_HELD) return 8;
+    return 0;
+}
+
 /* advance(model, basis, ctrl, state, t_end, records, info[, coef, switches]) -> (code, nrec, nswitch): a phase's step
- * loop (fb_advance); with coef and switches, CCFM's friction switches taken in place (friction_switch.c: ctrl's
- * friction rows updated, each switch a row of `switches`, switch_width(N) floats) */
+ * loop (fb_advance); with coef and switches, the switches of coef[0]'s rule taken in place (switching.c: CCFM's
+ * friction switches, CCM's onsets and releases on one pair; ctrl updated, each switch a row of `switches`,
+ * switch_width(N) floats) */
 PyObject *py_advance(PyObject *self, PyObject *args) {
     PyObject *om, *ob, *oc, *os, *orec, *oi, *ocoef = NULL, *osw = NULL;
     double t_end;
@@ -18,12 +28,13 @@ PyObject *py_advance(PyObject *self, PyObject *args) {
     int switching = ocoef != NULL && osw != NULL;
     if (get_buf(om, &b[0], 0, "model") || get_buf(ob, &b[1], 0, "basis") || get_buf(oc, &b[2], 1, "ctrl") ||
         get_buf(os, &b[3], 1, "state") || get_buf(orec, &b[4], 1, "records") || get_buf(oi, &b[5], 1, "info") ||
-        (switching && (get_buf(ocoef, &b[6], 0, "coef") || get_buf(osw, &b[7], 1, "switches"))) ||
+        (switching && (get_buf(ocoef, &b[6], 1, "coef") || get_buf(osw, &b[7], 1, "switches"))) ||
         model_from(&b[0], &m) || basis_from(&b[1], &bs))
         goto fail;
     int R = fb_record_size(bs.N, m.npairs), width = fb_switch_width(bs.N);
     if (LEN(b[3]) != (size_t)fb_state_buffer_size(bs.N, m.npairs) || LEN(b[4]) % R || LEN(b[5]) < FB_INFO_SIZE ||
-        bs.N > FB_MAXN || (switching && (LEN(b[6]) != 2 + 2 * (size_t)m.npairs || LEN(b[7]) % width))) {
+        bs.N > FB_MAXN ||
+        (switching && (LEN(b[6]) != coef_size(PTR(b[6]), LEN(b[6]), m.npairs) || LEN(b[7]) % width))) {
         PyErr_SetString(PyExc_ValueError, "advance: array sizes do not match");
         goto fail;
     }

@@ -35,11 +35,21 @@ enum { FB_REJECT_ERROR, FB_REJECT_BALANCE, FB_REJECT_COLLOCATION, FB_REJECT_EVEN
 int fb_jump_storm(const fb_phase *ph, const fb_work *w, double t, double *xprev, int *have_x, double *info);
 int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t nctrl, double *state, double t_end,
                double *records, int capacity, int *nrec, double *info);
-/* fb_advance with a CCFM phase's Coulomb switches taken in place (friction_switch.c) */
+/* fb_advance with a phase's switches taken in place (switching.c): its rows' width, the rules (coef[0]) */
 #define FB_SWITCH_HEAD 14
+enum { FB_SWITCH_FRICTION = 1, FB_SWITCH_HELD = 2 };
 int fb_switch_width(int N);
+/* A rule: at the event (kind, pair) at y (t = state[0]), 0 with ctrl switched for the next phase, row (5) for the
+ * switch's record, y moved by a jump if any, and h the next phase's first step; 1 (nothing changed) where Python
+ * decides.  coef: the rule's own (after coef[0]; a rule may count down in it). */
+typedef int (*fb_switch_rule)(const fb_model *m, double *ctrl, size_t nctrl, const double *state, const double *info,
+                              double *y, int kind, int pair, double *coef, double *row, double *h);
+int fb_friction_switch(const fb_model *m, double *ctrl, size_t nctrl, const double *state, const double *info,
+                       double *y, int kind, int pair, double *coef, double *row, double *h);
+int fb_held_switch(const fb_model *m, double *ctrl, size_t nctrl, const double *state, const double *info, double *y,
+                   int kind, int pair, double *coef, double *row, double *h);
 int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, size_t nctrl, double *state,
-                         double t_end, double *records, int capacity, int *nrec, double *info, const double *coef,
+                         double t_end, double *records, int capacity, int *nrec, double *info, double *coef,
                          double *switches, int cap_switches, int *nswitch);
 double fb_dense_layout(const fb_phase *ph, const double *rec, double t, double *eta, double *v, double *y);
 int fb_dense_eval(const fb_model *m, const fb_basis *b, const double *records, int nrec, const double *times,
