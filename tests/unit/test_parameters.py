@@ -19,6 +19,20 @@ def test_every_builtin_case_round_trips_through_toml(tmp_path):
         assert fb.load_case(path) == case
 
 
+def test_a_dumped_case_takes_the_obstacles_tables_the_usage_guide_appends(tmp_path):
+    """``flexbeam cases show seed-experiment > my.toml``, then docs/usage.md's ``[[obstacles]]`` block appended: the
+    dump wrote ``obstacles = []``, which TOML does not let a later ``[[obstacles]]`` extend ("Cannot mutate immutable
+    namespace"), so the documented way to add a stop failed with a message pointing at the user's block."""
+    block = (
+        '\n[[obstacles]]\nkind = "sphere"\nradius = 0.01\ncentre = [0.585, 0.0265]\n'
+        '\n[obstacles.contact]\nside = "above"\n'
+    )
+    path = tmp_path / "my.toml"
+    path.write_text(dump_case(fb.load_case("seed-experiment")) + block)
+    case = fb.load_case(path)
+    assert len(case.obstacles) == 1 and case.obstacles[0].centre == (0.585, 0.0265)
+
+
 def test_overrides_change_the_named_fields():
     case = fb.load_case(
         "seed-experiment",

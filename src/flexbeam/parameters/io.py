@@ -354,9 +354,16 @@ def parse_overrides(items: list[str]) -> dict[str, Any]:
 
 
 def dump_case(case: Case) -> str:
-    """TOML text of a case that :func:`load_case` reads back to an equal case."""
+    """TOML text of a case that :func:`load_case` reads back to an equal case.  Empty lists are left out (their
+    fields' default): TOML's ``obstacles = []`` would forbid the ``[[obstacles]]`` tables a user appends to the
+    dumped case (docs/usage.md's way to add a stop)."""
     import tomli_w
 
-    data = case.model_dump(mode="json", exclude_none=True)
+    data = _without_empty_lists(case.model_dump(mode="json", exclude_none=True))
     head = {k: data.pop(k) for k in ("name", "description")}
     return tomli_w.dumps({**head, **data}, multiline_strings=True)
+
+
+def _without_empty_lists(data: dict) -> dict:
+    """``data`` (a dumped case's tables) without its empty lists, in its tables at any depth."""
+    return {k: _without_empty_lists(v) if isinstance(v, dict) else v for k, v in data.items() if v != []}
