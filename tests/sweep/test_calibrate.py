@@ -198,6 +198,30 @@ def test_an_obstacles_field_is_fitted_by_its_index():
             lambda: fb.calibrate("seed-experiment", fit=["contact.stiffness"], features={"peak_force": 0.0}),
             r"--features peak_force: must be > 0 N",
         ),
+        # a role or a feature given twice: the last one won (the velocity column fitted as a force: "success")
+        (lambda: parse_columns("time=t,force=F,force=v"), "--columns: the role force is given twice"),
+        (lambda: parse_columns("time=t,force=t"), "--columns: the column 't' is given for both time and force"),
+        (lambda: parse_features("peak_force=584,peak_force=600"), "--features: peak_force is given twice"),
+        # a run that ends inside the first contact: its "peak" was the force at t_end, fitted to 584 N ("success")
+        (
+            lambda: fb.calibrate(
+                "seed-experiment",
+                fit=["contact.stiffness"],
+                features={"peak_force": 584.0},
+                overrides={"solver.t_end": 1e-5},
+            ),
+            r"solver.t_end: 1e-05 s ends inside the first contact \(from 0 s\), whose end --features peak_force read",
+        ),  # fmt: skip
+        (
+            lambda: fb.calibrate(
+                "seed-experiment",
+                fit=["contact.stiffness"],
+                features={"peak_force": 584.0},
+                overrides={"solver.t_end": 1e-5},
+                method="fem",
+            ),
+            r"solver.t_end: 1e-05 s ends inside the first contact",
+        ),  # fmt: skip
         # CCM has no contact law: its stiffness and restitution move nothing, and the fit read "success", nfev 1
         (
             lambda: fb.calibrate(
@@ -249,3 +273,23 @@ def test_imm_restitution_fits_the_closed_form_of_its_impulse():
     P0 = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 2e-3}), "imm").contacts[0].impulse
     fit = fb.calibrate("seed-experiment", fit=["contact.restitution"], features={"impulse": 0.06}, method="imm")
     assert fit.values[0] == pytest.approx((1.0 + e0) * 0.06 / P0 - 1.0, abs=1e-6)
+
+
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        # a spreadsheet's UTF-8 byte-order mark: "no time column (columns: \ufefft, F)"
+        ("\ufefft,F\n0,0\n1e-6,1\n2e-6,2\n", None),
+        # a force column of NaN: "the time column ... must increase strictly" named the wrong column
+        ("t,F\n0,nan\n1e-6,nan\n2e-6,nan\n", "fewer than two rows of .* have a finite number in each of 't', 'F'"),
+    ],
+)
+def test_measured_files_read_as_written(tmp_path, text, match):
+    data = tmp_path / "m.csv"
+    data.write_text(text, encoding="utf-8")
+    if match is None:
+        m = read_measured(data, {"time": "t", "force": "F"})
+        assert m.time.tolist() == [0.0, 1e-6, 2e-6] and m.force.tolist() == [0.0, 1.0, 2.0]
+    else:
+        with pytest.raises(ParameterError, match=match):
+            read_measured(data, {"time": "t", "force": "F"})

@@ -55,6 +55,11 @@ def parse_columns(text: str | None) -> dict[str, str]:
             raise ParameterError(f"--columns: expected ROLE=COLUMN,... (got '{item}')")
         if role not in ROLES:
             raise ParameterError(f"--columns: unknown role '{role}'; allowed: {', '.join(ROLES)}{closest(role, ROLES)}")
+        if role in out:  # (the last one won: a second force=... fitted the velocity as a force)
+            raise ParameterError(f"--columns: the role {role} is given twice ('{out[role]}', '{name.strip()}')")
+        if name.strip() in out.values():
+            other = next(r for r, n in out.items() if n == name.strip())
+            raise ParameterError(f"--columns: the column '{name.strip()}' is given for both {other} and {role}")
         out[role] = name.strip()
     return out
 
@@ -70,6 +75,8 @@ def parse_features(text: str | None) -> dict[str, float]:
         v = parse_value(value.strip()) if sep else None
         if not sep or isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
             raise ParameterError(f"--features: expected NAME=NUMBER,... (got '{item}')")
+        if name in out:  # (the last value won, silently)
+            raise ParameterError(f"--features: {name} is given twice ({out[name]:g}, {float(v):g})")
         out[name] = float(v)
     return out
 
@@ -85,7 +92,7 @@ def read_measured(path: str | Path, columns: Mapping[str, str] | None = None) ->
 
     path = Path(path)
     try:
-        with path.open(newline="", encoding="utf-8") as f:
+        with path.open(newline="", encoding="utf-8-sig") as f:  # (a spreadsheet's byte-order mark: not a name)
             rows = [r for r in csv.reader(line for line in f if not line.lstrip().startswith("#")) if r]
     except OSError as exc:
         raise ParameterError(f"data: cannot read '{path}': {exc.strerror}") from None
@@ -133,7 +140,10 @@ def read_measured(path: str | Path, columns: Mapping[str, str] | None = None) ->
         values[role] = np.asarray(col)
     ok = np.all([np.isfinite(v) for v in values.values()], axis=0)
     t = values["time"][ok]
-    if t.size < 2 or np.any(np.diff(t) <= 0):
+    if t.size < 2:  # (a column of NaN emptied every row: the time's order was blamed)
+        names = ", ".join(f"'{header[j]}'" for j in chosen.values())
+        raise ParameterError(f"data: fewer than two rows of '{path}' have a finite number in each of {names}")
+    if np.any(np.diff(t) <= 0):
         raise ParameterError(f"data: the time column of '{path}' must increase strictly")
     return Measured(
         t,

@@ -145,6 +145,12 @@ class ResidualProblem:
             sol = self.simulate(x0)
         if not sol.contacts:
             raise ModelError("calibration: the initial case has no contact within solver.t_end")
+        first = [k for k in self.features if k in FIRST_CONTACT_FEATURES]
+        if first and not math.isfinite(sol.contacts[0].end):  # (its peak was the force at t_end: a fit to nothing)
+            raise ParameterError(
+                f"solver.t_end: {self.case.solver.t_end:g} s ends inside the first contact (from "
+                f"{sol.contacts[0].onset:.6g} s), whose end --features {', '.join(first)} read: raise solver.t_end"
+            )
         for k in self.features:
             if not math.isfinite(float(sol.metrics().get(k, math.nan))):
                 raise ParameterError(
