@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 import flexbeam as fb
@@ -214,6 +215,24 @@ def test_a_switch_takes_true_or_false_only(value):
 def test_true_or_false_still_set_a_switch_and_integers_still_set_a_float():
     case = fb.load_case("seed-experiment", {"contact.anywhere": True, "contact.restitution": 1, "model.modes": 3})
     assert case.contact.anywhere is True and case.contact.restitution == 1.0 and case.model.modes == 3
+
+
+def test_numpys_true_and_false_are_a_switchs_and_no_number():
+    """An override taken from an array's entry: ``np.bool_(True)`` was refused for a switch ("must be true or false
+    (got np.True_)") while numpy's integers and floats set numbers; it sets the switch now (as Python's bool), and is
+    still no number."""
+    case = fb.load_case("seed-experiment", {"contact.anywhere": np.bool_(True), "model.modes": np.int64(3)})
+    assert case.contact.anywhere is True and case.model.modes == 3
+    with pytest.raises(ParameterError, match=r"^contact.friction: must be a number, not true or false"):
+        fb.load_case("seed-experiment", {"contact.friction": np.True_})
+
+
+def test_the_reference_integrators_rtol_stops_at_100_machine_epsilons():
+    """scipy's DOP853 raises an rtol below 100 eps to that itself, with a UserWarning that reached the terminal raw
+    before the run's line: the field now says its range."""
+    with pytest.raises(ParameterError, match=r"^solver.rtol: .*allowed range \[2.22045e-14, 1\)"):
+        fb.load_case("seed-experiment", {"solver.integrator": "reference", "solver.rtol": 1e-16})
+    assert fb.load_case("seed-experiment", {"solver.rtol": 100 * np.finfo(float).eps}).solver.rtol > 0
 
 
 @pytest.mark.parametrize(

@@ -9,6 +9,7 @@ import typing
 from functools import cache
 from typing import Annotated, Any
 
+import numpy as np
 from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, ValidationInfo, field_validator
 
 from ..contact.laws import LAW_NAMES
@@ -37,7 +38,7 @@ def _number_given(value: object) -> None:
     """A ValueError unless ``value`` (or each item of a list or tuple) is a number: pydantic's lax mode read
     ``contact.friction = true`` as a friction coefficient of 1, ``model.modes = true`` as one mode and ``length =
     "0.7"`` as 0.7."""
-    if _has(value, bool):
+    if _has(value, _BOOLS):
         raise ValueError("must be a number, not true or false")
     if _has(value, str):
         raise ValueError("must be a number, not text")
@@ -87,6 +88,10 @@ def _field_kinds(section: type[BaseModel], name: str) -> frozenset[str]:
     return _kinds(field.annotation) if field is not None else frozenset({"number", "bool", "other"})
 
 
+#: true or false: Python's, and numpy's (an override built from an array's entry)
+_BOOLS = (bool, np.bool_)
+
+
 def _has(value: object, kind: type | tuple[type, ...]) -> bool:
     """Is ``value``, or an item of it (a list or tuple), of ``kind``?"""
     return isinstance(value, kind) or (isinstance(value, (list, tuple)) and any(isinstance(v, kind) for v in value))
@@ -108,8 +113,10 @@ class Section(BaseModel):
         kinds = _field_kinds(cls, info.field_name)
         if kinds == {"number"}:
             _number_given(value)
-        elif kinds == {"bool"} and not isinstance(value, bool):
-            raise ValueError("must be true or false")
+        elif kinds == {"bool"}:
+            if not isinstance(value, _BOOLS):
+                raise ValueError("must be true or false")
+            return bool(value)  # (numpy's bool as Python's)
         return value
 
 

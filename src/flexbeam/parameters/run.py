@@ -23,6 +23,9 @@ def _interval_range(value: object) -> object:
 
 #: a spacing of the output samples [s]: finite and > 0
 Interval = Annotated[float, BeforeValidator(_interval_range), Field(gt=0)]
+#: the reference integrator's smallest relative tolerance: 100 machine epsilons, below which scipy's DOP853 raises it
+#: to that itself (with a UserWarning, which reached the user's terminal raw)
+REFERENCE_RTOL_MIN = 100 * 2.0**-52
 
 
 class Initial(Section):
@@ -123,7 +126,9 @@ class Solver(Section):
     )
 
     t_end: Positive = Field(0.1, description="simulated time [s]")
-    rtol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-9, description="relative tolerance")
+    rtol: Annotated[float, Field(ge=REFERENCE_RTOL_MIN, lt=1)] = Field(
+        1e-9, description="relative tolerance of the reference integrator"
+    )
     atol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-12, description="absolute tolerance")
     max_step: Positive | None = Field(None, description="largest step [s] (omitted = automatic)")
     sample_step: Positive = Field(
