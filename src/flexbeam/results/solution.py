@@ -182,7 +182,8 @@ class Solution:
         maxima of its nodal forces (:meth:`~flexbeam.results.arrays.RunSource.nodal_profile`, computed by the
         integrator) that could be the largest -- a smooth peak stands above its sampled value by less than that
         value stands above its lower neighbour -- refined by zooming to PEAK_XTOL.  Its cost is the contact's
-        steps, not the run's.  None when the record has no force history (an IMM impact)."""
+        steps, not the run's.  None when the record has no force history (an IMM impact), or when its force is
+        largest where the run ends inside it, still rising (the FE reference's records say so too)."""
         ev = self._contacts[i]
         assert self.source is not None
         end = ev.end if math.isfinite(ev.end) else self.source.run.t_final
@@ -190,7 +191,7 @@ class Solution:
         if tt.size < 3:
             return None
         idx = interior_maxima(f, start=True)
-        if f.size > 1 and f[-1] > f[-2]:
+        if f.size > 1 and f[-1] > f[-2] and math.isfinite(ev.end):  # (a force still rising at t_end: no peak yet)
             idx.append(f.size - 1)
         if not idx:
             return None
