@@ -446,6 +446,12 @@ def test_compare_without_a_method_is_refused(methods):
     assert_one_line_error(flexbeam("compare", "seed-experiment", "--methods", methods), "--methods", "at least one")
 
 
+def test_compare_refuses_a_method_given_twice():
+    """``--methods ccfm,ccfm`` ran CCFM twice and printed two identical rows (``calibrate --fit`` refuses a field
+    given twice)."""
+    assert_one_line_error(flexbeam("compare", "seed-experiment", "--methods", "ccfm,ccfm"), "--methods", "twice")
+
+
 def test_an_obstacles_exponent_without_a_stiffness_names_its_pair():
     """two-stops' second stop under Hertz theory (no stiffness anywhere) given its own exponent: its field is named."""
     r = flexbeam("run", "two-stops", "--set", "obstacles[0].contact.exponent=1.2")

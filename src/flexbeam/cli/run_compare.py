@@ -77,9 +77,11 @@ def compare(
     chosen = tuple(m.strip() for m in methods.split(",") if m.strip())
     if not chosen:
         raise ParameterError(f"--methods: give at least one method of {', '.join(METHOD_NAMES)} (got {methods!r})")
-    for m in chosen:
+    for i, m in enumerate(chosen):
         if m not in METHOD_NAMES:
             raise ParameterError(f"--methods: unknown method '{m}'; allowed: {', '.join(METHOD_NAMES)}")
+        if m in chosen[:i]:  # (it ran twice, two identical rows)
+            raise ParameterError(f"--methods: {m} is given twice")
     solutions, rows = run_compare(c, out, chosen, lambda m: run_progress(c.solver.t_end, f"{c.name} [{m}]"))
     if json_:
         from ..results.files import jsonable

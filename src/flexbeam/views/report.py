@@ -48,14 +48,16 @@ COMPARE_METHODS = ("ccfm", "ccm", "fem")
 
 def compare_table(solutions: list[Solution], reference: dict) -> list[dict]:
     """One row per method: peaks, duration, contacts and micro-impacts (docs/methods.md, *What one contact is*),
-    wall time and errors against the experiment -- none for a quantity the method does not resolve: IMM's impact is
-    instantaneous (no peak force; its duration of 0 is no measure of the experiment's)."""
+    wall time and errors against the experiment -- None for a quantity the method does not resolve: IMM's impact is
+    instantaneous (no peak force; its duration of 0 is no measure of the experiment's) -- and the run's status (a
+    run that stopped early compares what it computed).  Every row has every key."""
     exp = reference.get("experiment", {})
     rows = []
     for sol in solutions:
         m = sol.metrics()
         row = {
             "method": sol.method,
+            "status": sol.status,
             "peak_force": m["peak_force"],
             "second_peak_force": m["second_peak_force"],
             "contact_duration": m["contact_duration"],
@@ -66,11 +68,8 @@ def compare_table(solutions: list[Solution], reference: dict) -> list[dict]:
         }
         for key in ("peak_force", "second_peak_force", "contact_duration"):
             resolved = m[key] == m[key] and not (key == "contact_duration" and m[key] == 0.0)
-            if key in exp and resolved:
-                row[f"{key}_error"] = (m[key] - exp[key]) / exp[key]
-        paper = reference.get(sol.method, {})
-        if "peak_force" in paper:
-            row["paper_peak_force"] = paper["peak_force"]
+            row[f"{key}_error"] = (m[key] - exp[key]) / exp[key] if key in exp and resolved else None
+        row["paper_peak_force"] = reference.get(sol.method, {}).get("peak_force")
         rows.append(row)
     return rows
 
