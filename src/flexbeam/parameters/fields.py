@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+import tomllib
 import types
 import typing
 from functools import cache
@@ -41,7 +42,28 @@ def _number_given(value: object) -> None:
     if _has(value, _BOOLS):
         raise ValueError("must be a number, not true or false")
     if _has(value, str):
+        texts = value if isinstance(value, (list, tuple)) else [value]
+        spelled = next((v for v in texts if isinstance(v, str) and _python_number(v)), None)
+        if spelled is not None:  # ("-.4", "5.e9", "08": numbers to Python, text to TOML, which --set reads)
+            raise ValueError(
+                "must be a number as TOML writes one: a digit on each side of the point, no leading zero (e.g. -0.4, "
+                "5.0e9, 8)"
+            )
         raise ValueError("must be a number, not text")
+
+
+def _python_number(text: str) -> bool:
+    """Does Python's float() read ``text`` as a finite number that TOML does not (``.5``, ``5.e9``, ``08``)?  A
+    number TOML reads, given as text (``length = "0.7"``), is text: quoted."""
+    try:
+        if not math.isfinite(float(text)):
+            return False
+    except ValueError:
+        return False
+    try:
+        return not isinstance(tomllib.loads(f"v = {text}")["v"], (int, float))
+    except tomllib.TOMLDecodeError:
+        return True
 
 
 def Bounded(lo: float, hi: float):  # noqa: N802 - a type
