@@ -293,3 +293,36 @@ def test_measured_files_read_as_written(tmp_path, text, match):
     else:
         with pytest.raises(ParameterError, match=match):
             read_measured(data, {"time": "t", "force": "F"})
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"time": [0.0, 2e-6, 1e-6], "force": [0.0, 1.0, 2.0]}, r"data: the time must increase strictly"),
+        ({"time": [0.0, 1e-6, 2e-6], "force": [0.0, np.nan, 2.0]}, r"data: the force holds a value that is no finite"),
+        ({"time": [0.0, 1e-6, 2e-6], "force": [0.0, 1.0]}, r"data: the force has 2 values, the time 3"),
+        ({"time": [0.0, 1e-6, 2e-6]}, r"data: a measurement needs a force or a velocity history"),
+        ({"time": ["a", "b"], "force": [0.0, 1.0]}, r"data: the time must be an array of numbers"),
+    ],
+)
+def test_measurements_built_in_python_are_checked_as_a_files(kwargs, match):
+    """A :class:`Measured` passed to ``fb.calibrate`` skipped every check of ``read_measured``: unsorted times were
+    fitted, a NaN said "the force column of '' has no positive value", lengths that differ raised a bare IndexError,
+    no channel "need at least one array to concatenate" (found by exploratory testing)."""
+    from flexbeam.calibrate import Measured
+
+    with pytest.raises(ParameterError, match=match):
+        Measured(**{k: np.array(v) if k != "time" or not isinstance(v[0], str) else v for k, v in kwargs.items()})
+
+
+def test_numpy_numbers_are_features_and_the_budget_is_checked():
+    """``features={"peak_force": np.int64(584)}`` was refused ("must be a finite number") where np.float64 passed;
+    ``max_nfev=0`` reached scipy's ValueError raw."""
+    from flexbeam.calibrate.fitting import _check_budget, _check_measurements
+
+    _check_measurements(None, {"peak_force": np.int64(584), "contact_duration": np.float32(6e-4)}, "ccfm", 0.1)
+    for bad in (0, -1, 2.5, True):
+        with pytest.raises(ParameterError, match=r"^max_nfev: must be a whole number >= 1"):
+            _check_budget(bad)
+    with pytest.raises(ParameterError, match=r"^max_nfev"):
+        fb.calibrate("seed-experiment", fit=["contact.stiffness"], features={"peak_force": 584.0}, max_nfev=0)

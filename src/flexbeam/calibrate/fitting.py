@@ -8,6 +8,7 @@ scaled variables to the fields (:func:`_uncertainty`) and gathers the :class:`Ca
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -70,6 +71,7 @@ def calibrate(
     from ..registry import check_method
 
     check_method(method)
+    _check_budget(max_nfev)
     base = load_case(case, dict(overrides) if overrides else None)
     params = [Parameter.of(base, k) for k in parse_fit(fit)]
     measured = data if isinstance(data, Measured) or data is None else read_measured(data, columns)
@@ -97,7 +99,7 @@ def _check_measurements(
             raise ParameterError(
                 f"--features {k}: unknown feature; allowed: {', '.join(FEATURES)}{closest(k, FEATURES)}"
             )
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):  # (as parse_features)
+        if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(v):  # (as parse_features)
             raise ParameterError(f"--features {k}: must be a finite number (got {v!r})")
         if k in POSITIVE_FEATURES and not v > 0.0:  # a force, a duration or an impulse measured
             raise ParameterError(f"--features {k}: must be > 0 {METRICS[k].units} (got {v:g})")
@@ -107,6 +109,12 @@ def _check_measurements(
         raise ParameterError("method: 'imm' has no contact-force history to fit (use ccfm or ccm)")
     if not 0.0 < align_fraction < 1.0:
         raise ParameterError(f"align_fraction: must be in (0, 1) (got {align_fraction})")
+
+
+def _check_budget(max_nfev: object) -> None:
+    """max_nfev a whole number >= 1 (scipy's ValueError reached the caller raw)."""
+    if isinstance(max_nfev, bool) or not isinstance(max_nfev, numbers.Integral) or max_nfev < 1:
+        raise ParameterError(f"max_nfev: must be a whole number >= 1 (got {max_nfev!r})")
 
 
 def _least_squares(problem: ResidualProblem, max_nfev: int) -> tuple[OptimizeResult, np.ndarray]:

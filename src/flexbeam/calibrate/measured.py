@@ -25,12 +25,36 @@ ROLES = {
 
 @dataclass
 class Measured:
-    """Measured histories: time [s], contact force [N] and/or normal velocity [m/s]."""
+    """Measured histories: time [s], contact force [N] and/or normal velocity [m/s].  Checked as built (from a file
+    by :func:`read_measured` or in Python): arrays of finite numbers of the time's length, a force or a velocity,
+    the time increasing strictly -- one-line :class:`~flexbeam.errors.ParameterError` naming ``data``."""
 
     time: np.ndarray
     force: np.ndarray | None = None
     velocity: np.ndarray | None = None
     source: str = ""
+
+    def __post_init__(self) -> None:
+        import numpy as np
+
+        where = f" of '{self.source}'" if self.source else ""
+        for name in ("time", "force", "velocity"):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            try:
+                arr = np.array(value, dtype=float)
+            except (TypeError, ValueError):
+                raise ParameterError(f"data: the {name}{where} must be an array of numbers") from None
+            if arr.ndim != 1 or (name != "time" and arr.size != self.time.size):
+                raise ParameterError(f"data: the {name}{where} has {arr.size} values, the time {self.time.size}")
+            if not np.all(np.isfinite(arr)):
+                raise ParameterError(f"data: the {name}{where} holds a value that is no finite number")
+            setattr(self, name, arr)
+        if self.force is None and self.velocity is None:
+            raise ParameterError(f"data: a measurement{where} needs a force or a velocity history")
+        if self.time.size < 2 or np.any(np.diff(self.time) <= 0):
+            raise ParameterError(f"data: the time{where} must increase strictly (at least two samples)")
 
     @property
     def channels(self) -> list[str]:
@@ -143,8 +167,6 @@ def read_measured(path: str | Path, columns: Mapping[str, str] | None = None) ->
     if t.size < 2:  # (a column of NaN emptied every row: the time's order was blamed)
         names = ", ".join(f"'{header[j]}'" for j in chosen.values())
         raise ParameterError(f"data: fewer than two rows of '{path}' have a finite number in each of {names}")
-    if np.any(np.diff(t) <= 0):
-        raise ParameterError(f"data: the time column of '{path}' must increase strictly")
     return Measured(
         t,
         values["force"][ok] if "force" in values else None,
