@@ -201,3 +201,13 @@ def test_the_drive_work_names_the_moving_base():
     # 2.3e-6 of it; bound 1e-4 of it, 40x), without it the energies change by all of W
     drift = float(np.max(np.abs(ds["total_energy"] - ds["total_energy"][0])))
     assert drift <= 1e-4 * float(np.max(np.abs(ds["drive_work"])))
+
+
+@pytest.mark.parametrize("chunk", [0, -1, 100.5, True])
+def test_a_time_chunk_that_is_no_whole_number_of_samples_is_refused(tmp_path, chunk):
+    """``to_netcdf(time_chunk=0)`` (or -1, 100.5) was accepted and wrote chunks of one sample: an 18x larger file
+    (found by exploratory testing).  Nothing is written."""
+    sol = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 1e-3}))
+    with pytest.raises(ValueError, match=r"^time_chunk: must be a whole number of samples >= 1"):
+        sol.to_netcdf(tmp_path / "r.nc", time_chunk=chunk)
+    assert list(tmp_path.iterdir()) == []

@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+import flexbeam as fb
 from flexbeam.results.counts import MICRO_IMPACT_FRACTION, classify_contacts
 
 #: a relative change of one value in its last bits, and far more (float64 round-off is 1.1e-16)
@@ -129,3 +130,9 @@ def test_a_perturbation_changes_the_counts_only_of_a_record_that_straddles_its_t
         assert any(abs(j - threshold) <= 3 * BITS * threshold for p, j in zip(pairs, impulses) if p == k), (
             "a count changed although no record was at its threshold"
         )
+
+
+def test_a_run_stopped_after_one_contact_says_contact():
+    """'stopped at t = ... s after 1 contacts' (found by exploratory testing)."""
+    sol = fb.simulate(fb.load_case("seed-experiment", {"solver.max_contacts": 1}), "imm")
+    assert sol.status == "max-contacts" and " after 1 contact (solver.max_contacts)" in sol.message, sol.message

@@ -231,7 +231,7 @@ class ImpactMethod(KernelSwitches):
             )
             raise Stop(
                 "max-contacts",
-                f"stopped at t = {t:.9g} s after {len(self.contacts)} contacts "
+                f"stopped at t = {t:.9g} s after {len(self.contacts)} contact{'' if len(self.contacts) == 1 else 's'} "
                 f"(solver.max_contacts); the contacts accumulate (Zeno-like){advice}",
             )
         if velocity_before is None:

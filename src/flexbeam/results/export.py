@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -250,6 +251,8 @@ def to_netcdf(sol: Solution, path: str | Path, time_chunk: int = TIME_CHUNK, qua
     result: 11.3 MB uncompressed, 5.6 MB deflated, 2.7 MB rounded to the integrator's precision.
     """
     path = Path(path)
+    if isinstance(time_chunk, bool) or not isinstance(time_chunk, numbers.Integral) or time_chunk < 1:
+        raise ValueError(f"time_chunk: must be a whole number of samples >= 1 (got {time_chunk!r})")
     if getattr(sol, "file", None) is not None:  # streamed: the file is written already (its chunks as written)
         if not quantize and _quantized(sol.stored_file()):
             raise ValueError(
