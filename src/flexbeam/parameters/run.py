@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import BeforeValidator, Field, model_validator
+from pydantic import AfterValidator, BeforeValidator, Field, model_validator
 
 from .fields import MAX_RATE, Angle, Bounded, Finite, NonNegative, Positive, Rate, Section
 
@@ -26,6 +26,14 @@ Interval = Annotated[float, BeforeValidator(_interval_range), Field(gt=0)]
 #: the reference integrator's smallest relative tolerance: 100 machine epsilons, below which scipy's DOP853 raises it
 #: to that itself (with a UserWarning, which reached the user's terminal raw)
 REFERENCE_RTOL_MIN = 100 * 2.0**-52
+
+
+def _reference_rtol(value: float) -> float:
+    if value < REFERENCE_RTOL_MIN:
+        raise ValueError(
+            f"must be >= {REFERENCE_RTOL_MIN:.3g} (100 machine epsilons, the reference integrator's finest)"
+        )
+    return value
 
 
 class Initial(Section):
@@ -126,7 +134,7 @@ class Solver(Section):
     )
 
     t_end: Positive = Field(0.1, description="simulated time [s]")
-    rtol: Annotated[float, Field(ge=REFERENCE_RTOL_MIN, lt=1)] = Field(
+    rtol: Annotated[float, Field(gt=0, lt=1), AfterValidator(_reference_rtol)] = Field(
         1e-9, description="relative tolerance of the reference integrator"
     )
     atol: Annotated[float, Field(gt=0, lt=1)] = Field(1e-12, description="absolute tolerance")

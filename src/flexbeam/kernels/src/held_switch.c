@@ -48,7 +48,7 @@ static int onset(const fb_model *m, double *ctrl, size_t nctrl, const double *st
     int S = m->npairs, N = fb_nfull(m);
     size_t ny = (size_t)fb_state_size(m), nbuf = nctrl - FB_CTRL_HEAD;
     if (coef[LEFT] < 1.0 || N >= HELD_MAXZ) return 1;
-    if (gap_at(m, k, t, y, J).rate >= -coef[GRAZING]) return 1; /* (a grazing touch: its acceleration decides) */
+    if (!(gap_at(m, k, t, y, J).rate < -coef[GRAZING])) return 1; /* (grazing: its acceleration decides; NaN) */
     for (int l = 0; l < S; l++) {
         if (l == k) continue;
         fb_gap g = gap_at(m, l, t, y, J);
