@@ -446,6 +446,13 @@ def test_compare_without_a_method_is_refused(methods):
     assert_one_line_error(flexbeam("compare", "seed-experiment", "--methods", methods), "--methods", "at least one")
 
 
+def test_compare_refuses_a_case_the_fe_reference_does_not_model_before_running():
+    """``compare seed-experiment-calibrated`` ran CCFM and CCM, then refused the FE's compliant support (exit 2, no
+    table, the runs lost); refused first now, naming the methods that can compare it."""
+    r = flexbeam("compare", "seed-experiment-calibrated")
+    assert_one_line_error(r, "obstacle.support", "FE reference", "--methods ccfm,ccm")
+
+
 def test_compare_refuses_a_method_given_twice():
     """``--methods ccfm,ccfm`` ran CCFM twice and printed two identical rows (``calibrate --fit`` refuses a field
     given twice)."""

@@ -198,6 +198,13 @@ def test_an_obstacles_field_is_fitted_by_its_index():
             lambda: fb.calibrate("seed-experiment", fit=["contact.stiffness"], features={"peak_force": 0.0}),
             r"--features peak_force: must be > 0 N",
         ),
+        # --columns without a file to name the columns of: ignored
+        (
+            lambda: fb.calibrate(
+                "seed-experiment", fit=["contact.stiffness"], features={"peak_force": 584.0}, columns={"time": "t"}
+            ),
+            "--columns: it names the columns of a --data file, and none is given",
+        ),  # fmt: skip
         # a role or a feature given twice: the last one won (the velocity column fitted as a force: "success")
         (lambda: parse_columns("time=t,force=F,force=v"), "--columns: the role force is given twice"),
         (lambda: parse_columns("time=t,force=t"), "--columns: the column 't' is given for both time and force"),

@@ -74,6 +74,8 @@ def calibrate(
     _check_budget(max_nfev)
     base = load_case(case, dict(overrides) if overrides else None)
     params = [Parameter.of(base, k) for k in parse_fit(fit)]
+    if columns and (data is None or isinstance(data, Measured)):  # (ignored before)
+        raise ParameterError("--columns: it names the columns of a --data file, and none is given")
     measured = data if isinstance(data, Measured) or data is None else read_measured(data, columns)
     feats = dict(features or {})
     _check_measurements(measured, feats, method, align_fraction)

@@ -19,7 +19,8 @@ from ..errors import ParameterError
 class atomic_path:
     """Context manager giving a temporary path next to ``path``, renamed on success.  A ``path`` that is a directory
     is refused before anything is written (IsADirectoryError, as ``open`` would); the temporary file is removed
-    whenever the file does not arrive, the rename's own failure included (it was left beside the target)."""
+    whenever the file does not arrive, the rename's own failure included (it was left beside the target), and so are
+    the directories made for it that are still empty (an interrupted streamed run left its empty --out)."""
 
     def __init__(self, path: Path) -> None:
         self.path = Path(path)
@@ -27,6 +28,7 @@ class atomic_path:
     def __enter__(self) -> Path:
         if self.path.is_dir():
             raise IsADirectoryError(errno.EISDIR, "is a directory, not a file to write", str(self.path))
+        self.made = [p for p in (self.path.parent, *self.path.parent.parents) if not os.path.lexists(p)]
         self.path.parent.mkdir(parents=True, exist_ok=True)
         fd, name = tempfile.mkstemp(prefix=f".{self.path.name}.", dir=self.path.parent)
         os.close(fd)
@@ -35,7 +37,7 @@ class atomic_path:
 
     def __exit__(self, exc_type, exc, tb) -> None:
         if exc_type is not None:
-            self.tmp.unlink(missing_ok=True)
+            self._undo()
             return
         try:
             umask = os.umask(0)
@@ -43,8 +45,14 @@ class atomic_path:
             os.chmod(self.tmp, 0o666 & ~umask)
             os.replace(self.tmp, self.path)
         except BaseException:
-            self.tmp.unlink(missing_ok=True)
+            self._undo()
             raise
+
+    def _undo(self) -> None:
+        self.tmp.unlink(missing_ok=True)
+        for d in self.made:  # (innermost first; one that holds anything stays)
+            with contextlib.suppress(OSError):
+                d.rmdir()
 
 
 def check_output_dir(path: str | Path, field: str, files: tuple[str, ...] = (), dirs: tuple[str, ...] = ()) -> Path:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from ..errors import ParameterError
 from ..parameters.case import Case
 from ..parameters.references import reference_for
 from ..results.files import jsonable, write_text_atomic
@@ -107,9 +108,18 @@ def markdown_table(rows: list[dict], reference: dict) -> str:
 def compare(
     case: Case, out: str | Path | None = None, methods: tuple[str, ...] = COMPARE_METHODS, progress_factory=None
 ) -> tuple[list[Solution], list[dict]]:
-    """Run ``case`` with several methods; write overlaid figures and the comparison table."""
+    """Run ``case`` with several methods; write overlaid figures and the comparison table.  A case the FE reference
+    does not model is refused before any method runs (it was after the others' runs), with the methods that can."""
     from ..simulation import simulate
 
+    if "fem" in methods:
+        from ..fem.simulate import check_supported
+
+        others = ",".join(m for m in methods if m != "fem")
+        try:
+            check_supported(case)
+        except ParameterError as exc:
+            raise ParameterError(f"{exc}{f'; compare the others: --methods {others}' if others else ''}") from None
     solutions = []
     for method in methods:
         progress = progress_factory(method) if progress_factory else None
