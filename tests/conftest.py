@@ -17,6 +17,16 @@ settings.register_profile("explore", derandomize=False, max_examples=500, print_
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "deterministic"))
 
 
+#: the seed beam's hub turned at a prescribed rate (theta given, not in the state), from just above the stop
+PRESCRIBED_SPIN = {
+    "drive.kind": "prescribed",
+    "drive.profile": "constant-rate",
+    "drive.spin_rate": -1.0,
+    "initial.kind": "state",
+    "initial.angle": 1e-3,
+}
+
+
 def seed(**overrides):
     """The seed case with dotted overrides given as keyword args with '__' for '.'."""
     return fb.load_case("seed-experiment", {k.replace("__", "."): v for k, v in overrides.items()})

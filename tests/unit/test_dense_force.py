@@ -11,6 +11,7 @@ import pytest
 
 import flexbeam as fb
 from flexbeam.results.dense_force import compiled_pair_force
+from tests.conftest import PRESCRIBED_SPIN
 
 
 @pytest.mark.parametrize(
@@ -22,13 +23,7 @@ from flexbeam.results.dense_force import compiled_pair_force
         (  # a hub turning at a prescribed rate: the outputs take the forces from the equations
             "seed-experiment",
             "ccfm",
-            {
-                "drive.kind": "prescribed",
-                "drive.profile": "constant-rate",
-                "drive.spin_rate": -1.0,
-                "initial.kind": "state",
-                "initial.angle": 1e-3,
-            },
+            PRESCRIBED_SPIN,
         ),  # fmt: skip
         ("tip-wall", "ccm", {}),
     ],

@@ -61,9 +61,9 @@ def test_the_kernels_onsets_and_releases_give_the_phase_loops_run(monkeypatch, n
 
 
 def test_an_onset_whose_pair_pulls_at_once_is_taken_too(monkeypatch) -> None:
-    """The seed case's chatter has onsets after which the pair is held, and (the multiplier pulling at once) onsets
-    whose record ends at the onset: both kinds are taken in the kernel (row[0] 1 and 0), each record as the phase
-    loop writes it (above)."""
+    """tip-wall's chatter has onsets after which the pair is held, and (the multiplier pulling at once) onsets whose
+    record ends at the onset: both kinds are taken in the kernel (row[0] 1 and 0), each record as the phase loop
+    writes it (above)."""
     taken = run("tip-wall", monkeypatch, kernel=True)[3]
     onsets = [s for s in taken if s.event == EventKind.IMPACT]
     assert {s.row[0] for s in onsets} == {0.0, 1.0}
