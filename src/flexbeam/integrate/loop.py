@@ -91,7 +91,9 @@ class Switch:
     phase before it (its dense output, steps and node evaluations), the time and state there (before any jump), the
     event and the rule's row -- CCFM's Coulomb friction (a stop, the end of a stick: the pair's friction row after it,
     a stop's stick or the slip it broke into at once), or CCM's contact on one pair (an onset, row[0] 1 if the pair
-    is then held; a release)."""
+    is then held; a release).  ``record``: what the rule computed for the contact record -- an onset's jump [P, v-,
+    v+, T-, T+, 0], a release's [0, 0, 0, 0, 0, delta'] (zeros for a friction switch) --, ``y_after`` the state after
+    the switch (y moved by an onset's jump)."""
 
     t: float
     y: np.ndarray
@@ -101,6 +103,8 @@ class Switch:
     dense: DenseOutput | None
     steps: int
     nfev: int
+    record: np.ndarray
+    y_after: np.ndarray
 
 
 @dataclass

@@ -54,9 +54,9 @@ _EVENT_BITS = {EventKind.IMPACT: 1, EventKind.SEPARATION: 2, EventKind.RELEASE: 
 #: largest multiplier so far, which scales its multiplier's error): the steps are those of one long call, whatever
 #: the block size
 BLOCK_RECORDS = 16384
-#: the floats of a switch's row before its modal state (FB_SWITCH_HEAD, ``kernels/src/phase.h``), and the
-#: switches one kernel call takes at most before it hands the event to the phase loop
-_SWITCH_HEAD, _SWITCH_ROWS = 14, 64
+#: a switch row's floats before its modal state and the rule's record values after it (FB_SWITCH_HEAD, _JUMP:
+#: ``kernels/src/phase.h``), and the switches one kernel call takes at most before it hands the event on
+_SWITCH_HEAD, _SWITCH_JUMP, _SWITCH_ROWS = 14, 6, 64
 
 
 @dataclass(frozen=True)
@@ -324,15 +324,15 @@ class ModalStepper:
         return coef
 
     def _split(self, dense: ModalDense, switches: list) -> tuple[list[Switch], ModalDense | None]:
-        """The phase's records cut where the kernel switched friction: a :class:`~flexbeam.integrate.loop.Switch`
-        for the part before each switch, and the dense output of the part after the last."""
+        """The phase's records cut where the kernel switched: a :class:`~flexbeam.integrate.loop.Switch` for the
+        part before each switch, and the dense output of the part after the last."""
         N, records, parts, a = self.basis.N, dense.records, [], 0
         for start, row, steps, nfev in switches:
-            eta, v = row[_SWITCH_HEAD : _SWITCH_HEAD + N], row[_SWITCH_HEAD + N : _SWITCH_HEAD + 2 * N]
-            y = self.from_modal(eta, v, row[12], row[13])
+            mid, tail = _SWITCH_HEAD + 2 * N, _SWITCH_HEAD + 2 * N + _SWITCH_JUMP  # (eta, v) before mid
+            y = self.from_modal(row[_SWITCH_HEAD : _SWITCH_HEAD + N], row[_SWITCH_HEAD + N : mid], row[12], row[13])
             part = ModalDense(self, records[a:start]) if start > a else None
-            event = _EVENT_KINDS[int(row[2])]
-            parts.append(Switch(float(row[1]), y, event, int(row[3]), row[4:9].copy(), part, steps, nfev))
+            parts.append(Switch(float(row[1]), y, _EVENT_KINDS[int(row[2])], int(row[3]), row[4:9].copy(), part,
+                                steps, nfev, row[mid:tail].copy(), row[tail:].copy()))  # fmt: skip
             a = start
         return parts, ModalDense(self, records[a:]) if records.shape[0] > a else None
 
@@ -356,7 +356,7 @@ class ModalStepper:
             if handed.coef is None:
                 code, nrec, _ = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info)
             else:
-                rows = np.empty((_SWITCH_ROWS, _SWITCH_HEAD + 2 * self.basis.N))
+                rows = np.empty((_SWITCH_ROWS, _SWITCH_HEAD + 4 * self.basis.N + _SWITCH_JUMP + 2))
                 code, nrec, nsw = core.advance(self.kernel, self.basis_buffer, ctrl, state, float(t_end), records, info,
                                                handed.coef, rows)  # fmt: skip
                 handed.switched += [(handed.total + int(r[0]), r) for r in rows[:nsw]]

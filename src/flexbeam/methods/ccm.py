@@ -37,6 +37,7 @@ from ..integrate.loop import Switch
 from ..integrate.phases import ContactMode, EventKind, Phase
 from ..kernels import SWITCH_HELD
 from .held_friction import HeldFriction
+from .impulse import Jump
 
 
 class CCM(HeldFriction):
@@ -89,15 +90,19 @@ class CCM(HeldFriction):
         return self.phase(modes, phase.parameters, phase.records)
 
     def kernel_switched(self, phase: Phase, switch: Switch) -> tuple[Phase, np.ndarray]:
-        """A release: the record ends (:meth:`end_contact`).  An onset: the e = 0 jump again (the compiled map the
-        kernel took, the same bits), its record logged, and the pair held or -- its multiplier pulling at once --
-        its record ended there (as :meth:`on_impact`)."""
+        """A release: the record ends (as :meth:`end_contact`, with the gap's rate the kernel took there).  An onset:
+        the e = 0 jump the kernel took (the compiled map, :meth:`held_impact`'s bits: P, v-, v+, T-, T+ and y+ in
+        the switch's record), its record logged, and the pair held or -- its multiplier pulling at once -- its record
+        ended there (as :meth:`on_impact`)."""
         if switch.event not in (EventKind.IMPACT, EventKind.RELEASE):
             return super().kernel_switched(phase, switch)
-        t, k = switch.t, switch.pair
+        t, k, out = switch.t, switch.pair, switch.record
         if switch.event == EventKind.RELEASE:
-            return self.end_contact(phase, k, t, switch.y), switch.y
-        jump = self.held_impact(phase, t, switch.y, [k], 0.0)
+            rec = phase.records[k]
+            if rec is not None:
+                rec.end, rec.velocity_after = t, float(out[5])
+            return self.without(phase, k), switch.y
+        jump = Jump(switch.y_after, out[0:1], out[1:2], out[2:3], float(out[3]), float(out[4]))
         (rec,) = self.log_jump(t, jump, [k])
         modes, records = list(phase.modes), list(phase.records)
         if switch.row[0]:

@@ -13,9 +13,10 @@
  *
  * Nothing else: a phase with law forces or friction rows, a prescribed angle or a compliant support (their jumps are
  * the Python map's), non-zero law parameters in the buffer; and the method offers the rule only where no pair has
- * Coulomb friction (a frictional pair's onset is Stronge's impulse).  The switch's row is [held (onsets), 0, 0, 0, 0]; the
- * phase loop builds the contact records and phases from it with the method's own code
- * (flexbeam.methods.ccm.CCM.kernel_switched).  coef: [grazing speed, gap tolerance, simultaneity, contacts left
+ * Coulomb friction (a frictional pair's onset is Stronge's impulse).  The switch's row is [held (onsets), 0, 0, 0, 0],
+ * its record values [P, v-, v+, T-, T+, 0] (an onset's jump, impulse_map.c's out) or [0, 0, 0, 0, 0, delta'] (a
+ * release: the gap's rate at the event, as core.gap gives it); the phase loop builds the contact records and phases
+ * from them with the method's own code (flexbeam.methods.ccm.CCM.kernel_switched).  coef: [grazing speed, gap tolerance, simultaneity, contacts left
  * (counted down here), the free and the held phase's step bounds, FIRST_STEP]. */
 #include <string.h>
 
@@ -71,6 +72,7 @@ static int onset(const fb_model *m, double *ctrl, size_t nctrl, const double *st
         *h = state[1];
     }
     row[0] = held;
+    memcpy(row + FB_SWITCH_ROW, out, sizeof out);
     coef[LEFT] -= 1.0;
     return 0;
 }
@@ -82,9 +84,12 @@ int fb_held_switch(const fb_model *m, double *ctrl, size_t nctrl, const double *
     double *buf = ctrl + FB_CTRL_HEAD;
     if (nctrl - FB_CTRL_HEAD != 3 + ROW * (size_t)S || m->ngiven || fb_compliant(m)) return 1;
     if (kind == FB_EVENT_RELEASE && modes_are(buf, S, pair, FB_MODE_CONSTRAINT, FB_MODE_NONE)) {
+        double J[HELD_MAXZ];
+        if (fb_nfull(m) >= HELD_MAXZ) return 1;
         buf[3 + ROW * pair] = FB_MODE_NONE;
         ctrl[2] = coef[FREE_STEP];
         *h = state[1];
+        row[FB_SWITCH_ROW + 5] = gap_at(m, pair, state[0], y, J).rate;
         return 0;
     }
     if (kind == FB_EVENT_IMPACT && modes_are(buf, S, pair, FB_MODE_NONE, FB_MODE_NONE))

@@ -37,11 +37,14 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
                double *records, int capacity, int *nrec, double *info);
 /* fb_advance with a phase's switches taken in place (switching.c): its rows' width, the rules (coef[0]) */
 #define FB_SWITCH_HEAD 14
+#define FB_SWITCH_ROW 5  /* the rule's row */
+#define FB_SWITCH_JUMP 6 /* ... and what an onset's jump or a release gives the contact record (held_switch.c) */
 enum { FB_SWITCH_FRICTION = 1, FB_SWITCH_HELD = 2 };
 int fb_switch_width(int N);
-/* A rule: at the event (kind, pair) at y (t = state[0]), 0 with ctrl switched for the next phase, row (5) for the
- * switch's record, y moved by a jump if any, and h the next phase's first step; 1 (nothing changed) where Python
- * decides.  coef: the rule's own (after coef[0]; a rule may count down in it). */
+/* A rule: at the event (kind, pair) at y (t = state[0]), 0 with ctrl switched for the next phase, row
+ * (FB_SWITCH_ROW + FB_SWITCH_JUMP, zeroed by the caller) for the switch's record, y moved by a jump if any, and h the
+ * next phase's first step; 1 (nothing changed) where Python decides.  coef: the rule's own (after coef[0]; a rule
+ * may count down in it). */
 typedef int (*fb_switch_rule)(const fb_model *m, double *ctrl, size_t nctrl, const double *state, const double *info,
                               double *y, int kind, int pair, double *coef, double *row, double *h);
 int fb_friction_switch(const fb_model *m, double *ctrl, size_t nctrl, const double *state, const double *info,

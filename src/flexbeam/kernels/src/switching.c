@@ -11,15 +11,15 @@
  * Anything the rules do not cover returns the event to Python as fb_advance does, and so do a part of the phase that
  * made no step (the phase loop counts those), an event at t_end (the loop ends there) and a basis that is not
  * diagonal.  Each switch taken is a row of `switches` (fb_switch_width(N) doubles): [records written before it, t,
- * the event, the pair, the rule's row (5), the finished part's steps and node evaluations, the step taken at the
- * event, Ed, W, eta (N), v (N)] -- the state at the event, before any jump; the stepper cuts the phase's records
- * there. */
+ * the event, the pair, the rule's row (FB_SWITCH_ROW), the finished part's steps and node evaluations, the step taken
+ * at the event, Ed, W, eta (N), v (N), the rule's record values (FB_SWITCH_JUMP), y (2 N + 2)] -- eta, v the state at
+ * the event, before any jump, y the stepper's state vector after it; the stepper cuts the phase's records there. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "phase.h"
 
-int fb_switch_width(int N) { return FB_SWITCH_HEAD + 2 * N; }
+int fb_switch_width(int N) { return FB_SWITCH_HEAD + 4 * N + FB_SWITCH_JUMP + 2; }
 
 int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, size_t nctrl, double *state,
                          double t_end, double *records, int capacity, int *nrec, double *info, double *coef,
@@ -39,7 +39,7 @@ int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, siz
         if (code != ADV_EVENT || *nswitch >= cap_switches || info[1] == 0.0 || state[0] >= t_end || !b->diagonal ||
             N != nz + compliant)
             break;
-        double t = state[0], *eta = state + 5, *v = eta + N, row[5] = {0.0, 0.0, 0.0, 0.0, 0.0}, h;
+        double t = state[0], *eta = state + 5, *v = eta + N, row[FB_SWITCH_ROW + FB_SWITCH_JUMP] = {0.0}, h;
         for (int i = 0; i < N; i++) { /* the stepper's state vector (ModalStepper.from_modal) */
             double psi = b->Psi[(size_t)i * N + i];
             int iz = i < nz ? i : 2 * nz, iv = i < nz ? nz + i : 2 * nz + 1; /* the support's s, s' after z' */
@@ -50,9 +50,11 @@ int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, siz
         if (rule(m, ctrl, nctrl, state, info, y, kind, pair, coef + 1, row, &h)) break;
         double *e = switches + (size_t)(*nswitch) * width;
         e[0] = *nrec, e[1] = t, e[2] = kind, e[3] = pair;
-        memcpy(e + 4, row, sizeof row);
+        memcpy(e + 4, row, sizeof(double) * FB_SWITCH_ROW);
         e[9] = info[1], e[10] = info[3], e[11] = info[FB_INFO_STEP], e[12] = state[2], e[13] = state[3];
         memcpy(e + FB_SWITCH_HEAD, eta, sizeof(double) * 2 * N);
+        memcpy(e + FB_SWITCH_HEAD + 2 * N, row + FB_SWITCH_ROW, sizeof(double) * FB_SWITCH_JUMP);
+        memcpy(e + FB_SWITCH_HEAD + 2 * N + FB_SWITCH_JUMP, y, sizeof(double) * ny); /* ny = 2 N + 2 here */
         (*nswitch)++;
         memset(state, 0, sizeof(double) * (size_t)fb_state_buffer_size(N, S));
         state[0] = t, state[1] = h, state[2] = y[ny - 2], state[3] = y[ny - 1];
