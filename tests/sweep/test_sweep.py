@@ -226,6 +226,52 @@ def test_killed_worker_and_interrupt_lose_no_finished_case_and_resume_equals_uni
     assert resumed.attrs["missing"] == 0
 
 
+def test_a_cases_run_time_warning_is_said_once_naming_the_case_and_kept_in_the_result(cluster, tmp_path):
+    """The FE reference at fem.time_step = 1e-4 and 2e-4 s resolves the seed's 0.61 ms contact in 6.1 and 3.1 steps
+    and warns of it (tests/fem/test_contact.py): the warning arises on the worker, in another process.  Before, the
+    worker printed it raw (two lines, per case, into the worker's own output: an external cluster's log) and the
+    sweep's user saw nothing of it.  Now: one line per case naming its key, the result's ``warning`` and the summary's
+    ``warned``."""
+    store = tmp_path / "s"
+    sets = ["--set", "solver.t_end=1e-3", "--set", "fem.elements=8"]
+    proc = _cli("sweep", "seed-experiment", "-m", "fem", *sets, "--grid", "fem.time_step=1e-4,2e-4",
+                "--scheduler", cluster[0], "--out", str(store), "--json")  # fmt: skip
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == 0, err
+    assert json.loads(out)["warned"] == 2
+    import xarray as xr
+
+    with xr.open_dataset(store / "result.nc") as ds:
+        warned = dict(zip(ds["case_key"].values, ds["warning"].values))
+    said = [line for line in err.splitlines() if line.startswith("warning: case ")]
+    assert len(said) == 2 and "FlexbeamWarning" not in err
+    for key, text in warned.items():
+        assert text.startswith("fem.time_step: ") and "fewer than 20" in text
+        assert f"warning: case {key}: {text}" in said
+
+
+def test_the_client_says_the_first_cases_warnings_and_counts_the_rest():
+    from flexbeam.errors import FlexbeamWarning
+    from flexbeam.sweep.case_warnings import SAID, Teller, recorded
+
+    record: dict = {}
+    with recorded(record):
+        import warnings
+
+        for text in ("a\nb", "a\nb", "c"):  # distinct ones, on one line each
+            warnings.warn(text, FlexbeamWarning, stacklevel=1)
+        warnings.warn("d", RuntimeWarning, stacklevel=1)
+    assert record["warnings"] == ["a b", "c", "RuntimeWarning: d"]
+    teller = Teller()
+    with pytest.warns(FlexbeamWarning) as said:
+        for i in range(SAID + 3):
+            teller.say(f"k{i}", {"warnings": ["x"]} if i != 1 else {})
+        teller.close()
+    texts = [str(w.message) for w in said]
+    assert texts[:SAID] == [f"case k{i}: x" for i in range(SAID + 1) if i != 1]
+    assert texts[SAID:] == ["2 more cases warned: the result's variable 'warning' holds every case's warnings"]
+
+
 def test_a_failing_case_is_recorded_and_the_others_finish(cluster, tmp_path):
     # 'release' without gravity raises inside the simulation; 'impact' runs
     grid = {"initial.kind": ["impact", "release"], "contact.restitution": [0.6, 0.8]}

@@ -21,13 +21,13 @@ import os
 import threading
 import time
 import uuid
-import warnings
 from collections import deque
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from ..errors import ParameterError, SlenderBeamWarning
+from ..errors import ParameterError
 from ..parameters.io import validate_case
+from .case_warnings import Teller, recorded, validating
 from .interrupt import ctrl_c_flag
 from .planning import Point
 from .scheduler import check_scheduler
@@ -60,20 +60,19 @@ def run_case(data: dict[str, Any], method: str, histories: bool = False) -> tupl
     try:
         from ..simulation import simulate
 
-        with warnings.catch_warnings():  # (planning said it once, as one line; the worker printed it again, raw)
-            warnings.simplefilter("ignore", SlenderBeamWarning)
+        with validating():
             case = validate_case(data)
-        sol = simulate(case, method)
-        metrics = sol.metrics()
-        for name in ("method", "status", "message"):
-            metrics.pop(name, None)
-        record.update(
-            status=sol.status, message=sol.message, metrics=metrics, error=sol.message if sol.status == "failed" else ""
-        )
-        if histories:  # as result.nc holds a run: its outputs rounded to the run's precision
-            from ..results.export import result_dataset
+        with recorded(record):  # (said on the client, naming the case)
+            sol = simulate(case, method)
+            metrics = sol.metrics()
+            for name in ("method", "status", "message"):
+                metrics.pop(name, None)
+            error = sol.message if sol.status == "failed" else ""
+            record.update(status=sol.status, message=sol.message, metrics=metrics, error=error)
+            if histories:  # as result.nc holds a run: its outputs rounded to the run's precision
+                from ..results.export import result_dataset
 
-            history = result_dataset(sol)
+                history = result_dataset(sol)
     except Exception as exc:  # noqa: BLE001 - recorded, the sweep goes on
         record["error"] = f"{type(exc).__name__}: {exc}"
         record["message"] = record["error"]
@@ -304,7 +303,7 @@ class _Feed:
         self.running: dict[str, tuple[Any, list[Point], bool]] = {}
         self.ac = as_completed(loop=client.loop, with_results=True, raise_errors=False)
         self.keys = (f"flexbeam-batch-{uuid.uuid4().hex[:8]}-{i}" for i in itertools.count())
-        self.seconds, self.cases = 0.0, 0
+        self.seconds, self.cases, self.teller = 0.0, 0, Teller()
 
     def submit(self, points: list[Point], alone: bool = False) -> None:
         items = [(p.key, p.overrides, p.data) for p in points]
@@ -366,6 +365,7 @@ def compute(
             _collect(feed, store, records, lost, tick, hit)
         finally:
             feed.cancel()
+            feed.teller.close()
 
 
 def _collect(feed: _Feed, store: Store | None, records: dict, lost: dict, tick: Callable[[], None], hit: list) -> None:
@@ -381,6 +381,7 @@ def _collect(feed: _Feed, store: Store | None, records: dict, lost: dict, tick: 
                     store.save(record, history)
                 record.pop("case")  # on disk; the result needs status, error and metrics
                 records[p.key] = record
+                feed.teller.say(p.key, record)
                 feed.ran(record)
                 tick()
         elif fut.status == "error" and len(points) > 1:  # lost with its worker: each case again, alone

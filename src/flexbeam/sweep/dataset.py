@@ -61,12 +61,14 @@ def build_dataset(
     arrays = {m: np.full(len(keys), np.nan) for m in names + extra}
     status = np.empty(len(keys), dtype=object)
     error = np.empty(len(keys), dtype=object)
+    warning = np.full(len(keys), "", dtype=object)
     for i, key in enumerate(keys):
         rec = records.get(key)
         if rec is None:
             status[i], error[i] = "missing", lost.get(key, "not computed")
             continue
         status[i], error[i] = str(rec.get("status", "")), str(rec.get("error", "") or "")
+        warning[i] = " | ".join(rec.get("warnings") or [])
         metrics = dict(rec.get("metrics", {}))
         metrics["elapsed"] = rec.get("elapsed")
         for m in arrays:
@@ -79,6 +81,11 @@ def build_dataset(
         data_vars[m] = (dims, arr.reshape(shape), {"units": units, "long_name": long_name})
     data_vars["status"] = (dims, status.astype(str).reshape(shape), {"long_name": "Case status"})
     data_vars["error"] = (dims, error.astype(str).reshape(shape), {"long_name": "Error of a failed case"})
+    data_vars["warning"] = (
+        dims,
+        warning.astype(str).reshape(shape),
+        {"long_name": "Warnings of the case's run, one line each, separated by ' | ' (empty: none)"},
+    )
     data_vars["case_key"] = (
         dims,
         np.asarray(keys, dtype=str).reshape(shape),
@@ -133,12 +140,14 @@ def load(store: str | Path) -> xr.Dataset:
 
 def summary(ds: xr.Dataset) -> dict[str, Any]:
     """Counts of a sweep result and its failed cases with their swept values and errors; ``incomplete`` counts the
-    cases that ended before solver.t_end without failing (status ``max-contacts``: reported as complete before)."""
+    cases that ended before solver.t_end without failing (status ``max-contacts``: reported as complete before),
+    ``warned`` those whose run warned (their variable ``warning``)."""
     import numpy as np
 
     names = ("cases", "computed", "reused", "failed", "missing")
     info: dict[str, Any] = {k: int(ds.attrs.get(k, 0)) for k in names}
     info["incomplete"] = int(np.isin(ds["status"].values, INCOMPLETE).sum())
+    info["warned"] = int(np.count_nonzero(ds["warning"].values != "")) if "warning" in ds else 0
     swept = json.loads(ds.attrs["swept"])
     status = ds["status"].values
     failures = []
