@@ -150,7 +150,7 @@ def _blas_threads_in_a_batch() -> tuple[list[int], int]:
     seen: list[int] = []
     original = cluster.run_case
 
-    def probe(data, method, histories=False):
+    def probe(data, method, histories=False, aside=False):
         seen.append(blas())
         return {"status": "success", "metrics": {}}, None
 

@@ -272,6 +272,16 @@ def test_the_client_says_the_first_cases_warnings_and_counts_the_rest():
     assert texts[SAID:] == ["2 more cases warned: the result's variable 'warning' holds every case's warnings"]
 
 
+def test_warnings_are_taken_aside_only_on_a_one_thread_worker_in_another_process(cluster):
+    """``warnings.catch_warnings`` changes the whole process's filters: never in the client's process (an in-process
+    cluster's worker threads would take the client's own warnings, or restore each other's filters) nor outside a
+    Dask worker; on the loopback cluster's single-threaded worker process, yes."""
+    from flexbeam.sweep.case_warnings import exclusive
+
+    assert not exclusive(None) and not exclusive(os.getpid()) and not exclusive(os.getpid() + 1)
+    assert cluster[1].submit(exclusive, os.getpid(), pure=False).result(timeout=30)
+
+
 def test_a_failing_case_is_recorded_and_the_others_finish(cluster, tmp_path):
     # 'release' without gravity raises inside the simulation; 'impact' runs
     grid = {"initial.kind": ["impact", "release"], "contact.restitution": [0.6, 0.8]}

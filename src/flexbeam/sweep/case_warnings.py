@@ -5,12 +5,14 @@ client says them as one :class:`~flexbeam.errors.FlexbeamWarning` each naming th
 :data:`SAID` cases that warned, then how many more did -- and the result keeps every case's in its ``warning``
 variable (:func:`flexbeam.sweep.dataset.build_dataset`).  A worker process printed them raw before, in Python's
 two-line format, once per case: a thousand cases, two thousand lines.  The warnings of a case's validation are the
-planning's, which the client says once (:func:`validating`).
+planning's, which the client says once (:func:`validating`).  Taken aside only where that is safe
+(:func:`exclusive`): elsewhere they go to Python's warning machinery, as any warning does.
 """
 
 from __future__ import annotations
 
 import contextlib
+import os
 import warnings
 from collections.abc import Iterator
 from typing import Any
@@ -21,17 +23,39 @@ from ..errors import FlexbeamWarning
 SAID = 10
 
 
+def exclusive(client_pid: int | None) -> bool:
+    """May a case's warnings be taken aside here?  ``warnings.catch_warnings`` changes the whole process's filters,
+    not one thread's: on a worker of one thread in a process other than the client's (the local cluster's), yes; in
+    the client's own process (``Client(processes=False)``: its warnings are said there anyway) or beside other
+    threads running cases, no."""
+    if client_pid is None or os.getpid() == client_pid:
+        return False
+    try:
+        from distributed import get_worker
+
+        return get_worker().state.nthreads == 1
+    except (ImportError, ValueError, AttributeError):  # (not on a Dask worker)
+        return False
+
+
 @contextlib.contextmanager
-def validating() -> Iterator[None]:
+def validating(aside: bool = True) -> Iterator[None]:
     """A case validated again on its worker: its warnings were the planning's (said once, on the client)."""
+    if not aside:
+        yield
+        return
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", FlexbeamWarning)
         yield
 
 
 @contextlib.contextmanager
-def recorded(record: dict[str, Any]) -> Iterator[None]:
-    """Record the warnings raised inside in ``record["warnings"]`` (also when it raises), none printed."""
+def recorded(record: dict[str, Any], aside: bool = True) -> Iterator[None]:
+    """Record the warnings raised inside in ``record["warnings"]`` (also when it raises), none printed; nothing
+    when not ``aside``."""
+    if not aside:
+        yield
+        return
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:

@@ -27,7 +27,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..parameters.io import validate_case
-from .case_warnings import Teller, recorded, validating
+from .case_warnings import Teller, exclusive, recorded, validating
 from .interrupt import ctrl_c_flag
 from .planning import Point
 from .scheduler import check_scheduler
@@ -36,12 +36,10 @@ from .store import Store
 ProgressFn = Callable[[int, int], None]
 
 
-def run_case(data: dict[str, Any], method: str, histories: bool = False) -> tuple[dict[str, Any], Any]:
-    """Run one case on a worker: ``(record, history Dataset or None)``.
-
-    Every exception is caught and recorded (status ``"error"``): a failing case does
-    not stop the sweep.
-    """
+def run_case(data: dict[str, Any], method: str, histories: bool = False, aside: bool = False) -> tuple[dict, Any]:
+    """Run one case on a worker: ``(record, history Dataset or None)``; ``aside``: its warnings in the record
+    (:mod:`flexbeam.sweep.case_warnings`).  Every exception is caught and recorded (status ``"error"``): a failing
+    case does not stop the sweep."""
     import socket
 
     from ..version import __version__
@@ -60,9 +58,9 @@ def run_case(data: dict[str, Any], method: str, histories: bool = False) -> tupl
     try:
         from ..simulation import simulate
 
-        with validating():
+        with validating(aside):
             case = validate_case(data)
-        with recorded(record):  # (said on the client, naming the case)
+        with recorded(record, aside):  # (said on the client, naming the case)
             sol = simulate(case, method)
             metrics = sol.metrics()
             for name in ("method", "status", "message"):
@@ -91,8 +89,9 @@ IN_FLIGHT = 2
 BatchItem = tuple[str, dict[str, Any], dict[str, Any]]
 
 
-def run_batch(cases: list[BatchItem], method: str, histories: bool = False) -> list[tuple[dict[str, Any], Any]]:
-    """Run a batch of cases one after the other on a worker: ``(record, history or None)`` per case, in order.
+def run_batch(cases: list[BatchItem], method: str, histories: bool = False, client_pid: int | None = None) -> list:
+    """Run a batch of cases one after the other on a worker: ``(record, history or None)`` per case, in order; their
+    warnings in the records where that is safe (:func:`~flexbeam.sweep.case_warnings.exclusive`).
 
     ``cases`` holds ``(key, overrides, validated case)``; each record is :func:`run_case`'s with the case's key,
     overrides and the time it finished.  A case that raises is recorded as such and the next one runs.  BLAS runs
@@ -101,10 +100,10 @@ def run_batch(cases: list[BatchItem], method: str, histories: bool = False) -> l
     """
     from ..threads import single_threaded_blas
 
-    out = []
+    out, aside = [], exclusive(client_pid)
     with single_threaded_blas():
         for key, overrides, data in cases:
-            record, history = run_case(data, method, histories)
+            record, history = run_case(data, method, histories, aside)
             record.update(key=key, overrides=overrides, finished=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
             out.append((record, history))
     return out
@@ -307,7 +306,7 @@ class _Feed:
 
     def submit(self, points: list[Point], alone: bool = False) -> None:
         items = [(p.key, p.overrides, p.data) for p in points]
-        fut = self.client.submit(run_batch, items, self.method, self.histories, key=next(self.keys))
+        fut = self.client.submit(run_batch, items, self.method, self.histories, os.getpid(), key=next(self.keys))
         self.running[fut.key] = (fut, points, alone)
         self.ac.add(fut)
 
