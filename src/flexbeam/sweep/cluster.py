@@ -28,7 +28,7 @@ from typing import Any
 from ..errors import ParameterError
 from ..parameters.io import validate_case
 from .case_warnings import Teller, exclusive, recorded, validating
-from .interrupt import ctrl_c_flag
+from .interrupt import Hit, ctrl_c_flag
 from .planning import Point
 from .scheduler import check_scheduler
 from .store import Store
@@ -367,9 +367,10 @@ def compute(
             feed.teller.close()
 
 
-def _collect(feed: _Feed, store: Store | None, records: dict, lost: dict, tick: Callable[[], None], hit: list) -> None:
-    """File each batch's cases as they arrive (see :func:`compute`); a Ctrl-C recorded in ``hit`` is raised as
-    KeyboardInterrupt between batches, and at the end if the sweep finished meanwhile."""
+def _collect(feed: _Feed, store: Store | None, records: dict, lost: dict, tick: Callable[[], None], hit: Hit) -> None:
+    """File each batch's cases as they arrive (see :func:`compute`); a Ctrl-C or SIGTERM recorded in ``hit`` is
+    raised between batches (:meth:`~flexbeam.sweep.interrupt.Hit.deliver`), and at the end if the sweep finished
+    meanwhile."""
     feed.fill()
     for fut, result in feed.ac:
         _, points, _ = feed.running.pop(fut.key)
@@ -391,8 +392,8 @@ def _collect(feed: _Feed, store: Store | None, records: dict, lost: dict, tick: 
                 lost[p.key] = f"{type(exc).__name__}: {exc}" if exc is not None else fut.status
                 tick()
         del fut, result
-        if hit[0]:
-            raise KeyboardInterrupt
+        if hit:
+            hit.deliver()
         feed.fill()
-    if hit[0]:
-        raise KeyboardInterrupt
+    if hit:
+        hit.deliver()
