@@ -164,6 +164,33 @@ def test_an_interrupted_probe_leaves_nothing(tmp_path, monkeypatch):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_a_refused_sweep_leaves_a_finished_store_as_it_was(tmp_path):
+    """A sweep refused in one line (exit 2) wrote the store first: ``--workers 0`` against a finished store, or a
+    scheduler that cannot be reached, replaced its sweep.json and its result.nc -- by one of "missing" cases for the
+    new grid -- and a fresh --out was left holding both (an exploratory hunt).  ``-w 0`` was even taken (exit 0)
+    when every case was stored already.  Now the workers and the connection come first."""
+
+    def sweep(restitution: str, out: Path, *more: str) -> tuple[int, str, str]:
+        return _cli(["sweep", "seed-experiment", "-g", f"contact.restitution={restitution}", *SHORT, "--out", str(out),
+                     *more])  # fmt: skip
+
+    def files(out: Path) -> dict[str, bytes]:
+        return {str(p.relative_to(out)): p.read_bytes() for p in sorted(out.rglob("*")) if p.is_file()}
+
+    out = tmp_path / "store"
+    assert sweep("0.5,0.6", out, "-w", "1")[0] == 0
+    before = files(out)
+    unreachable = ("--scheduler", "tcp://127.0.0.1:1")  # nothing listens on port 1
+    for grid, more in (("0.5,0.6", ("-w", "0")), ("0.5,0.7", ("-w", "0")), ("0.5,0.7", unreachable)):
+        code, _, stderr = sweep(grid, out, *more)
+        assert code == 2 and len(stderr.splitlines()) == 1, (grid, more, code, stderr)
+        assert stderr.startswith(("error: workers: must be an integer >= 1", "error: scheduler: cannot connect"))
+        assert files(out) == before, (grid, more)
+    fresh = tmp_path / "fresh"  # (the same order for a scheduler that cannot be reached: 10 s of retries)
+    assert sweep("0.5", fresh, "-w", "0")[0] == 2
+    assert not fresh.exists()
+
+
 def test_a_malformed_scheduler_address_is_refused_before_the_store_is_written(tmp_path):
     """``sweep --scheduler foo`` (no port) wrote the store's sweep.json, failed to connect, and then ended in a
     145-line traceback: the failed connection stayed Dask's default client and the store's result.nc, written after

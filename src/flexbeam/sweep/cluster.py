@@ -30,7 +30,7 @@ from ..parameters.io import validate_case
 from .case_warnings import Teller, exclusive, recorded, validating
 from .interrupt import Hit, ctrl_c_flag
 from .planning import Point
-from .scheduler import check_scheduler
+from .scheduler import check_scheduler, check_workers
 from .store import Store
 
 ProgressFn = Callable[[int, int], None]
@@ -266,10 +266,7 @@ def cluster_client(scheduler: Any, workers: int | None) -> Iterator[Any]:
     cluster's (:func:`local_client`, kept for the next sweep)."""
     from dask.distributed import Client
 
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
-        raise ParameterError(f"workers: must be an integer >= 1 (got {workers!r})")
-    if scheduler is not None and workers is not None:
-        raise ParameterError("workers: only for the local cluster (a scheduler has its own workers)")
+    check_workers(scheduler, workers)
     if isinstance(scheduler, Client):
         yield scheduler
         return

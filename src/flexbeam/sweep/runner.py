@@ -7,6 +7,7 @@ writes the Dataset (:func:`_result`) -- also after an interruption.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -18,7 +19,7 @@ from ..parameters.io import load_case
 from .cluster import ProgressFn, cluster_client, compute
 from .dataset import build_dataset
 from .planning import Plan, Point, plan
-from .scheduler import check_scheduler
+from .scheduler import check_scheduler, check_workers
 from .spec import Distribution
 from .store import Store
 
@@ -88,22 +89,27 @@ def sweep(
     if batch_size is not None and (isinstance(batch_size, bool) or not isinstance(batch_size, int) or batch_size < 1):
         raise ParameterError(f"batch_size: must be an integer >= 1 (got {batch_size!r})")
     check_scheduler(scheduler)
+    check_workers(scheduler, workers)
     base = load_case(case, dict(overrides) if overrides else None)
     pl = plan(base, grid, samples, n, seed, method)
     store = Store(out) if out is not None else None
     spec = {**pl.spec, "histories": bool(histories)}
-    if store is not None:
-        store.write_manifest(spec)
     cases = _triage(pl, method, store, histories)
     lost: dict[str, str] = {}
-    if progress is not None:
-        progress(0, len(cases.todo))
-    try:
-        if cases.todo:
-            with cluster_client(scheduler, workers) as client:
+    # the cluster first: a scheduler that cannot be reached is refused before the store is written (its manifest,
+    # the invalid cases, and result.nc -- a finished sweep's was replaced by one of missing cases)
+    with cluster_client(scheduler, workers) if cases.todo else contextlib.nullcontext() as client:
+        if store is not None:
+            store.write_manifest(spec)
+            for key in cases.invalid_keys:
+                store.save(cases.records[key])
+        if progress is not None:
+            progress(0, len(cases.todo))
+        try:
+            if cases.todo:
                 compute(client, cases.todo, method, histories, store, cases.records, lost, progress, batch_size)
-    finally:
-        ds = _result(spec, pl, cases, lost, store)
+        finally:
+            ds = _result(spec, pl, cases, lost, store)
     return ds
 
 
@@ -115,7 +121,11 @@ class _Triage:
     records: dict[str, dict[str, Any]] = field(default_factory=dict)
     todo: list[Point] = field(default_factory=list)
     reused: int = 0
-    invalid: int = 0
+    invalid_keys: list[str] = field(default_factory=list)
+
+    @property
+    def invalid(self) -> int:
+        return len(self.invalid_keys)
 
 
 def _triage(pl: Plan, method: str, store: Store | None, histories: bool) -> _Triage:
@@ -133,11 +143,8 @@ def _triage(pl: Plan, method: str, store: Store | None, histories: bool) -> _Tri
             out.records[p.key] = rec
             out.reused += 1
         elif p.data is None:
-            rec = _invalid_record(p, method)
-            if store is not None:
-                store.save(rec)
-            out.records[p.key] = rec
-            out.invalid += 1
+            out.records[p.key] = _invalid_record(p, method)
+            out.invalid_keys.append(p.key)
         else:
             out.todo.append(p)
     return out
