@@ -400,4 +400,7 @@ def test_bad_input_names_the_field(call, field):
 def test_grid_values_parse_as_toml_and_ranges():
     grid = parse_grid(["contact.law=hertz,flores", "model.modes=1,2", "contact.stiffness=geomspace(1e9,4e9,3)"])
     assert grid["contact.law"] == ["hertz", "flores"] and grid["model.modes"] == [1, 2]
+    # a list field's values: an array's commas do not separate (before: split into '[0.585' and '0.03]', "repeated")
+    lists = parse_grid(["obstacles[0].centre=[0.585, 0.03],[0.585,0.04]", 'contact.law="hertz", "flores"'])
+    assert lists == {"obstacles[0].centre": [[0.585, 0.03], [0.585, 0.04]], "contact.law": ["hertz", "flores"]}
     np.testing.assert_allclose(grid["contact.stiffness"], [1e9, 2e9, 4e9])

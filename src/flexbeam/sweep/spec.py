@@ -81,7 +81,8 @@ class Distribution:
 def parse_grid(items: Sequence[str]) -> dict[str, list[Any]]:
     """``["contact.restitution=0.6,0.8", "model.modes=linspace(2,8,4)"]`` -> dict of value lists.
 
-    Values are comma-separated TOML values, or ``linspace(a, b, n)`` / ``geomspace(a, b, n)``.
+    Values are comma-separated TOML values (an array's own commas, within its brackets, do not separate: a list
+    field's values ``[0.585, 0.03],[0.585, 0.04]``), or ``linspace(a, b, n)`` / ``geomspace(a, b, n)``.
     """
     import numpy as np
 
@@ -108,11 +109,30 @@ def parse_grid(items: Sequence[str]) -> dict[str, list[Any]]:
             space = np.linspace if m.group(1) == "linspace" else np.geomspace
             values: list[Any] = [float(v) for v in space(a, b, int(n))]
         else:
-            values = [parse_value(p.strip()) for p in text.split(",")]
+            values = [parse_value(p.strip()) for p in _top_level(text)]
         if key in grid:
             raise ParameterError(f"--grid {key}: given twice")
         grid[key] = values
     return grid
+
+
+def _top_level(text: str) -> list[str]:
+    """``text`` split at its commas outside brackets and quotes: ``[0.585, 0.03],[0.585, 0.04]`` is two values (a
+    list field's, such as an obstacle's centre), ``"a,b",c`` two."""
+    parts, depth, quote, start = [], 0, "", 0
+    for i, ch in enumerate(text):
+        if quote:
+            quote = "" if ch == quote else quote
+        elif ch in "\"'":
+            quote = ch
+        elif ch in "[{":
+            depth += 1
+        elif ch in "]}":
+            depth -= 1
+        elif ch == "," and depth == 0:
+            parts.append(text[start:i])
+            start = i + 1
+    return [*parts, text[start:]]
 
 
 def parse_samples(items: Sequence[str]) -> dict[str, Distribution]:
