@@ -132,13 +132,15 @@ class MemoryEstimate:
         ways = [f"solver.t_end <= {self.max_t_end:.3g} s" if shorter else "a smaller solver.max_contacts"]
         if self.max_step_bound:
             ways.append("a larger solver.max_step")
+        # the samples' spacing named first where they hold most (output.interval = 1e-300 named solver.t_end)
+        field = self.sample_field if self.samples > self.records + self.segments else "solver.t_end"
         if self.samples > self.records:
-            ways.append(f"a coarser {self.sample_field}")
+            ways.insert(0 if field == self.sample_field else len(ways), f"a coarser {self.sample_field}")
         if self.stream_fits:
             ways.append("stream the run to its file (flexbeam run --stream --out DIR; simulate(case, stream=path))")
         way = "allowed here: " + ", or ".join(ways)
         return (
-            f"solver.t_end: a run of {self.t_end:g} s would hold about {_size(self.total)} in memory ({parts}), more "
+            f"{field}: a run of {self.t_end:g} s would hold about {_size(self.total)} in memory ({parts}), more "
             f"than the limit of {_size(self.limit)} ({self.limit_source}); {way}, or raise solver.memory_limit [B]"
         )
 

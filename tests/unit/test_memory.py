@@ -184,3 +184,15 @@ def test_the_refusal_offers_only_ways_out_that_fit():
     held, streamed = memory.estimate(case, outputs=True), memory.estimate(case, outputs=True, stream=True)
     assert streamed.samples <= held.samples and streamed.total <= held.total <= held.limit
     memory.check(case, outputs=True, stream=True)
+
+
+def test_samples_that_hold_most_name_their_spacing_first():
+    """``output.interval = 1e-300``: the samples hold ~1e290 TB, and the message named solver.t_end (allowed <=
+    1.5e-293 s) with a coarser output.interval last (an exploratory hunt).  The field that spaces the samples leads
+    where they hold most; solver.t_end where the dense output and the phases do."""
+    fine = memory.MemoryEstimate(0.1, 1e7, 3e7, 1e20, 1e10, "the default", sample_field="output.interval")
+    assert fine.message().startswith("output.interval: a run of 0.1 s would hold about ")
+    assert "allowed here: a coarser output.interval, or solver.t_end <= " in fine.message()
+    long = memory.MemoryEstimate(1e9, 1e17, 3e7, 1e16, 1e10, "the default", sample_field="output.interval")
+    assert long.message().startswith("solver.t_end: a run of 1e+09 s")
+    assert "allowed here: solver.t_end <= " in long.message()
