@@ -293,6 +293,7 @@ def provenance(
         "method": method.name,
         "integrator": integrator,
         "frame": system.beam.frame,
+        "beam_length": case.beam.length,
         "rtol": case.solver.fast_rtol if exponential else case.solver.rtol,
         "atol": case.solver.fast_atol if exponential else case.solver.atol,
         "contact_law": system.law.name,
