@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 import platform
 from collections.abc import Callable
 from pathlib import Path
@@ -120,6 +121,8 @@ def simulate(
     finite-element reference (``method = "fem"``).
     """
     check_method(method)  # an unknown method is named before anything else
+    if stream is not None and (not isinstance(stream, (str, os.PathLike)) or not str(stream).strip()):
+        raise ParameterError(f"stream: the path of the result file to write (got {stream!r})")
     if stream is not None and method == "fem":
         raise ParameterError(
             "--stream: the finite-element reference (method 'fem') keeps its outputs in memory; run it without "

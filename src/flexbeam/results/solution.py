@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from . import export, summary
+from .arguments import nonnegative, positive_or_none, record_index
 from .counts import ContactCounts
 from .episodes import Episode, find_episodes, is_free
 from .files import file_stamp
@@ -147,6 +148,7 @@ class Solution:
     def contact(self, i: int) -> ContactEvent:
         """Contact record ``i``; a run's impulse, energies before/after and peak are found on its dense output
         the first time it is asked for (a jump's impulse and energies are logged at the jump)."""
+        i = record_index(i, len(self._contacts))
         ev = self._contacts[i]
         if i in self._completed or self.source is None:
             return ev
@@ -272,8 +274,7 @@ class Solution:
 
     def force_peaks(self, contact: int = 0, threshold: float = 0.05) -> list[tuple[float, float]]:
         """Local maxima (time [s], force [N]) of one contact's force above ``threshold`` x peak."""
-        if contact >= len(self._contacts):
-            return []
+        contact, threshold = record_index(contact, len(self._contacts)), nonnegative(threshold, "threshold")
         if contact not in self._peaks:
             self._peaks[contact] = self._all_peaks(contact)
         peaks = self._peaks[contact]
@@ -318,7 +319,7 @@ class Solution:
         """A free beam's collision episodes: G's velocity and spin before and after, their counts and apparent
         restitution (:func:`~flexbeam.results.episodes.find_episodes`; ``gap``: the free flight that ends an
         episode [s], default one period of the first free-free bending mode); [] for a beam on a joint."""
-        return find_episodes(self, self.contact_counts(), gap)
+        return find_episodes(self, self.contact_counts(), positive_or_none(gap, "gap"))
 
     def poincare(self, phase: float = 0.0, discard: int = 0) -> dict[str, np.ndarray]:
         """The Poincaré section of a run on a moving base (:func:`~flexbeam.results.poincare.poincare`)."""

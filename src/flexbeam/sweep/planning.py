@@ -89,6 +89,10 @@ def plan(
 
     if (grid is None) == (samples is None):
         raise ParameterError("sweep: give either grid (--grid) or samples (--sample), not both or neither")
+    for name, given in (("grid", grid), ("samples", samples)):
+        if given is not None and not isinstance(given, Mapping):
+            raise ParameterError(f"{name}: a mapping of dotted field names, e.g. {{'contact.restitution': ...}} "
+                                 f"(got a {type(given).__name__})")  # fmt: skip
     base = case.model_dump(mode="json", exclude_none=True)
     spec: dict[str, Any] = {"method": method, "base_case": dump_case(case)}
     points: list[Point] = []

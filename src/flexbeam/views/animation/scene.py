@@ -141,7 +141,12 @@ def _window(t: np.ndarray, window: tuple[float, float] | None) -> tuple[float, f
     """The animated interval (t0, t1) [s]: ``window`` (default: all of ``t``), checked to lie within the simulated
     time up to a relative 1e-9 and clipped to it."""
     ta, tb = float(t[0]), float(t[-1])
-    t0, t1 = (ta, tb) if window is None else (float(window[0]), float(window[1]))
+    try:  # (a string "0,1e-4" is the CLI's --window: here two numbers)
+        t0, t1 = (ta, tb) if window is None else (float(window[0]), float(window[1]))
+        if window is not None and (isinstance(window, (str, bytes)) or len(window) != 2):
+            raise ValueError
+    except (TypeError, ValueError, IndexError):
+        raise ParameterError(f"window: two times (t0, t1) in s, e.g. (0.0, 2e-3) (got {window!r})") from None
     slack = 1e-9 * max(abs(ta), abs(tb), tb - ta)
     if not (math.isfinite(t0) and math.isfinite(t1) and ta - slack <= t0 < t1 <= tb + slack):
         raise ParameterError(
