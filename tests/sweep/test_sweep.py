@@ -390,6 +390,11 @@ WIDE = {"contact.restitution": [0.5 + 1e-3 * i for i in range(400)], "contact.st
         ),
         # 4 and 4.0 are one case: two rows with the same case_key before
         (lambda: plan(fb.load_case("seed-experiment"), grid={"model.modes": [4, 4.0]}), "repeated values"),
+        # a continuous distribution on an integer field: every case "invalid", and the sweep exited 0
+        (
+            lambda: plan(fb.load_case("seed-experiment"), samples={"model.modes": "uniform(2,8)"}, n=2),
+            "--sample: every one of the 2 cases is invalid; the first: ParameterError: model.modes",
+        ),
     ],
 )
 def test_bad_input_names_the_field(call, field):

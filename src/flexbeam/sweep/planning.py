@@ -143,6 +143,8 @@ def plan(
         )
         for i in range(n):
             points.append(_point(base, {k: draws[k][i] for k in dists}, method, strict=False))
+        if all(p.error for p in points):  # (a sweep of nothing but "invalid" cases exited 0)
+            raise ParameterError(f"--sample: every one of the {n} cases is invalid; the first: {points[0].error}")
     spec["cases"] = [p.key for p in points]
     return Plan(spec, points, coords)
 
