@@ -106,6 +106,8 @@ SET_CASES = [
     ("initial.angle=1e300", "initial.angle", "less than or equal to 1000"),
     ("initial.impact_velocity=nan", "initial.impact_velocity", "finite"),
     ("contact.position=5e-324", "initial.impact_velocity", "needs a hub rate above 10000 rad/s"),
+    # P on the joint: the position is the cause, and no rate would do (blamed initial.impact_velocity before)
+    ("contact.position=0", "contact.position", "no hub rate gives initial.impact_velocity = -0.4 m/s"),
     ("obstacle.youngs_modulus=5e-324", "obstacle.youngs_modulus", "Hertz contact stiffness of 0"),
     ("beam.density=1e300", "beam.density", "less than or equal to 1000000"),
     # true or false where a number belongs (pydantic's lax mode read true as 1: a friction coefficient of 1, one mode)

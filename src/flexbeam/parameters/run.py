@@ -95,6 +95,11 @@ class Initial(Section):
 
         v = self.impact_velocity if velocity is None else velocity
         J_theta = float(J_theta)
+        if J_theta == 0.0:  # (P on the joint's axis: the rate needed is unbounded, and the position is the cause)
+            raise ParameterError(
+                f"contact.position: P does not move along the contact normal as the beam turns (0 m per radian), so "
+                f"no hub rate gives initial.impact_velocity = {v:g} m/s; put P away from the joint"
+            )
         if not abs(v) <= MAX_RATE * abs(J_theta):
             raise ParameterError(
                 f"initial.impact_velocity: P (contact.position) moves {abs(J_theta):.3g} m per radian along the "

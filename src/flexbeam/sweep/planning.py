@@ -102,7 +102,7 @@ def plan(
             raise ParameterError("--grid: give at least one KEY=v1,v2,...")
         for key, values in grid.items():
             if isinstance(values, (str, bytes, Mapping)) or not isinstance(values, Iterable):
-                raise ParameterError(f"--grid {key}: give a list of values, e.g. [{values!r}] (got {values!r})")
+                raise ParameterError(f"--grid {key}: give a list of values, e.g. [0.5, 0.6] (got {values!r})")
             values = list(values)
             if not values:
                 raise ParameterError(f"--grid {key}: no values")
