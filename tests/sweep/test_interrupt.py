@@ -60,3 +60,16 @@ def test_sigterm_keeps_its_default_action_where_no_python_handler_takes_it():
     assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL
     with ctrl_c_flag():
         assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL
+
+
+def test_a_sigterm_handler_that_returns_lets_the_sweep_go_on():
+    seen = []
+    previous = signal.signal(signal.SIGTERM, lambda s, f: seen.append(s))
+    try:
+        with ctrl_c_flag() as hit:
+            os.kill(os.getpid(), signal.SIGTERM)
+            assert hit and seen == []  # recorded, not yet handled
+            hit.deliver()  # the handler runs, returns: no exception, the flag cleared
+            assert seen == [signal.SIGTERM] and not hit
+    finally:
+        signal.signal(signal.SIGTERM, previous)

@@ -310,12 +310,13 @@ class ImpactMethod(KernelSwitches):
         pairs = self.impacting(free, t, y)
         return self.on_impact(free, t, y, pairs) if pairs else (free, y)
 
-    def end_contact(self, phase: Phase, pair: int, t: float, y: np.ndarray) -> Phase:
-        """Close pair ``pair``'s contact record and free the pair."""
+    def end_contact(self, phase: Phase, pair: int, t: float, y: np.ndarray, rate: float | None = None) -> Phase:
+        """Close pair ``pair``'s contact record (its end velocity ``rate``, default the gap's rate at y) and free
+        the pair."""
         rec = phase.records[pair]
         if rec is not None:
             rec.end = t
-            rec.velocity_after = self.gap_event(t, y, pair)[1]
+            rec.velocity_after = self.gap_event(t, y, pair)[1] if rate is None else rate
         return self.without(phase, pair)
 
     def without(self, phase: Phase, pair: int) -> Phase:

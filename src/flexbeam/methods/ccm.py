@@ -98,10 +98,7 @@ class CCM(HeldFriction):
             return super().kernel_switched(phase, switch)
         t, k, out = switch.t, switch.pair, switch.record
         if switch.event == EventKind.RELEASE:
-            rec = phase.records[k]
-            if rec is not None:
-                rec.end, rec.velocity_after = t, float(out[5])
-            return self.without(phase, k), switch.y
+            return self.end_contact(phase, k, t, switch.y, float(out[5])), switch.y
         jump = Jump(switch.y_after, out[0:1], out[1:2], out[2:3], float(out[3]), float(out[4]))
         (rec,) = self.log_jump(t, jump, [k])
         modes, records = list(phase.modes), list(phase.records)

@@ -23,7 +23,9 @@ class Hit:
     def deliver(self) -> None:
         handler = self.handlers.get(self.signum)
         if self.signum == signal.SIGTERM and callable(handler):
-            handler(signal.SIGTERM, None)
+            self.signum = 0
+            handler(signal.SIGTERM, None)  # (the CLI's raises; a handler that returns lets the sweep go on)
+            return
         raise KeyboardInterrupt
 
 

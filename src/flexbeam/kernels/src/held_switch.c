@@ -13,11 +13,12 @@
  *
  * Nothing else: a phase with law forces or friction rows, a prescribed angle or a compliant support (their jumps are
  * the Python map's), non-zero law parameters in the buffer; and the method offers the rule only where no pair has
- * Coulomb friction (a frictional pair's onset is Stronge's impulse).  The switch's row is [held (onsets), 0, 0, 0, 0],
- * its record values [P, v-, v+, T-, T+, 0] (an onset's jump, impulse_map.c's out) or [0, 0, 0, 0, 0, delta'] (a
+ * Coulomb friction (a frictional pair's onset is Stronge's impulse).  The switch's row is [held (onsets), 0, 0, 0,
+ * 0], its record values [P, v-, v+, T-, T+, 0] (an onset's jump, impulse_map.c's out) or [0, 0, 0, 0, 0, delta'] (a
  * release: the gap's rate at the event, as core.gap gives it); the phase loop builds the contact records and phases
- * from them with the method's own code (flexbeam.methods.ccm.CCM.kernel_switched).  coef: [grazing speed, gap tolerance, simultaneity, contacts left
- * (counted down here), the free and the held phase's step bounds, FIRST_STEP]. */
+ * from them with the method's own code (flexbeam.methods.ccm.CCM.kernel_switched).  coef: [grazing speed, gap
+ * tolerance, simultaneity, contacts left (counted down here), the free and the held phase's step bounds,
+ * FIRST_STEP]. */
 #include <string.h>
 
 #include "phase.h"

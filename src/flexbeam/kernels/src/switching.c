@@ -37,7 +37,7 @@ int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, siz
         *nrec += n;
         int kind = (int)info[0], pair = (int)info[4];
         if (code != ADV_EVENT || *nswitch >= cap_switches || info[1] == 0.0 || state[0] >= t_end || !b->diagonal ||
-            N != nz + compliant)
+            N != nz + compliant || ny != (size_t)(2 * N + 2)) /* (the row's room for y: fb_switch_width) */
             break;
         double t = state[0], *eta = state + 5, *v = eta + N, row[FB_SWITCH_ROW + FB_SWITCH_JUMP] = {0.0}, h;
         for (int i = 0; i < N; i++) { /* the stepper's state vector (ModalStepper.from_modal) */
