@@ -53,3 +53,15 @@ def assert_same_run(ours, loops) -> None:
         assert (a.dense is None) == (b.dense is None)
         if a.dense is not None:
             np.testing.assert_array_equal(a.dense.records, b.dense.records)
+
+
+def both_ways(run, name: str, monkeypatch) -> list:
+    """Case ``name`` run with the kernel's switches and without them (``run(name, monkeypatch, kernel)``), compared
+    to the bit (:func:`assert_same_run`, the contact records, the metrics); returns the switches the kernel took."""
+    ours, contacts, metrics, taken = run(name, monkeypatch, kernel=True)
+    loops, contacts_loop, metrics_loop, none = run(name, monkeypatch, kernel=False)
+    assert not none
+    assert_same_run(ours, loops)
+    assert contacts == contacts_loop
+    assert metrics == metrics_loop
+    return taken

@@ -26,7 +26,7 @@ from flexbeam.integrate import modal
 from flexbeam.integrate.phases import EventKind
 from flexbeam.methods.ccfm import CCFM
 
-from .kernel_switch_runs import assert_same_run, recorded_run
+from .kernel_switch_runs import both_ways, recorded_run
 
 DATA = Path(__file__).parent / "data"
 CASES = {
@@ -57,16 +57,11 @@ def run(name: str, monkeypatch, kernel: bool):
 
 @pytest.mark.parametrize("name", list(CASES))
 def test_the_kernels_switches_give_the_phase_loops_run(monkeypatch, name: str) -> None:
-    ours, contacts, metrics, taken = run(name, monkeypatch, kernel=True)
-    loops, contacts_loop, metrics_loop, none = run(name, monkeypatch, kernel=False)
-    assert not none
+    taken = both_ways(run, name, monkeypatch)
     if name == "threlfall":
         assert not taken
     else:
         assert taken, "the kernel took no switch: nothing is compared"
-    assert_same_run(ours, loops)
-    assert contacts == contacts_loop
-    assert metrics == metrics_loop
 
 
 def test_the_kernel_takes_every_kind_of_switch(monkeypatch) -> None:

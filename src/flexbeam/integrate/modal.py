@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import numerics as nm
-from ..kernels import SWITCH_HELD, core, pack_basis, pack_controls
+from ..kernels import SWITCH_HELD, SWITCH_REBOUND, core, pack_basis, pack_controls
 from ..model.damping import modal_damping
 from ..model.system import BeamSystem
 from .dense import ModalDense
@@ -313,13 +313,13 @@ class ModalStepper:
         return run
 
     def _switching(self, phase: Phase) -> np.ndarray | None:
-        """The ``coef`` of the switches the kernel takes in ``phase`` (the method's, CCM's with this stepper's step
-        bounds and first step), or None where the phase loop takes them: a diagonal basis only (the kernel passes
-        the state through y = Psi eta as :meth:`from_modal` does), not handed on in parts (a streamed run)."""
+        """The ``coef`` of the switches the kernel takes in ``phase`` (the method's, CCM's and IMM's with this
+        stepper's step bounds and first step), or None where the phase loop takes them: a diagonal basis only (the
+        kernel passes the state through y = Psi eta as :meth:`from_modal` does), not handed on in parts (streamed)."""
         if self.switching is None or self.hand_on is not None or self.psi is None:
             return None
         coef = self.switching.switch_coef(phase)
-        if coef is not None and coef[0] == SWITCH_HELD:  # the free and the held phase's bounds as advance takes them
+        if coef is not None and coef[0] in (SWITCH_HELD, SWITCH_REBOUND):  # the phases' bounds as advance takes them
             coef[5], coef[6], coef[7] = min(self.max_step, coef[5]), min(self.max_step, coef[6]), FIRST_STEP
         return coef
 

@@ -59,8 +59,9 @@ OUTPUT_COLUMNS = (
 #: columns per contact pair of the kernels' ``outputs`` (``FB_PAIR_COLS`` in C)
 PAIR_COLUMNS = ("gap", "normal_velocity", "contact_force", "contact_position")
 #: the rules of the switches the compiled stepper takes inside a phase (``coef[0]`` of ``core.advance``,
-#: ``kernels/src/switching.c``): CCFM's Coulomb switches (friction_switch.c), CCM's contact on one pair (held_switch.c)
-SWITCH_FRICTION, SWITCH_HELD = 1.0, 2.0
+#: ``kernels/src/switching.c``): CCFM's Coulomb switches (friction_switch.c), CCM's and IMM's contacts on one pair
+#: (held_switch.c)
+SWITCH_FRICTION, SWITCH_HELD, SWITCH_REBOUND = 1.0, 2.0, 3.0
 
 
 def pack_model(

@@ -33,14 +33,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..integrate.loop import Switch
-from ..integrate.phases import ContactMode, EventKind, Phase
+from ..integrate.phases import ContactMode, Phase
 from ..kernels import SWITCH_HELD
 from .held_friction import HeldFriction
-from .impulse import Jump
+from .switches import PairSwitches
 
 
-class CCM(HeldFriction):
+class CCM(PairSwitches, HeldFriction):
     """Contact constraint method."""
 
     name = "ccm"
@@ -66,45 +65,5 @@ class CCM(HeldFriction):
             modes[k], records[k] = ContactMode.NONE, None
         return self.held_phase(phase, t, jump.y, modes, records, [k for k in pairs if k in held])
 
-    # the contacts the compiled stepper takes itself ---------------------------------------------------------------
-    def switch_coef(self, phase: Phase) -> np.ndarray | None:
-        """Without Coulomb friction at any pair, the compiled stepper takes a single pair's contact itself where
-        :meth:`transition` would decide it alone (``kernels/src/held_switch.c``: its e = 0 onset with the Python
-        map's bits, the held test as :meth:`held_set`'s, its release), and saves the phase loop's round trip:
-        [SWITCH_HELD, grazing_speed, gap_tolerance, simultaneity, the contacts left under solver.max_contacts, the
-        free and the held phase's step bounds, the first step] (the stepper puts in its own bounds and first step);
-        with friction the friction switches' (none: :meth:`kernel_switches`)."""
-        if self.rough:
-            return super().switch_coef(phase)
-        left = self.case.solver.max_contacts - len(self.contacts)
-        return np.array([SWITCH_HELD, self.grazing_speed, self.gap_tolerance, self.simultaneity, left, np.inf,
-                         self.held_step(), np.nan])  # fmt: skip
-
-    def switched_phase(self, phase: Phase, switch: Switch) -> Phase:
-        if switch.event not in (EventKind.IMPACT, EventKind.RELEASE):
-            return super().switched_phase(phase, switch)
-        if switch.event == EventKind.RELEASE or not switch.row[0]:
-            return self.free_phase()
-        modes = list(phase.modes)
-        modes[switch.pair] = ContactMode.CONSTRAINT
-        return self.phase(modes, phase.parameters, phase.records)
-
-    def kernel_switched(self, phase: Phase, switch: Switch) -> tuple[Phase, np.ndarray]:
-        """A release: the record ends (as :meth:`end_contact`, with the gap's rate the kernel took there).  An onset:
-        the e = 0 jump the kernel took (the compiled map, :meth:`held_impact`'s bits: P, v-, v+, T-, T+ and y+ in
-        the switch's record), its record logged, and the pair held or -- its multiplier pulling at once -- its record
-        ended there (as :meth:`on_impact`)."""
-        if switch.event not in (EventKind.IMPACT, EventKind.RELEASE):
-            return super().kernel_switched(phase, switch)
-        t, k, out = switch.t, switch.pair, switch.record
-        if switch.event == EventKind.RELEASE:
-            return self.end_contact(phase, k, t, switch.y, float(out[5])), switch.y
-        jump = Jump(switch.y_after, out[0:1], out[1:2], out[2:3], float(out[3]), float(out[4]))
-        (rec,) = self.log_jump(t, jump, [k])
-        modes, records = list(phase.modes), list(phase.records)
-        if switch.row[0]:
-            modes[k], records[k] = ContactMode.CONSTRAINT, rec
-        else:
-            rec.end = t
-            rec.velocity_after = self.gap_event(t, jump.y, k)[1]
-        return self.phase(modes, phase.parameters, records), jump.y
+    # the contacts the compiled stepper takes itself (methods/switches.py PairSwitches) -----------------------------
+    switch_rule = SWITCH_HELD

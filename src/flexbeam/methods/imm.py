@@ -32,7 +32,10 @@ import math
 import numpy as np
 
 from ..integrate.phases import ContactMode, Phase
+from ..kernels import SWITCH_REBOUND
 from .held_friction import HeldFriction
+from .impulse import Jump
+from .switches import PairSwitches
 
 #: a rebound flight lower than this many eps of its gap's scale cannot be located (:meth:`IMM.unresolvable`): 4x the
 #: gap's round-off GAP_ULPS of ``kernels/src/surface.c``
@@ -44,7 +47,7 @@ PRESSING_MAX = 1e6
 RISE_SCALE_MAX = RISE_ULPS * EPS * 1e3
 
 
-class IMM(HeldFriction):
+class IMM(PairSwitches, HeldFriction):
     """Impulse-momentum method."""
 
     name = "imm"
@@ -79,6 +82,19 @@ class IMM(HeldFriction):
                 self.end_contact(phase, k, t, jump.y)
                 modes[k], records[k] = ContactMode.NONE, None
         return self.held_phase(phase, t, jump.y, modes, records, [k for k in pairs if k in held])
+
+    # the rebounds the compiled stepper takes itself (methods/switches.py PairSwitches) -----------------------------
+    switch_rule = SWITCH_REBOUND
+
+    def rebound_coef(self) -> list[float]:
+        """[solver.rest_velocity, the rise limit of :meth:`unresolvable`'s first test, each pair's restitution]: the
+        kernel rebounds where :meth:`on_impact` would (a rebound above both), else the phase loop decides."""
+        e = [float(p.restitution) for p in self.system.contact.pairs]
+        return [self.case.solver.rest_velocity, 2.0 * RISE_SCALE_MAX * PRESSING_MAX, *e]
+
+    def left_at_once(self, t: float, jump: Jump, pair: int) -> float:
+        """A rebound's end velocity: the jump's v+ (as :meth:`on_impact`)."""
+        return float(jump.velocities_after[0])
 
     def unresolvable(self, phase: Phase, t: float, y: np.ndarray, pairs: list[int], rebound: np.ndarray) -> bool:
         """Would every pair's rebound flight stay lower than its gap can resolve?  A flight's height is w^2 / (2 a)

@@ -5,11 +5,12 @@
 #include "phase.h"
 
 /* the length a switching rule's coef must have (switching.c): [FB_SWITCH_FRICTION, band, REST_SPEED, mu_k (S), mu_s
- * (S)] or [FB_SWITCH_HELD, 7 numbers] (held_switch.c); 0 for anything else */
+ * (S)], [FB_SWITCH_HELD, 7 numbers] or [FB_SWITCH_REBOUND, 9 numbers, e (S)] (held_switch.c); 0 for anything else */
 static size_t coef_size(const double *coef, size_t n, int S) {
     if (n < 1) return 1;
     if (coef[0] == FB_SWITCH_FRICTION) return 3 + 2 * (size_t)S;
     if (coef[0] == FB_SWITCH_HELD) return 8;
+    if (coef[0] == FB_SWITCH_REBOUND) return 10 + (size_t)S;
     return 0;
 }
 

@@ -39,7 +39,7 @@ int fb_advance(const fb_model *m, const fb_basis *b, const double *ctrl, size_t 
 #define FB_SWITCH_HEAD 14
 #define FB_SWITCH_ROW 5  /* the rule's row */
 #define FB_SWITCH_JUMP 6 /* ... and what an onset's jump or a release gives the contact record (held_switch.c) */
-enum { FB_SWITCH_FRICTION = 1, FB_SWITCH_HELD = 2 };
+enum { FB_SWITCH_FRICTION = 1, FB_SWITCH_HELD = 2, FB_SWITCH_REBOUND = 3 };
 int fb_switch_width(int N);
 /* A rule: at the event (kind, pair) at y (t = state[0]), 0 with ctrl switched for the next phase, row
  * (FB_SWITCH_ROW + FB_SWITCH_JUMP, zeroed by the caller) for the switch's record, y moved by a jump if any, and h the
@@ -51,6 +51,8 @@ int fb_friction_switch(const fb_model *m, double *ctrl, size_t nctrl, const doub
                        double *y, int kind, int pair, double *coef, double *row, double *h);
 int fb_held_switch(const fb_model *m, double *ctrl, size_t nctrl, const double *state, const double *info, double *y,
                    int kind, int pair, double *coef, double *row, double *h);
+int fb_rebound_switch(const fb_model *m, double *ctrl, size_t nctrl, const double *state, const double *info,
+                      double *y, int kind, int pair, double *coef, double *row, double *h);
 int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, size_t nctrl, double *state,
                          double t_end, double *records, int capacity, int *nrec, double *info, double *coef,
                          double *switches, int cap_switches, int *nswitch);

@@ -6,7 +6,8 @@
  * compliant support's), the phase's effort budget from the event.  Two sets of rules (coef[0]):
  *
  *   FB_SWITCH_FRICTION: CCFM's Coulomb switches, a slip's stop and a stick's end (friction_switch.c, issue 28);
- *   FB_SWITCH_HELD: CCM's contacts on one frictionless pair, its e = 0 onset and its release (held_switch.c).
+ *   FB_SWITCH_HELD: CCM's contacts on one frictionless pair, its e = 0 onset and its release (held_switch.c);
+ *   FB_SWITCH_REBOUND: IMM's, its rebound and its resting contact's release (held_switch.c).
  *
  * Anything the rules do not cover returns the event to Python as fb_advance does, and so do a part of the phase that
  * made no step (the phase loop counts those), an event at t_end (the loop ends there) and a basis that is not
@@ -27,7 +28,10 @@ int fb_advance_switching(const fb_model *m, const fb_basis *b, double *ctrl, siz
     int N = b->N, S = m->npairs, R = fb_record_size(N, S), width = fb_switch_width(N), code;
     int nz = fb_nz(m), compliant = fb_compliant(m); /* the state vector [z (nz), z' (nz), (s, s'), Ed, W] */
     size_t ny = (size_t)fb_state_size(m);
-    fb_switch_rule rule = (int)coef[0] == FB_SWITCH_HELD ? fb_held_switch : fb_friction_switch;
+    int kind0 = (int)coef[0];
+    fb_switch_rule rule = kind0 == FB_SWITCH_HELD      ? fb_held_switch
+                          : kind0 == FB_SWITCH_REBOUND ? fb_rebound_switch
+                                                       : fb_friction_switch;
     *nrec = 0, *nswitch = 0;
     double *y = malloc(sizeof(double) * ny);
     if (!y) return ADV_NONFINITE;
