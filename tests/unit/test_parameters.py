@@ -365,3 +365,15 @@ def test_an_optional_switch_or_number_still_takes_none():
     data = fb.load_case("two-stops").model_dump()
     assert data["obstacles"][0]["contact"]["anywhere"] is None
     assert fb.load_case(data).obstacles[0].contact.anywhere is None
+
+
+def test_an_index_that_does_not_count_from_zero_is_named():
+    """``obstacles[-1].radius`` answered "unknown section 'obstacles[-1]', did you mean obstacles?" (an exploratory
+    hunt): the index is what is wrong."""
+    from flexbeam.errors import ParameterError
+
+    for index in ("-1", "a", ""):
+        with pytest.raises(ParameterError, match=rf"^obstacles\[{index}\]\.radius: '{index}' is no index of obstacles"):
+            fb.load_case("two-stops", {f"obstacles[{index}].radius": 0.02})
+    with pytest.raises(ParameterError, match=r"^beam\[-1\]\.length: unknown section"):  # not a list: as before
+        fb.load_case("two-stops", {"beam[-1].length": 0.5})

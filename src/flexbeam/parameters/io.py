@@ -127,6 +127,7 @@ def _range_hint(kind: str, loc: str) -> str:
 
 
 _INDEXED = re.compile(r"^(\w+)\[(\d+)\]$")
+_BRACKETED = re.compile(r"^(\w+)\[([^\]]*)\]$")  # (an index that is not a count: obstacles[-1], obstacles[a])
 
 
 def key_parts(loc: tuple) -> list[str]:
@@ -171,6 +172,11 @@ def schema_field(key: str):
     model: type[BaseModel] | None = Case
     for depth, part in enumerate(parts):
         name, index = _split(part)
+        bad = _BRACKETED.match(part) if index is None and model is not None else None
+        if bad and bad.group(1) in model.model_fields and _item_model(model, bad.group(1)) is not None:
+            raise ParameterError(  # ("unknown section 'obstacles[-1]'" before)
+                f"{key}: '{bad.group(2)}' is no index of {bad.group(1)}: they count 0, 1, 2, ..."
+            )
         if model is None:
             raise ParameterError(f"{key}: '{'.'.join(parts[:depth])}' is not a section")
         if name not in model.model_fields:
