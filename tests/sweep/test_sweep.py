@@ -282,6 +282,19 @@ def test_warnings_are_taken_aside_only_on_a_one_thread_worker_in_another_process
     assert cluster[1].submit(exclusive, os.getpid(), pure=False).result(timeout=30)
 
 
+def test_repeated_samples_are_counted_so_the_summary_adds_up(cluster, tmp_path):
+    """Two samples of choice(hertz, flores) drawn alike are one case, computed once: the summary read "2 cases: 1
+    computed, 0 reused, 0 failed, 0 missing" (an exploratory hunt); ``repeated`` counts the row that repeats."""
+    from flexbeam.sweep import summary
+
+    samples = {"contact.law": "choice(hertz,flores)"}
+    keys = [p.key for p in plan(fb.load_case("seed-experiment", BASE), samples=samples, n=2, seed=0).points]
+    assert keys[0] == keys[1]  # (seed 0 draws the same law twice: else nothing is tested here)
+    ds = fb.sweep("seed-experiment", samples=samples, n=2, seed=0, overrides=BASE, scheduler=cluster[0])
+    info = summary(ds)
+    assert (info["cases"], info["computed"], info["repeated"]) == (2, 1, 1)
+
+
 def test_a_failing_case_is_recorded_and_the_others_finish(cluster, tmp_path):
     # 'release' without gravity raises inside the simulation; 'impact' runs
     grid = {"initial.kind": ["impact", "release"], "contact.restitution": [0.6, 0.8]}

@@ -114,6 +114,8 @@ def _print_sweep(info: dict[str, Any]) -> None:
     )
     if info["incomplete"]:
         typer.echo(f"  {info['incomplete']} ended before solver.t_end (max-contacts: the Zeno guard)")
+    if info.get("repeated"):
+        typer.echo(f"  {info['repeated']} repeated an earlier case (the same sampled values: computed once)")
     if info.get("warned"):
         typer.echo(f"  {info['warned']} warned (each case's warnings: the result's variable 'warning')")
     for f in info["failures"][:20]:

@@ -141,13 +141,15 @@ def load(store: str | Path) -> xr.Dataset:
 def summary(ds: xr.Dataset) -> dict[str, Any]:
     """Counts of a sweep result and its failed cases with their swept values and errors; ``incomplete`` counts the
     cases that ended before solver.t_end without failing (status ``max-contacts``: reported as complete before),
-    ``warned`` those whose run warned (their variable ``warning``)."""
+    ``warned`` those whose run warned (their variable ``warning``), ``repeated`` the rows that repeat an earlier
+    row's case (random samples drawn twice: one case, computed once)."""
     import numpy as np
 
     names = ("cases", "computed", "reused", "failed", "missing")
     info: dict[str, Any] = {k: int(ds.attrs.get(k, 0)) for k in names}
     info["incomplete"] = int(np.isin(ds["status"].values, INCOMPLETE).sum())
     info["warned"] = int(np.count_nonzero(ds["warning"].values != "")) if "warning" in ds else 0
+    info["repeated"] = int(ds["case_key"].size - np.unique(ds["case_key"].values).size)  # (samples drawn twice)
     swept = json.loads(ds.attrs["swept"])
     status = ds["status"].values
     failures = []
