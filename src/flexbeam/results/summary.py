@@ -241,7 +241,7 @@ def run_metrics(sol: Solution) -> dict[str, Any]:
     elif "tip_deflection" in sol.arrays and sol.arrays["tip_deflection"].size:
         out["tip_deflection_min"] = float(np.min(sol.arrays["tip_deflection"]))
         out["tip_deflection_max"] = float(np.max(sol.arrays["tip_deflection"]))
-    warn_large_deflection(out, sol.provenance.get("beam_length"))
+    warn_large_deflection(out, sol.provenance_entry("beam_length"))
     # in the registry's order, the optional scopes' keys in their places (a compliant support's sensor_* came last)
     return {**{k: out[k] for k in METRICS if k in out}, **{k: v for k, v in out.items() if k not in METRICS}}
 
