@@ -71,8 +71,8 @@ class ImpactMethod(KernelSwitches):
     #: them no frictional pair can be held: CCM's friction is refused before the run, IMM's run stops where a
     #: frictional pair would come to rest (:meth:`~flexbeam.methods.held_friction.HeldFriction.held_phase`)
     locates_friction = True
-    #: why a flexible beam settling on a stop chatters under the method, which the message of a run stopped by
-    #: ``solver.max_contacts`` gives with what carries it on (:meth:`new_contact`; IMM and CCM)
+    #: why a flexible beam in lasting contact with a stop chatters under the method, which the message of a run
+    #: stopped by ``solver.max_contacts`` gives with what carries it on (:meth:`new_contact`; IMM and CCM)
     chatter_cause = ""
 
     def __post_init__(self) -> None:
@@ -224,8 +224,9 @@ class ImpactMethod(KernelSwitches):
         the run past ``solver.max_contacts``."""
         if len(self.contacts) >= self.case.solver.max_contacts:
             advice = (
-                f"; a flexible beam settling on a stop chatters under {self.name.upper()}, {self.chatter_cause}: CCFM "
-                "carries a contact that comes to rest, or raise solver.max_contacts to go on"
+                f"; a flexible beam in lasting contact with a stop (settling on it, or a rod's impact borne by its "
+                f"waves) chatters under {self.name.upper()}, {self.chatter_cause}: CCFM carries a lasting contact, or "
+                "raise solver.max_contacts to go on"
                 if self.chatter_cause
                 else ""
             )
