@@ -19,7 +19,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "flexbeam"
 #: bottom to top; a module is in the first layer one of whose prefixes it starts with
 LAYERS: list[tuple[str, tuple[str, ...]]] = [
     ("base", ("flexbeam.errors", "flexbeam.numerics", "flexbeam.kernels", "flexbeam.version", "flexbeam.progress",
-              "flexbeam._namespace", "flexbeam.schemas", "flexbeam.threads")),
+              "flexbeam._namespace", "flexbeam.schemas", "flexbeam.threads", "flexbeam.interrupt")),
     ("laws", ("flexbeam.contact.laws", "flexbeam.contact.hertz")),
     ("parameters", ("flexbeam.parameters",)),
     ("contact", ("flexbeam.contact",)),

@@ -1,4 +1,4 @@
-"""Ctrl-C and SIGTERM during a sweep are recorded and raised between batches (``flexbeam.sweep.interrupt``).
+"""Ctrl-C and SIGTERM during a sweep are recorded and raised between batches (``flexbeam.interrupt``).
 
 SIGTERM used to raise wherever it landed: inside a history's NetCDF write it could leave xarray's file lock taken,
 and the store's next write waited for it forever -- ``flexbeam sweep --histories`` hung on ``kill`` (found by an
@@ -12,7 +12,7 @@ import signal
 
 import pytest
 
-from flexbeam.sweep.interrupt import ctrl_c_flag
+from flexbeam.interrupt import ctrl_c_flag
 
 
 class _Terminated(BaseException):

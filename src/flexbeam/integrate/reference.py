@@ -33,7 +33,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..model.system import BeamSystem
 from .loop import PhaseRun
-from .modal import OMEGA_RIGID_DEFAULT, ModalBasis
+from .modal_basis import OMEGA_RIGID_DEFAULT, ModalBasis
 from .phases import ContactMode, EventKind, Phase
 
 CHECK_POINTS = 4

@@ -162,7 +162,7 @@ def pack_basis(
     omega: np.ndarray, Psi: np.ndarray, toM: np.ndarray, row0: np.ndarray, inv00: float, nz: int, diagonal: bool,
     damp: np.ndarray | None = None,
 ) -> np.ndarray:  # fmt: skip
-    """The basis buffer of a modal basis (see :class:`flexbeam.integrate.modal.ModalBasis`); ``damp``: each mode's
+    """The basis buffer of a modal basis (see :class:`flexbeam.integrate.modal_basis.ModalBasis`); ``damp``: each mode's
     damping coefficient 2 zeta omega (appended when given)."""
     N = omega.size
     head = np.array([LAYOUT_VERSION, N, nz, int(diagonal), inv00], float)

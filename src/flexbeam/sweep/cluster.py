@@ -26,9 +26,9 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from ..errors import ParameterError
+from ..interrupt import Hit, ctrl_c_flag
 from ..parameters.io import validate_case
 from .case_warnings import Teller, exclusive, recorded, validating
-from .interrupt import Hit, ctrl_c_flag
 from .planning import Point
 from .scheduler import check_scheduler, check_workers
 from .store import Store
@@ -366,7 +366,7 @@ def compute(
 
 def _collect(feed: _Feed, store: Store | None, records: dict, lost: dict, tick: Callable[[], None], hit: Hit) -> None:
     """File each batch's cases as they arrive (see :func:`compute`); a Ctrl-C or SIGTERM recorded in ``hit`` is
-    raised between batches (:meth:`~flexbeam.sweep.interrupt.Hit.deliver`), and at the end if the sweep finished
+    raised between batches (:meth:`~flexbeam.interrupt.Hit.deliver`), and at the end if the sweep finished
     meanwhile."""
     feed.fill()
     for fut, result in feed.ac:

@@ -11,7 +11,7 @@ from ..runs import seed, simulate
 
 
 def section_frames(reduced: bool, figdir: Path | None) -> Section:
-    from ...integrate.modal import ModalBasis
+    from ...integrate.modal_basis import ModalBasis
     from ...model.system import BeamSystem
 
     s = Section(
