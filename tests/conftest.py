@@ -4,6 +4,11 @@ from __future__ import annotations
 
 import math
 import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
 
 import pytest
 from hypothesis import settings
@@ -41,3 +46,26 @@ def rigid_rod_mass_inertia(case) -> tuple[float, float]:
 @pytest.fixture
 def seed_case():
     return seed()
+
+
+def signal_a_streaming_run(args: list[str], out: Path, signum: int) -> tuple[int, str, str]:
+    """``flexbeam ARGS`` (a run streaming to ``out``/result.nc) in a subprocess, sent ``signum`` once the stream's
+    temporary file is being written (not the probe of --out's check, made and removed before it): its exit code,
+    stdout and stderr.  Ctrl-C's default action as a terminal gives it: a suite started in the background (``cmd &``
+    without job control, nohup) ignores SIGINT, and so would the run it starts."""
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "flexbeam.cli", *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )  # fmt: skip
+    try:
+        deadline = time.monotonic() + 120
+        while not (out.is_dir() and any(p.name.startswith(".result.nc.") for p in out.iterdir())):
+            assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+            time.sleep(0.05)
+        proc.send_signal(signum)
+        stdout, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    return proc.returncode, stdout, err

@@ -14,7 +14,6 @@ import re
 import signal
 import subprocess
 import sys
-import time
 import tracemalloc
 
 import numpy as np
@@ -26,7 +25,7 @@ import flexbeam as fb
 from flexbeam import memory
 from flexbeam.integrate import modal
 from flexbeam.results import stream
-from tests.conftest import seed
+from tests.conftest import seed, signal_a_streaming_run
 
 COMPLIANT = {"obstacle__support__stiffness": 3e7, "obstacle__support__mass": 0.02, "obstacle__support__damping": 50.0}
 
@@ -279,27 +278,10 @@ def test_a_terminated_streamed_run_leaves_no_file(tmp_path, signum, code, line):
     no file in --out (before: Python's default action for SIGTERM ended the process at once, exit -15, and left the
     6 MB temporary file ``.result.nc.XXXX`` behind).  Ctrl-C (SIGINT): exit 130 and one line too (before: none)."""
     out = tmp_path / "out"
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "flexbeam.cli", "run", "seed-experiment", "--stream", "--out", str(out),
-         "--set", "solver.t_end=1000", "--set", "output.interval=1e-3"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-        # Ctrl-C's default action, as a terminal gives it: a suite started in the background (`cmd &` without job
-        # control, nohup) ignores SIGINT, and so would the run it starts -- it ran on to exit 0
-        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
-    )  # fmt: skip
-    try:
-        deadline = time.monotonic() + 120
-        # the stream's temporary file, being written (not the probe of --out's check, made and removed before it)
-        while not (out.is_dir() and any(p.name.startswith(".result.nc.") for p in out.iterdir())):
-            assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
-            time.sleep(0.05)
-        proc.send_signal(signum)
-        _, err = proc.communicate(timeout=60)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.communicate()
-    assert proc.returncode == code, err
+    args = ["run", "seed-experiment", "--stream", "--out", str(out), "--set", "solver.t_end=1000",
+            "--set", "output.interval=1e-3"]  # fmt: skip
+    returncode, _, err = signal_a_streaming_run(args, out, signum)
+    assert returncode == code, err
     assert err.strip().splitlines()[-1:] == [line], err
     assert not out.exists()  # (nor the directory the run made for it: it was left empty)
 

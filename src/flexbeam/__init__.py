@@ -42,20 +42,35 @@ if TYPE_CHECKING:
     from .results.solution import Solution
 
 
-def simulate(case: Case | str, method: str = "ccfm", stream: str | Path | None = None, **overrides: Any) -> Solution:
+def simulate(
+    case: Case | str,
+    method: str = "ccfm",
+    stream: str | Path | None = None,
+    keep_interrupted: bool = False,
+    **overrides: Any,
+) -> Solution:
     """Simulate a case with an impact method (``"ccfm"``, ``"ccm"``, ``"imm"``).
 
     Keyword overrides use double underscores for dots:
     ``simulate("seed-experiment", model__modes=4)``.  ``stream``: a result file the run writes as it goes, in a
-    memory that does not grow with the run (:func:`flexbeam.simulation.simulate`).
+    memory that does not grow with the run (:func:`flexbeam.simulation.simulate`).  ``keep_interrupted``: Ctrl-C
+    (in the main thread) ends the run where it is and returns what was computed, ``status = "interrupted"``,
+    instead of raising KeyboardInterrupt; a second Ctrl-C raises at once (:func:`flexbeam.interrupt.ctrl_c_flag`).
     """
     from .simulation import simulate as _simulate
 
+    if not isinstance(keep_interrupted, bool):
+        raise ParameterError(f"keep_interrupted: True or False (got {keep_interrupted!r})")
     if overrides:
         case = load_case(case, {k.replace("__", "."): v for k, v in overrides.items()})
     elif not isinstance(case, Case):
         case = load_case(case)
-    return _simulate(case, method, stream=stream)
+    if not keep_interrupted:
+        return _simulate(case, method, stream=stream)
+    from .interrupt import ctrl_c_flag
+
+    with ctrl_c_flag(second_raises=True) as hit:
+        return _simulate(case, method, stream=stream, stop=lambda: hit.name)
 
 
 def sweep(case: Case | str, **kwargs: Any) -> xr.Dataset:

@@ -103,6 +103,7 @@ def simulate(
     outputs: bool = False,
     stream: str | Path | None = None,
     state: np.ndarray | None = None,
+    stop: Callable[[], str] | None = None,
 ) -> Solution:
     """Run ``case`` with an impact method and return the :class:`Solution`.
 
@@ -119,6 +120,10 @@ def simulate(
     and its contact records completed, and the memory held does not grow with ``solver.t_end``.  The Solution keeps
     the contact records and the metrics; its arrays are read from the file when asked for.  Not for the
     finite-element reference (``method = "fem"``).
+
+    ``stop``: asked as the run goes (between blocks of steps) for a cause to end it where it is -- "Ctrl-C" from
+    :func:`flexbeam.interrupt.ctrl_c_flag`, "" to go on: the Solution then has ``status = "interrupted"`` and all
+    that was computed, streamed or not (``flexbeam run --keep-interrupted``).
     """
     check_method(method)  # an unknown method is named before anything else
     if stream is not None and (not isinstance(stream, (str, os.PathLike)) or not str(stream).strip()):
@@ -140,7 +145,7 @@ def simulate(
         initial_state(BeamSystem.from_case(case), case)  # the same start checks as the modal model's
         from .fem import simulate_fem
 
-        return simulate_fem(case, progress=progress)
+        return simulate_fem(case, progress=progress, stop=stop)
     cls = impact_method(method)
     system = BeamSystem.from_case(case)
     if state is None:
@@ -153,8 +158,8 @@ def simulate(
     if isinstance(stepper, ModalStepper):
         stepper.switching = impact
     if stream is not None:
-        return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress)
-    run = run_phases(impact, stepper, y0, case.solver.t_end, progress)
+        return _streamed(Path(stream), impact, stepper, y0, system, case, info, progress, stop)
+    run = run_phases(impact, stepper, y0, case.solver.t_end, progress, stop=stop)
     if run.status == "failed":
         run.message += lying_flat_advice(system, run.t_final, run.segments[-1] if run.segments else None)
     return collect(run, impact, system, case, info, stepper)
@@ -230,15 +235,15 @@ def check_joint_method(case: Case, method: str) -> None:
 
 
 def _streamed(
-    path: Path, impact: ImpactMethod, stepper, y0, system: BeamSystem, case: Case, info, progress
+    path: Path, impact: ImpactMethod, stepper, y0, system: BeamSystem, case: Case, info, progress, stop=None
 ) -> Solution:
     """A run streamed to ``path`` (:class:`~flexbeam.results.stream.RunStream`); nothing is left there if it is
-    interrupted."""
+    interrupted by an exception (Ctrl-C), and what was computed is if ``stop`` ends it (status "interrupted")."""
     from .results.stream import RunStream
 
     sink = RunStream(path, system, case, impact.contacts, provenance(stepper.name, impact, system, case, info, stepper))
     try:
-        run = run_phases(impact, stepper, y0, case.solver.t_end, progress, sink=sink)
+        run = run_phases(impact, stepper, y0, case.solver.t_end, progress, sink=sink, stop=stop)
         if run.status == "failed":  # (the sink holds the last segment: a streamed run keeps none)
             run.message += lying_flat_advice(system, run.t_final, sink.window[-1][1] if sink.window else None)
         return sink.finish(run, {"steps": run.steps, "nfev": run.nfev, "wall_time": run.wall_time})

@@ -3,6 +3,7 @@ against the paper's table)."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 from pathlib import Path
 from typing import Annotated
@@ -10,6 +11,7 @@ from typing import Annotated
 import typer
 
 from ..errors import ParameterError
+from ..interrupt import ctrl_c_flag
 from ..registry import METHOD_NAMES
 from .options import JsonOpt, MethodOpt, OutOpt, SetOpt, out_dir
 from .runs import exit_unless_complete, load, run_progress, simulate
@@ -29,12 +31,23 @@ def run(
             help="write OUT/result.nc while the run goes on, in a memory that does not grow with the run (needs --out)",
         ),
     ] = False,
+    keep_interrupted: Annotated[
+        bool,
+        typer.Option(
+            "--keep-interrupted",
+            help="Ctrl-C or SIGTERM ends the run where it is and keeps what was computed: status 'interrupted', "
+            "the metrics and OUT's files, then exit 130 (143); a second one stops at once, keeping nothing",
+        ),
+    ] = False,
 ) -> None:
     """Simulate one case and print its metrics."""
     if stream and out is None:
         raise ParameterError("--stream: needs --out DIR, where the run writes DIR/result.nc as it goes")
     c = load(case, set_)
-    sol = simulate(c, method, outputs=out is not None, stream=out / "result.nc" if stream and out else None)
+    with ctrl_c_flag(second_raises=True) if keep_interrupted else contextlib.nullcontext() as hit:
+        stop = (lambda: hit.name) if hit is not None else None
+        path = out / "result.nc" if stream and out else None
+        sol = simulate(c, method, outputs=out is not None, stream=path, stop=stop)
     metrics = sol.metrics()
     if out is not None:
         from ..views.report import write_run_outputs
@@ -46,7 +59,7 @@ def run(
         typer.echo(metrics_json(metrics))
     else:
         print_metrics(metrics, f"{c.name} [{method}]")
-    exit_unless_complete([sol])
+    exit_unless_complete([sol], hit.signum if hit is not None else 0)
 
 
 def compare(

@@ -28,6 +28,7 @@ import numpy as np
 from scipy.linalg import solve_banded
 
 from ..errors import SolverError
+from ..interrupt import interrupted_message
 from ..results.records import ContactEvent
 from .banded import BAND, fix_first_dof
 from .beam import FemBeam
@@ -57,6 +58,7 @@ def run(
     sample: Sampler,
     progress: Callable[[float], None] | None = None,
     stop_at_impact: bool = False,
+    stop: Callable[[], str] | None = None,
 ) -> tuple[Record, RunInfo, State]:
     """Integrate from (z0, zd0) at t = 0 to ``t_end``, recording samples.
 
@@ -64,7 +66,9 @@ def run(
     at a change of the contact state, once before and once after; ``contacts`` is the
     :class:`~flexbeam.fem.pairs.ContactState` -- which pairs are in contact, under which
     law parameters; the phase is "contact" while some pair is).  With ``stop_at_impact``
-    the run ends at the first contact onset of any pair (status "impact").
+    the run ends at the first contact onset of any pair (status "impact").  ``stop``: asked after each accepted
+    step for a cause that ends the run there ("Ctrl-C", :mod:`flexbeam.interrupt`; "" goes on), with status
+    "interrupted" and what was computed.
 
     Each pair k has its own contact phase, which starts when its gap delta_k crosses zero
     downwards with its point approaching and ends when delta_k crosses zero upwards.
@@ -82,9 +86,9 @@ def run(
     status, message = "success", "integration reached t_end"
     try:
         loop.start(s, res)
-        loop.integrate(t_end, progress)
-    except _Stop as stop:
-        status, message = stop.status, stop.message
+        loop.integrate(t_end, progress, stop)
+    except _Stop as ended:
+        status, message = ended.status, ended.message
     except SolverError as err:
         status, message = "failed", str(err)
     wall = time.perf_counter() - wall0
@@ -128,8 +132,10 @@ class _EventLoop:
             self.res = self.integ.evaluate(self.s, self.cs)
         self.sample(self.s, self.res, _phase(self.cs), self.cs)
 
-    def integrate(self, t_end: float, progress: Callable[[float], None] | None) -> None:
-        """Step to ``t_end``, each step cut back to the first contact event in it."""
+    def integrate(
+        self, t_end: float, progress: Callable[[float], None] | None, stop: Callable[[], str] | None = None
+    ) -> None:
+        """Step to ``t_end``, each step cut back to the first contact event in it; ``stop``: see :func:`run`."""
         next_progress = 0.0
         while self.s.t < t_end * (1.0 - 1e-12):
             trial = self._trial_step(t_end)
@@ -143,6 +149,8 @@ class _EventLoop:
                 self._event(*hit, end_rate=ends[hit[0]][1])
                 continue
             self._accept(s1)
+            if stop is not None and self.s.t < t_end * (1.0 - 1e-12) and (cause := stop()):
+                raise _Stop("interrupted", interrupted_message(self.s.t, cause))
             if progress is not None and self.s.t >= next_progress:
                 progress(self.s.t)
                 next_progress = self.s.t + t_end / 200.0

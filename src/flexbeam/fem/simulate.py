@@ -141,7 +141,9 @@ def check_supported(case: Case) -> None:
                 )
 
 
-def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) -> Solution:
+def simulate_fem(
+    case: Case, progress: Callable[[float], None] | None = None, stop: Callable[[], str] | None = None
+) -> Solution:
     """Run ``case`` with the finite-element reference model and return its Solution.
 
     Parameters
@@ -151,6 +153,9 @@ def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) ->
         (``time_step``, omitted = automatic) and the numerical dissipation (``rho_inf``).
     progress
         Called with the current time now and then (for progress bars).
+    stop
+        Asked after each step for a cause that ends the run there, keeping what was computed (status
+        "interrupted"; :func:`flexbeam.fem.eventdriven.run`).
 
     Returns
     -------
@@ -173,7 +178,7 @@ def simulate_fem(case: Case, progress: Callable[[float], None] | None = None) ->
     z0, zd0, info = initial_state(beam)
     integ = FemIntegrator(beam, case.fem.rho_inf)
     sampler = _Sampler(beam)
-    rec, run_info, _ = run(beam, integ, z0, zd0, case.solver.t_end, sampler, progress)
+    rec, run_info, _ = run(beam, integ, z0, zd0, case.solver.t_end, sampler, progress, stop=stop)
     sol = build_solution(case, beam, sampler, rec, run_info, info, __version__, dump_case(case))
     warn_coarse_step(case, sol)
     return sol

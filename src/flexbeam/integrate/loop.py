@@ -24,6 +24,7 @@ from typing import Protocol
 import numpy as np
 
 from ..errors import SolverError
+from ..interrupt import interrupted_message
 from .phases import FRICTION_EVENTS, PAINLEVE_EVENTS, EventKind, Phase
 
 MAX_STALLED = 100  # consecutive zero-length phases before the run is declared stalled
@@ -180,6 +181,7 @@ def run_phases(
     t_end: float,
     progress: Callable[[float], None] | None = None,
     sink: Callable[[Segment], None] | None = None,
+    stop: Callable[[], str] | None = None,
 ) -> RunResult:
     """Integrate from t = 0 to ``t_end``, switching phases at events as ``method`` decides.
 
@@ -189,6 +191,11 @@ def run_phases(
 
     With a ``sink`` every segment goes to it, in time order, and none is kept (``RunResult.segments`` is empty); a
     stepper with a ``hand_on`` attribute hands its long phases to the sink in parts.
+
+    ``stop``: asked after each phase, and by a stepper with a ``stop`` attribute between its blocks of steps (the
+    compiled one's every BLOCK_RECORDS steps, the reference's every step), for the cause that ends the run where it
+    is ("Ctrl-C", :mod:`flexbeam.interrupt`; "" goes on): the run ends there with ``status = "interrupted"``,
+    keeping what was computed (:func:`flexbeam.interrupt.interrupted_message`).
     """
     wall0 = time.perf_counter()
     y0 = np.asarray(y0, float)
@@ -201,12 +208,14 @@ def run_phases(
     t = 0.0
     try:
         phase, y = method.start(0.0, y0)
-    except Stop as stop:
-        return RunResult([], stop.status, stop.message, 0.0, 0.0, 0, 0, stepper.name)
+    except Stop as ended:
+        return RunResult([], ended.status, ended.message, 0.0, 0.0, 0, 0, stepper.name)
     if not np.array_equal(y, y0):  # a jump at the start: keep the state before it
         keep(Segment(method.free_phase(), 0.0, 0.0, y0.copy(), y0.copy()))
     stalled = 0
     recent: deque[float] = deque(maxlen=STORM_EVENTS)  # the times of the latest friction events in a row
+    if stop is not None:
+        stepper.stop = stop
     with np.errstate(over="raise", invalid="raise", divide="raise"):
         try:
             while t < t_end:
@@ -241,7 +250,9 @@ def run_phases(
                 if run.switches and storm(recent):  # (the phase's last part kept)
                     status, message = "failed", storm_message(recent, run.switches[-1].event, run.switches[-1].pair)
                     break
-                if run.event is None:
+                if run.event is None:  # t_end, or (t < t_end) where the stepper was stopped
+                    if stop is not None and t < t_end and (cause := stop()):
+                        status, message = "interrupted", interrupted_message(t, cause)
                     break
                 events += 1
                 if run.event in _STORM_KINDS:
@@ -253,8 +264,8 @@ def run_phases(
                     break
                 try:
                     phase, y = method.transition(phase, run.event, t, y, run.pair)
-                except Stop as stop:
-                    status, message = stop.status, stop.message
+                except Stop as ended:
+                    status, message = ended.status, ended.message
                     break
                 except SolverError as err:
                     status, message = "failed", str(err)
@@ -262,11 +273,16 @@ def run_phases(
                 if stalled > MAX_STALLED:
                     status, message = "failed", f"events keep recurring without progress at t = {t:.9g} s"
                     break
+                if stop is not None and t < t_end and (cause := stop()):  # (after the event's transition)
+                    status, message = "interrupted", interrupted_message(t, cause)
+                    break
         except (FloatingPointError, OverflowError, ZeroDivisionError) as exc:
             status, message = "failed", f"floating-point failure at t = {t:.9g} s: {exc}"
         finally:
             if parts:
                 stepper.hand_on = None
+            if stop is not None:
+                stepper.stop = None
     wall = time.perf_counter() - wall0
     return RunResult(segments, status, message, t, wall, steps, nfev, stepper.name, events, phase_steps)
 

@@ -30,6 +30,7 @@ from .phases import EventKind, Phase
 
 FIRST_STEP = 1e-5  # [s] first step of a phase (the controller grows it by up to 5x per step)
 _ADV_END, _ADV_EVENT, _ADV_FULL, _ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED, _ADV_JUMPING = 0, 1, 2, 3, 4, 5, 6
+_ADV_STOPPED = -1  # (Python's own: the phase ends where the kernel handed back, the run's ``stop`` asked for it)
 _FAILURES = (_ADV_UNDERFLOW, _ADV_NONFINITE, _ADV_STALLED, _ADV_JUMPING)  # the codes that fail the run
 #: the kernel's info row (``phase.h``): [event kind, steps, rejected, node evaluations, event pair, phase start,
 #: rejections by cause (_REJECT_CAUSES, in order), the step taken at the event before it was cut to end there, then
@@ -105,6 +106,9 @@ class ModalStepper:
         #: set by a streamed run's loop: called with each finished part of a long phase (t0, y0, t1, y1, dense,
         #: opens), which is then dropped (:func:`flexbeam.integrate.loop.run_phases`)
         self.hand_on = None
+        #: set by the loop of a run that may be stopped: asked between blocks of steps for a cause to end the phase
+        #: there ("" goes on; :func:`flexbeam.integrate.loop.run_phases`)
+        self.stop = None
         #: the impact method whose switches the kernel takes itself (kernels/src/switching.c: its ``switch_coef``
         #: and ``switched_phase``, :mod:`flexbeam.methods.switches`); None: the phase loop takes them all
         self.switching = None
@@ -294,6 +298,8 @@ class ModalStepper:
                 return code
             if self.hand_on is not None and handed.held >= BLOCK_RECORDS:  # the kernel resumes from `state`
                 self._hand_on(state, chunks, handed)
+            if self.stop is not None and self.stop():  # (a step's end: the state the kernel would resume from)
+                return _ADV_STOPPED
             capacity = min(2 * capacity, BLOCK_RECORDS)
 
     def _hand_on(self, state: np.ndarray, chunks: list, handed: _Handed) -> None:

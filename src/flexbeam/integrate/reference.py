@@ -225,6 +225,8 @@ class ReferenceStepper:
         self.system = system
         self.rtol, self.atol = rtol, atol
         self.max_step = max_step or math.inf
+        #: asked after each step for a cause to end the phase there, by a run that may be stopped (run_phases)
+        self.stop = None
         basis = ModalBasis.of(system)
         # the largest root modulus of the linearised modes: w, or up to the damping coefficient 2 zeta w when overdamped
         rates = basis.omega if basis.damp is None else np.maximum(basis.omega, basis.damp)
@@ -347,6 +349,8 @@ class ReferenceStepper:
                 )
             if hit:
                 return self._result(t_stop, y, hit[1].kind, ts, pieces, steps, solver, pair=hit[1].pair)
+            if self.stop is not None and self.stop():  # (the run's loop says why: run_phases)
+                return self._result(tb, y, None, ts, pieces, steps, solver)
             if limit is not None:
                 solver.max_step = min(cap, limit(tb, y))
             if steps >= EFFORT_BASE + EFFORT_RATE * rate * (tb - t0) and solver.status == "running":

@@ -1,4 +1,5 @@
-"""Ctrl-C and SIGTERM during a sweep are recorded and raised between batches (``flexbeam.interrupt``).
+"""Ctrl-C and SIGTERM recorded (``flexbeam.interrupt``): a sweep raises them between batches, a run that keeps what it
+computed ends at its next step boundary.
 
 SIGTERM used to raise wherever it landed: inside a history's NetCDF write it could leave xarray's file lock taken,
 and the store's next write waited for it forever -- ``flexbeam sweep --histories`` hung on ``kill`` (found by an
@@ -73,3 +74,24 @@ def test_a_sigterm_handler_that_returns_lets_the_sweep_go_on():
             assert seen == [signal.SIGTERM] and not hit
     finally:
         signal.signal(signal.SIGTERM, previous)
+
+
+def test_a_second_signal_goes_to_its_handler_at_once_when_asked(term_handler):
+    """``second_raises`` (a run that keeps what it computed, ``--keep-interrupted``): the first Ctrl-C is recorded,
+    the second raises KeyboardInterrupt where it lands -- a run inside a long compiled call or a slow output is
+    stopped by a user who presses twice; the first SIGTERM is recorded, the second goes to the CLI's handler."""
+    with ctrl_c_flag(second_raises=True) as hit:
+        os.kill(os.getpid(), signal.SIGINT)
+        assert hit.signum == signal.SIGINT and hit.name == "Ctrl-C"
+        with pytest.raises(KeyboardInterrupt):
+            os.kill(os.getpid(), signal.SIGINT)
+    with ctrl_c_flag(second_raises=True) as hit:
+        os.kill(os.getpid(), signal.SIGTERM)
+        assert hit.name == "SIGTERM"
+        with pytest.raises(_Terminated):
+            os.kill(os.getpid(), signal.SIGTERM)
+    with ctrl_c_flag() as hit:  # (a sweep's: the second is recorded too, and raised between batches)
+        os.kill(os.getpid(), signal.SIGINT)
+        os.kill(os.getpid(), signal.SIGINT)
+        assert hit.signum == signal.SIGINT
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
