@@ -192,10 +192,9 @@ def run_phases(
     With a ``sink`` every segment goes to it, in time order, and none is kept (``RunResult.segments`` is empty); a
     stepper with a ``hand_on`` attribute hands its long phases to the sink in parts.
 
-    ``stop``: asked after each phase, and by a stepper with a ``stop`` attribute between its blocks of steps (the
-    compiled one's every BLOCK_RECORDS steps, the reference's every step), for the cause that ends the run where it
-    is ("Ctrl-C", :mod:`flexbeam.interrupt`; "" goes on): the run ends there with ``status = "interrupted"``,
-    keeping what was computed (:func:`flexbeam.interrupt.interrupted_message`).
+    ``stop``: asked after each phase and by the stepper (its ``stop``) between blocks of steps for a cause that ends
+    the run where it is ("Ctrl-C", :mod:`flexbeam.interrupt`; "" goes on): ``status = "interrupted"``, what was
+    computed kept (:func:`_interrupted`).
     """
     wall0 = time.perf_counter()
     y0 = np.asarray(y0, float)
@@ -214,8 +213,7 @@ def run_phases(
         keep(Segment(method.free_phase(), 0.0, 0.0, y0.copy(), y0.copy()))
     stalled = 0
     recent: deque[float] = deque(maxlen=STORM_EVENTS)  # the times of the latest friction events in a row
-    if stop is not None:
-        stepper.stop = stop
+    stepper.stop = stop
     with np.errstate(over="raise", invalid="raise", divide="raise"):
         try:
             while t < t_end:
@@ -229,12 +227,8 @@ def run_phases(
                     t = sw.t
                     phase, y = method.kernel_switched(phase, sw)
                     stalled = 0
-                    if sw.event in _STORM_KINDS:
-                        recent.append(t)
-                    else:
-                        recent.clear()
-                steps += run.steps
-                nfev += run.nfev
+                    _tally(recent, sw.event, t)
+                steps, nfev = steps + run.steps, nfev + run.nfev
                 phase_steps.append((phase.name, run.steps))
                 if run.t0 is None:
                     keep(Segment(phase, t, run.t1, y.copy(), run.y1.copy(), run.dense))
@@ -244,21 +238,16 @@ def run_phases(
                 t, y = run.t1, run.y1
                 if progress is not None:
                     progress(t)
-                if run.failure:
-                    status, message = "failed", run.failure
-                    break
-                if run.switches and storm(recent):  # (the phase's last part kept)
-                    status, message = "failed", storm_message(recent, run.switches[-1].event, run.switches[-1].pair)
+                if run.failure or (run.switches and storm(recent)):  # (a storm: the phase's last part kept)
+                    last = run.switches[-1] if run.switches else None
+                    status, message = "failed", run.failure or storm_message(recent, last.event, last.pair)
                     break
                 if run.event is None:  # t_end, or (t < t_end) where the stepper was stopped
-                    if stop is not None and t < t_end and (cause := stop()):
-                        status, message = "interrupted", interrupted_message(t, cause)
+                    if why := _interrupted(stop, t, t_end):
+                        status, message = "interrupted", why
                     break
                 events += 1
-                if run.event in _STORM_KINDS:
-                    recent.append(t)
-                else:
-                    recent.clear()
+                _tally(recent, run.event, t)
                 if storm(recent):
                     status, message = "failed", storm_message(recent, run.event, run.pair)
                     break
@@ -273,18 +262,31 @@ def run_phases(
                 if stalled > MAX_STALLED:
                     status, message = "failed", f"events keep recurring without progress at t = {t:.9g} s"
                     break
-                if stop is not None and t < t_end and (cause := stop()):  # (after the event's transition)
-                    status, message = "interrupted", interrupted_message(t, cause)
+                if why := _interrupted(stop, t, t_end):  # (after the event's transition)
+                    status, message = "interrupted", why
                     break
         except (FloatingPointError, OverflowError, ZeroDivisionError) as exc:
             status, message = "failed", f"floating-point failure at t = {t:.9g} s: {exc}"
         finally:
             if parts:
                 stepper.hand_on = None
-            if stop is not None:
-                stepper.stop = None
+            stepper.stop = None
     wall = time.perf_counter() - wall0
     return RunResult(segments, status, message, t, wall, steps, nfev, stepper.name, events, phase_steps)
+
+
+def _tally(recent: deque[float], event: EventKind, t: float) -> None:
+    """The latest friction events in a row: one more at ``t``, or none after an event of another kind."""
+    if event in _STORM_KINDS:
+        recent.append(t)
+    else:
+        recent.clear()
+
+
+def _interrupted(stop: Callable[[], str] | None, t: float, t_end: float) -> str:
+    """The message of a run that ``stop`` ends at ``t`` before ``t_end``, keeping what was computed; else ""."""
+    cause = stop() if stop is not None and t < t_end else ""
+    return interrupted_message(t, cause) if cause else ""
 
 
 def storm(recent: deque[float]) -> bool:
