@@ -82,12 +82,12 @@ def test_a_second_signal_goes_to_its_handler_at_once_when_asked(term_handler):
     stopped by a user who presses twice; the first SIGTERM is recorded, the second goes to the CLI's handler."""
     with ctrl_c_flag(second_raises=True) as hit:
         os.kill(os.getpid(), signal.SIGINT)
-        assert hit.signum == signal.SIGINT and hit.name == "Ctrl-C"
+        assert hit.signum == signal.SIGINT and hit.cause() == "Ctrl-C"
         with pytest.raises(KeyboardInterrupt):
             os.kill(os.getpid(), signal.SIGINT)
     with ctrl_c_flag(second_raises=True) as hit:
         os.kill(os.getpid(), signal.SIGTERM)
-        assert hit.name == "SIGTERM"
+        assert hit.cause() == "SIGTERM"
         with pytest.raises(_Terminated):
             os.kill(os.getpid(), signal.SIGTERM)
     with ctrl_c_flag() as hit:  # (a sweep's: the second is recorded too, and raised between batches)

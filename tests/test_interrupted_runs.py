@@ -105,7 +105,8 @@ def ctrl_c():
 
 def test_ctrl_c_in_the_python_api_returns_what_was_computed_when_asked(tmp_path, ctrl_c):
     """``fb.simulate(..., keep_interrupted=True)``: a Ctrl-C 0.5 s into a 1000 s run (streamed: ~25 s whole) returns
-    the Solution, status "interrupted"; without it the Ctrl-C raises, as always; the option takes a bool only."""
+    the Solution, status "interrupted", and the handler before it is back; the option takes a bool only.  (Without
+    it a Ctrl-C raises, as always: tests/test_stream.py's interrupted runs.)"""
     case = seed(solver__t_end=1000.0, output__interval=1e-3)
     timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()

@@ -65,12 +65,10 @@ def simulate(
         case = load_case(case, {k.replace("__", "."): v for k, v in overrides.items()})
     elif not isinstance(case, Case):
         case = load_case(case)
-    if not keep_interrupted:
-        return _simulate(case, method, stream=stream)
-    from .interrupt import ctrl_c_flag
+    from .interrupt import keeping_interrupted
 
-    with ctrl_c_flag(second_raises=True) as hit:
-        return _simulate(case, method, stream=stream, stop=lambda: hit.name)
+    with keeping_interrupted(keep_interrupted) as hit:
+        return _simulate(case, method, stream=stream, stop=hit.cause if hit is not None else None)
 
 
 def sweep(case: Case | str, **kwargs: Any) -> xr.Dataset:

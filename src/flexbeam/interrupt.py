@@ -14,7 +14,7 @@ SIGNAL_NAMES = {signal.SIGINT: "Ctrl-C", signal.SIGTERM: "SIGTERM"}
 
 
 def interrupted_message(t: float, cause: str) -> str:
-    """The message of a run ended at ``t`` by ``cause`` ("Ctrl-C", "SIGTERM"; :attr:`Hit.name`) with what it
+    """The message of a run ended at ``t`` by ``cause`` ("Ctrl-C", "SIGTERM"; :meth:`Hit.cause`) with what it
     computed kept (the modal methods' loop and the finite-element reference's)."""
     return f"interrupted at t = {t:.9g} s ({cause}); what was computed up to there is kept"
 
@@ -31,10 +31,10 @@ class Hit:
     def __bool__(self) -> bool:
         return bool(self.signum)
 
-    @property
-    def name(self) -> str:
-        """The signal in a run's words ("Ctrl-C", "SIGTERM"), "" if none came."""
-        return SIGNAL_NAMES.get(self.signum, f"signal {self.signum}" if self.signum else "")
+    def cause(self) -> str:
+        """The signal in a run's words ("Ctrl-C", "SIGTERM"), "" if none came: a run's ``stop``
+        (:func:`flexbeam.integrate.loop.run_phases`)."""
+        return SIGNAL_NAMES.get(self.signum, "")
 
     def deliver(self) -> None:
         handler = self.handlers.get(self.signum)
@@ -78,4 +78,16 @@ def ctrl_c_flag(second_raises: bool = False) -> Iterator[Hit]:
             signal.signal(signum, handler)
 
 
-__all__ = ["SIGNAL_NAMES", "Hit", "ctrl_c_flag", "interrupted_message"]
+@contextlib.contextmanager
+def keeping_interrupted(keep: bool) -> Iterator[Hit | None]:
+    """The flag of a run that keeps what it computed when stopped (``keep``: ``--keep-interrupted``,
+    ``keep_interrupted=True``), a second signal stopping at once; None (nothing recorded) otherwise.  The run's
+    ``stop`` is the flag's :meth:`Hit.cause`."""
+    if not keep:
+        yield None
+        return
+    with ctrl_c_flag(second_raises=True) as hit:
+        yield hit
+
+
+__all__ = ["SIGNAL_NAMES", "Hit", "ctrl_c_flag", "interrupted_message", "keeping_interrupted"]

@@ -3,7 +3,6 @@ against the paper's table)."""
 
 from __future__ import annotations
 
-import contextlib
 import json
 from pathlib import Path
 from typing import Annotated
@@ -11,7 +10,7 @@ from typing import Annotated
 import typer
 
 from ..errors import ParameterError
-from ..interrupt import ctrl_c_flag
+from ..interrupt import keeping_interrupted
 from ..registry import METHOD_NAMES
 from .options import JsonOpt, MethodOpt, OutOpt, SetOpt, out_dir
 from .runs import exit_unless_complete, load, run_progress, simulate
@@ -44,10 +43,9 @@ def run(
     if stream and out is None:
         raise ParameterError("--stream: needs --out DIR, where the run writes DIR/result.nc as it goes")
     c = load(case, set_)
-    with ctrl_c_flag(second_raises=True) if keep_interrupted else contextlib.nullcontext() as hit:
-        stop = (lambda: hit.name) if hit is not None else None
+    with keeping_interrupted(keep_interrupted) as hit:
         path = out / "result.nc" if stream and out else None
-        sol = simulate(c, method, outputs=out is not None, stream=path, stop=stop)
+        sol = simulate(c, method, outputs=out is not None, stream=path, stop=hit.cause if hit is not None else None)
     metrics = sol.metrics()
     if out is not None:
         from ..views.report import write_run_outputs
