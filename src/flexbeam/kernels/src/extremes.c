@@ -176,23 +176,22 @@ static int grid_points(const probe_t *p, double a, double z) {
     return need < 33.0 ? 33 : need > 4097.0 ? 4097 : (int)need;
 }
 
-/* |theta| and |R| of the frame at the phase's ends: the scale of the tip's rounding (tip_bound.c). */
-static void frame_scale(const probe_t *p, double *th, double *R) {
-    *th = *R = 0.0;
+/* |theta| of the frame at the phase's ends: the scale of the tip's rounding (tip_bound.c). */
+static void frame_scale(const probe_t *p, double *th) {
+    *th = 0.0;
     for (int s = 0; s < 2; s++) {
         fb_frame fr;
         const double *q, *qd;
         fb_state_split(p->m, s ? p->t1 : p->t0, s ? p->y1 : p->y0, &fr, &q, &qd);
         *th = fmax(*th, fabs(fr.th));
-        *R = fmax(*R, fabs(fr.R[0]) + fabs(fr.R[1]));
     }
 }
 
 /* The tip's bounds over the steps [a, z] touches (tip_bound.c). */
 static void tip_bracket(const probe_t *p, double a, double z, fb_tip_bracket *br) {
-    double th, R;
-    frame_scale(p, &th, &R);
-    fb_tip_reach(p->tip, p->b, p->records, p->R, step_of(p, a), step_of(p, z), th, R, br);
+    double th;
+    frame_scale(p, &th);
+    fb_tip_reach(p->tip, p->b, p->records, p->R, step_of(p, a), step_of(p, z), th, br);
 }
 
 #define OPEN_MAX 8192 /* sub-intervals a pruned search may keep open at one level */
@@ -332,9 +331,9 @@ void fb_tip_slacks(const fb_model *m, const fb_basis *b, const double *records, 
     probe_t p;
     fb_tip_model *tm = tip_probe(m, b, records, nrec, t0, t1, y0, y1, &p);
     int N = b->N, r = 0, cur = -1, joint = -1; /* cur: the step bounded in A..E[1] (its predecessor's in [0]) */
-    double th, R, A[2][FB_MAXN], V[2][FB_MAXN], E[2][FB_MAXN], a[FB_MAXN], v[FB_MAXN], e[FB_MAXN];
+    double th, A[2][FB_MAXN], V[2][FB_MAXN], E[2][FB_MAXN], a[FB_MAXN], v[FB_MAXN], e[FB_MAXN];
     fb_tip_bracket own, both; /* the current step's bracket, and its own with its predecessor's */
-    frame_scale(&p, &th, &R);
+    frame_scale(&p, &th);
     for (int i = 0; i + 1 < count; i++) { /* times ascending: the steps are walked once, each bounded once */
         double ta = times[i], tz = times[i + 1];
         while (r < nrec - 1 && records[(size_t)r * p.R] + records[(size_t)r * p.R + 1] < ta) r++;
@@ -342,19 +341,19 @@ void fb_tip_slacks(const fb_model *m, const fb_basis *b, const double *records, 
         while (r1 < nrec - 1 && records[(size_t)r1 * p.R] + records[(size_t)r1 * p.R + 1] < tz) r1++;
         const fb_tip_bracket *br = &own;
         if (r1 > r0 + 1 || r0 < cur) { /* not within one step or two consecutive ones (never on the tip's grid) */
-            fb_tip_reach(p.tip, b, records, p.R, r0, r1, th, R, &both);
+            fb_tip_reach(p.tip, b, records, p.R, r0, r1, th, &both);
             br = &both, joint = -1;
         } else {
             while (cur < r1) {
                 memcpy(A[0], A[1], sizeof A[1]), memcpy(V[0], V[1], sizeof V[1]), memcpy(E[0], E[1], sizeof E[1]);
                 fb_tip_step_bounds(p.tip, b, records + (size_t)++cur * p.R, p.R, A[1], V[1], E[1]);
-                fb_tip_combine(p.tip, A[1], V[1], E[1], th, R, &own);
+                fb_tip_combine(p.tip, A[1], V[1], E[1], th, &own);
             }
             if (r0 < r1) { /* across the step's start: both steps' bounds */
                 if (joint != cur) {
                     for (int k = 0; k < N; k++)
                         a[k] = fmax(A[0][k], A[1][k]), v[k] = fmax(V[0][k], V[1][k]), e[k] = fmax(E[0][k], E[1][k]);
-                    fb_tip_combine(p.tip, a, v, e, th, R, &both);
+                    fb_tip_combine(p.tip, a, v, e, th, &both);
                     joint = cur;
                 }
                 br = &both;

@@ -147,6 +147,8 @@ int fb_model_unpack(fb_model *m, const double *buf, size_t nbuf);
 /* ------------------------------------------------------------------ model.c */
 typedef struct fb_kin_s {
     double r[2], v[2], a0[2];
+    double rel[2]; /* r - R, the point's position from the frame's origin (A(theta) rho), formed before R is added:
+                    * what is measured in the beam's frame keeps its digits however far R is from the origin */
     int want_acc; /* in: compute a0 (its q'^T H q' costs an n x n product; the gap and its rate do not need it) */
 } fb_kin;
 

@@ -124,8 +124,10 @@ static void free_place(const fb_model *m, const fb_frame *f, const fb_body_kin *
         dr[2] = ct * (-ry) - st * rx;
         dr[N + 2] = st * (-ry) + ct * rx;
     }
-    out->r[0] = f->R[0] + (ct * rx - st * ry);
-    out->r[1] = f->R[1] + (st * rx + ct * ry);
+    out->rel[0] = ct * rx - st * ry;
+    out->rel[1] = st * rx + ct * ry;
+    out->r[0] = f->R[0] + out->rel[0];
+    out->r[1] = f->R[1] + out->rel[1];
     double vlx = bk->rhod[0] - thd * ry, vly = bk->rhod[1] + thd * rx;
     out->v[0] = f->Rd[0] + (ct * vlx - st * vly);
     out->v[1] = f->Rd[1] + (st * vlx + ct * vly);

@@ -202,8 +202,8 @@ static void rev_place(const fb_model *m, const fb_frame *f, const fb_body_kin *b
         dr[0] = ct * (-ry) - st * rx;
         dr[N] = st * (-ry) + ct * rx;
     }
-    out->r[0] = ct * rx - st * ry;
-    out->r[1] = st * rx + ct * ry;
+    out->r[0] = out->rel[0] = ct * rx - st * ry; /* R = 0: the frame turns about O */
+    out->r[1] = out->rel[1] = st * rx + ct * ry;
     double vlx = bk->rhod[0] - thd * ry, vly = bk->rhod[1] + thd * rx;
     out->v[0] = ct * vlx - st * vly;
     out->v[1] = st * vlx + ct * vly;

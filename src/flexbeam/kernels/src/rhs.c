@@ -224,7 +224,7 @@ double fb_tip_deflection_at(const fb_model *m, const fb_frame *f, const double *
                             double cphi) {
     fb_kin tip = {.want_acc = 0};
     fb_point_kinematics(m, &m->points[1], f, q, qd, &tip, NULL);
-    return -sphi * (tip.r[0] - f->R[0]) + cphi * (tip.r[1] - f->R[1]);
+    return -sphi * tip.rel[0] + cphi * tip.rel[1]; /* the tip from the frame's origin, in the hub's normal */
 }
 
 double fb_tip_deflection(const fb_model *m, const fb_frame *f, const double *q, const double *qd) {

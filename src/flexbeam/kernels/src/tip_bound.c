@@ -33,8 +33,9 @@
  *     D(t) - max(D_a, D_b) <= D(t) - lambda D_a - (1 - lambda) D_b = dl + dN,
  *     dl <= sum_k |g_k| min(2 A_k, T^2/8 max|eta_k''|)          (a mode's range; the linear interpolant's error)
  *     dN <= min(2 N^, T/2 N'^)    (lambda (N(t) - N_a) + (1 - lambda)(N(t) - N_b) <= 2 N'^ (t - t_a)(t_b - t) / T),
- * plus twice the rounding of the computed deflection, 8 ulp of (1 + |theta|) |rho| + |R| (the frame's angle and
- * origin at the phase's ends: the rotations' and the hub angle's rounding grows with |theta|).  No factor of safety: the bound is the derivation's. */
+ * plus twice the rounding of the computed deflection, 8 ulp of (1 + |theta|) |rho| (the frame's angle at the phase's
+ * ends: the rotations' and the hub angle's rounding grows with |theta|; r - R is formed as A(theta) rho, never as a
+ * difference of positions, so the frame's distance from the origin R adds none).  No factor of safety: the bound is the derivation's. */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -96,7 +97,7 @@ void fb_tip_step_bounds(const fb_tip_model *tm, const fb_basis *b, const double 
 }
 
 void fb_tip_combine(const fb_tip_model *tm, const double *A, const double *V, const double *E, double theta_max,
-                    double origin_max, fb_tip_bracket *out) {
+                    fb_tip_bracket *out) {
     int N = tm->N;
     double Y = 0.0, Yd = 0.0, a = 0.0, ad = 0.0, P = 0.0, Pd = 0.0, S = 0.0, Sd = 0.0;
     for (int k = 0; k < N; k++) {
@@ -114,18 +115,18 @@ void fb_tip_combine(const fb_tip_model *tm, const double *A, const double *V, co
     double base = tm->base;
     out->N0 = Y * a * a / 2.0 + base * a * a * a / 6.0 + (S + P) * a;
     out->N1 = Y * a * ad + Yd * a * a / 2.0 + base * ad * a * a / 2.0 + (Sd + Pd) * a + (S + P) * ad;
-    out->rounding = 8.0 * DBL_EPSILON * ((1.0 + theta_max) * (fabs(base) + S + P + Y) + origin_max);
+    out->rounding = 8.0 * DBL_EPSILON * (1.0 + theta_max) * (fabs(base) + S + P + Y);
 }
 
 void fb_tip_reach(const fb_tip_model *tm, const fb_basis *b, const double *records, int R, int r0, int r1,
-                  double theta_max, double origin_max, fb_tip_bracket *out) {
+                  double theta_max, fb_tip_bracket *out) {
     int N = tm->N;
     double A[FB_MAXN] = {0}, V[FB_MAXN] = {0}, E[FB_MAXN] = {0}, a[FB_MAXN], v[FB_MAXN], e[FB_MAXN];
     for (int r = r0; r <= r1; r++) {
         fb_tip_step_bounds(tm, b, records + (size_t)r * R, R, a, v, e);
         for (int k = 0; k < N; k++) A[k] = fmax(A[k], a[k]), V[k] = fmax(V[k], v[k]), E[k] = fmax(E[k], e[k]);
     }
-    fb_tip_combine(tm, A, V, E, theta_max, origin_max, out);
+    fb_tip_combine(tm, A, V, E, theta_max, out);
 }
 
 void fb_tip_slack_parts(const fb_tip_model *tm, const fb_tip_bracket *br, double T, double parts[3]) {

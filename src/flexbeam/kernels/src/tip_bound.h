@@ -25,10 +25,10 @@ void fb_tip_step_bounds(const fb_tip_model *tm, const fb_basis *b, const double 
                         double *E);
 /* A bracket's bounds from its modes' bounds (the largest over its steps). */
 void fb_tip_combine(const fb_tip_model *tm, const double *A, const double *V, const double *E, double theta_max,
-                    double origin_max, fb_tip_bracket *out);
-/* The bounds over records r0 .. r1 (record size R); theta_max, origin_max: |theta| and |R| of the frame. */
+                    fb_tip_bracket *out);
+/* The bounds over records r0 .. r1 (record size R); theta_max: |theta| of the frame. */
 void fb_tip_reach(const fb_tip_model *tm, const fb_basis *b, const double *records, int R, int r0, int r1,
-                  double theta_max, double origin_max, fb_tip_bracket *out);
+                  double theta_max, fb_tip_bracket *out);
 /* How far the deflection can exceed the larger of two samples T apart within the bracket: the linear part's,
  * the rest's and the rounding's shares (parts), and their sum. */
 void fb_tip_slack_parts(const fb_tip_model *tm, const fb_tip_bracket *br, double T, double parts[3]);
