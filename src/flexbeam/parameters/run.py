@@ -65,8 +65,12 @@ class Initial(Section):
     position: tuple[Finite, Finite] = Field(
         (0.0, 0.0), description="initial centre of mass (x_G, y_G) [m] (joint.kind = free, kind = state)"
     )
-    velocity: tuple[Finite, Finite] = Field(
-        (0.0, 0.0), description="initial velocity of the centre of mass [m/s] (joint.kind = free, kind = state)"
+    # G's speed: within 1e4 m/s, as the hub rate's bound lets a 1 m beam's tip move (MAX_RATE); 1e300 m/s ran with
+    # its kinetic energy overflowing to inf (energy_drift null) and numpy's warnings
+    velocity: tuple[Bounded(-MAX_RATE, MAX_RATE), Bounded(-MAX_RATE, MAX_RATE)] = Field(
+        (0.0, 0.0),
+        description="initial velocity of the centre of mass [m/s] (joint.kind = free, kind = state; each component "
+        "within +-1e4 m/s)",
     )
     modal_displacement: list[Finite] = Field(
         default_factory=list,
