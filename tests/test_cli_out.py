@@ -184,7 +184,7 @@ def test_a_refused_sweep_leaves_a_finished_store_as_it_was(tmp_path):
     for grid, more in (("0.5,0.6", ("-w", "0")), ("0.5,0.7", ("-w", "0")), ("0.5,0.7", unreachable)):
         code, _, stderr = sweep(grid, out, *more)
         assert code == 2 and len(stderr.splitlines()) == 1, (grid, more, code, stderr)
-        assert stderr.startswith(("error: workers: must be an integer >= 1", "error: scheduler: cannot connect"))
+        assert stderr.startswith(("error: --workers: must be an integer >= 1", "error: --scheduler: cannot connect"))
         assert files(out) == before, (grid, more)
     fresh = tmp_path / "fresh"  # (the same order for a scheduler that cannot be reached: 10 s of retries)
     assert sweep("0.5", fresh, "-w", "0")[0] == 2
@@ -201,5 +201,18 @@ def test_a_malformed_scheduler_address_is_refused_before_the_store_is_written(tm
     code, stdout, stderr = _cli([*sweep, "--out", str(out), "--scheduler", "foo"])
     lines = stderr.splitlines()
     assert code == 2 and stdout == "" and len(lines) == 1, (code, stderr)
-    assert lines[0].startswith("error: scheduler: cannot connect to 'foo'") and "port" in lines[0], lines[0]
+    assert lines[0].startswith("error: --scheduler: cannot connect to 'foo'") and "port" in lines[0], lines[0]
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("command", ["sweep", "bifurcation"])
+def test_no_worker_is_refused_naming_the_option(tmp_path, command):
+    """``-w 0``: one line naming ``--workers`` as every other option is named (it said ``workers:``), exit 2,
+    nothing written (bifurcation made its empty store first)."""
+    out = tmp_path / "store"
+    args = [a for a in COMMANDS[command] if a not in ("-w", "1")] if command == "sweep" else COMMANDS[command]
+    code, stdout, stderr = _cli([*args, "--out", str(out), "-w", "0"])
+    lines = stderr.splitlines()
+    assert code == 2 and stdout == "" and len(lines) == 1, (code, stderr)
+    assert lines[0] == "error: --workers: must be an integer >= 1 (got 0)", lines[0]
     assert not out.exists()

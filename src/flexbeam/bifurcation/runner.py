@@ -108,8 +108,11 @@ def bifurcation(
     Returns the :func:`build_dataset` Dataset, also written to ``out``/bifurcation.nc when a store is given.
     """
     from ..sweep.cluster import cluster_client
+    from ..sweep.scheduler import check_scheduler, check_workers
 
     check(case, lo, hi, count, periods, discard, phase)
+    check_workers(scheduler, workers)  # (before the store is made: -w 0 left an empty one)
+    check_scheduler(scheduler)
     grid = [float(f) for f in np.linspace(lo, hi, count)]
     plans = {"up": grid, "down": grid[::-1]}
     store = Path(out) if out is not None else None

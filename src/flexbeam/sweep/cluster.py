@@ -276,7 +276,7 @@ def cluster_client(scheduler: Any, workers: int | None) -> Iterator[Any]:
             # written after the failure, ended in a traceback through it)
             client = Client(str(scheduler), timeout="10s", set_as_default=False)
         except (OSError, TimeoutError, ValueError) as exc:
-            raise ParameterError(f"scheduler: cannot connect to '{scheduler}' ({exc})") from None
+            raise ParameterError(f"--scheduler: cannot connect to '{scheduler}' ({exc})") from None
         with client:
             yield client
         return

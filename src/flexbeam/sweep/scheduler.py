@@ -21,12 +21,13 @@ def check_scheduler(scheduler: Any) -> None:
         if parse_address(address)[0] != "inproc":  # (a network address needs its host and port)
             get_address_host_port(address)
     except (TypeError, ValueError) as exc:
-        raise ParameterError(f"scheduler: cannot connect to '{scheduler}' ({exc})") from None
+        raise ParameterError(f"--scheduler: cannot connect to '{scheduler}' ({exc})") from None
 
 
 def check_workers(scheduler: Any, workers: Any) -> None:
-    """``workers``: an integer >= 1, and only for the local cluster (one line naming the field)."""
+    """``workers``: an integer >= 1, and only for the local cluster (one line naming the option as the CLI names it,
+    ``--workers``, as the runners name ``--periods``, ``--grid``)."""
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
-        raise ParameterError(f"workers: must be an integer >= 1 (got {workers!r})")
+        raise ParameterError(f"--workers: must be an integer >= 1 (got {workers!r})")
     if scheduler is not None and workers is not None:
-        raise ParameterError("workers: only for the local cluster (a scheduler has its own workers)")
+        raise ParameterError("--workers: only for the local cluster (a scheduler has its own workers)")
