@@ -377,3 +377,20 @@ def test_an_index_that_does_not_count_from_zero_is_named():
             fb.load_case("two-stops", {f"obstacles[{index}].radius": 0.02})
     with pytest.raises(ParameterError, match=r"^beam\[-1\]\.length: unknown section"):  # not a list: as before
         fb.load_case("two-stops", {"beam[-1].length": 0.5})
+
+
+def test_a_copy_with_an_update_is_validated():
+    """pydantic's ``model_copy(update=...)`` takes the update as it is: a case copied with ``solver.t_end = -1`` ran
+    "success" with no sample.  The copy is validated as an assignment is: the field named, the range said; an
+    unknown key is refused too; a valid update gives the case that the same overrides load."""
+    import pydantic
+
+    case = fb.load_case("seed-experiment")
+    with pytest.raises(pydantic.ValidationError, match=r"t_end\n.*greater than 0"):
+        case.model_copy(update={"solver": case.solver.model_copy(update={"t_end": -1.0})})
+    with pytest.raises(pydantic.ValidationError, match="t_endd"):
+        case.solver.model_copy(update={"t_endd": 1.0})
+    copied = case.model_copy(update={"solver": case.solver.model_copy(update={"t_end": 0.02})})
+    assert copied == fb.load_case("seed-experiment", {"solver.t_end": 0.02})
+    assert case.solver.t_end == 0.1  # the original untouched
+    assert case.model_copy() == case and case.model_copy(deep=True) == case

@@ -51,8 +51,7 @@ def branch_key(case: Case, method: str, periods: int, discard: int, phase: float
     """What a branch's points depend on besides their frequencies: the case (its own ``base.frequency`` aside, which
     each point replaces), the method, ``periods``, ``discard`` and ``phase`` -- a hash (:func:`flexbeam.sweep.case_key`
     of the case), so that a store made with other settings is not resumed."""
-    unset = case.model_copy(update={"base": case.base.model_copy(update={"frequency": None})})
-    text = json.dumps([case_key(unset, method), periods, discard, repr(float(phase))])
+    text = json.dumps([case_key(case, method, without=("base.frequency",)), periods, discard, repr(float(phase))])
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 
 

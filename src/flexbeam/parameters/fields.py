@@ -7,8 +7,9 @@ import math
 import tomllib
 import types
 import typing
+from collections.abc import Mapping
 from functools import cache
-from typing import Annotated, Any
+from typing import Annotated, Any, Self
 
 import numpy as np
 from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, ValidationInfo, field_validator
@@ -126,6 +127,17 @@ class Section(BaseModel):
     "0.7"`` as 0.7 and ``contact.anywhere = "yes"`` or ``1`` as true)."""
 
     model_config = ConfigDict(extra="forbid", validate_assignment=True)
+
+    def model_copy(self, *, update: Mapping[str, Any] | None = None, deep: bool = False) -> Self:
+        """pydantic's copy, validated again when ``update`` is given, as an assignment is (``validate_assignment``):
+        pydantic's own takes the update as it is -- a case copied with ``solver.t_end = -1`` ran "success" with no
+        sample.  A bad value raises pydantic's ``ValidationError`` naming the field."""
+        copied = super().model_copy(deep=deep)
+        if not update:
+            return copied
+        data = {name: getattr(copied, name) for name in type(self).model_fields}
+        data.update(update)
+        return type(self).model_validate(data)
 
     @field_validator("*", mode="before")
     @classmethod

@@ -16,12 +16,20 @@ from ..parameters.io import set_dotted, validate_case
 from .spec import MAX_CASES, Distribution
 
 
-def case_key(case: Case, method: str) -> str:
+def case_key(case: Case, method: str, without: tuple[str, ...] = ()) -> str:
     """The store key of a case run with ``method``: a hash of its validated fields.
 
-    Name and description do not enter (renaming a case does not change its results).
+    Name and description do not enter (renaming a case does not change its results), nor the dotted fields
+    ``without`` (the key as if they were not given: a bifurcation's branch, whose points each set
+    ``base.frequency``).
     """
     data = case.model_dump(mode="json", exclude_none=True)
+    for dotted in without:
+        *path, name = dotted.split(".")
+        table = data
+        for key in path:
+            table = table.get(key, {})
+        table.pop(name, None)
     return _hash(data, method)
 
 
