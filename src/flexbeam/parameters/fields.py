@@ -78,6 +78,9 @@ Angle = Bounded(-1e3, 1e3)
 #: an angular rate [rad/s]: within +-1e4 rad/s (~1e5 rpm; a 1 m beam's tip would move at 10 km/s)
 MAX_RATE = 1e4
 Rate = Bounded(-MAX_RATE, MAX_RATE)
+#: a speed [m/s]: within +-1e4 m/s, as fast as that rate moves a 1 m beam's tip (a free beam's centre of mass thrown
+#: at 1e300 m/s ran with its kinetic energy overflowing to inf)
+Speed = Bounded(-1e4, 1e4)
 #: the smallest sphere obstacle [m]
 MIN_SPHERE_RADIUS = 1e-6
 
@@ -156,5 +159,5 @@ class Section(BaseModel):
 
 __all__ = [
     "CONTACT_LAWS", "MAX_RATE", "MIN_SPHERE_RADIUS", "Angle", "Bounded", "Finite", "NonNegative", "Positive", "Rate",
-    "Section",
+    "Section", "Speed",
 ]  # fmt: skip
