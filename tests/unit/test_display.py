@@ -96,3 +96,13 @@ def test_netcdf_is_compressed_chunked_along_time_and_lossless_on_request(ccfm, t
             np.testing.assert_array_equal(ds[name].values, arr)
         assert list(ds["phase"].values) == list(ccfm.phase)
         assert ds["contact_force"].attrs["units"] == "N"
+
+
+def test_a_solution_prints_in_one_line_without_evaluating_its_samples():
+    """``repr``/``print`` of a Solution (outside Jupyter) named an object address; now one line with the case, the
+    method, the status and its records -- and no sample evaluated for it (a long run's samples cost seconds)."""
+    sol = fb.simulate(fb.load_case("seed-experiment", {"solver.t_end": 0.005}), "ccfm")
+    text = repr(sol)
+    assert text == f"<Solution 'seed-experiment' ccfm: success, {len(sol.records)} contact records>"
+    assert str(sol) == text and "\n" not in text
+    assert sol._samples is None  # (what the repr did not ask for)

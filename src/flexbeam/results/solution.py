@@ -387,6 +387,11 @@ class Solution:
         """
         return self._views().animate(path, **options)
 
+    def __repr__(self) -> str:
+        """One line: the case, the method, the status and the records (no sample evaluated: Jupyter's view is HTML)."""
+        name = self._provenance.get("case_name", "")
+        return f"<Solution {name!r} {self.method}: {self.status}, {len(self._contacts)} contact records>"
+
     def _repr_html_(self) -> str:
         """Notebook display: status, metrics and a small plot (:func:`flexbeam.views.display.solution_html`)."""
         return self._views().html()
