@@ -210,8 +210,7 @@ def test_no_worker_is_refused_naming_the_option(tmp_path, command):
     """``-w 0``: one line naming ``--workers`` as every other option is named (it said ``workers:``), exit 2,
     nothing written (bifurcation made its empty store first)."""
     out = tmp_path / "store"
-    args = [a for a in COMMANDS[command] if a not in ("-w", "1")] if command == "sweep" else COMMANDS[command]
-    code, stdout, stderr = _cli([*args, "--out", str(out), "-w", "0"])
+    code, stdout, stderr = _cli([*COMMANDS[command], "--out", str(out), "-w", "0"])  # (the last -w is taken)
     lines = stderr.splitlines()
     assert code == 2 and stdout == "" and len(lines) == 1, (code, stderr)
     assert lines[0] == "error: --workers: must be an integer >= 1 (got 0)", lines[0]
